@@ -1,0 +1,34 @@
+# skinmesh: thin wrapper over CMake. `make mesh` and `make test` work on a fresh
+# Debian machine: they install the missing Debian packages first (.ci/install-deps).
+BUILD   ?= build
+JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
+MOLECULE ?= data/gramicidinA_1grm_model1.pdb
+OUT     ?= gramicidinA_1grm_model1.ply
+
+.PHONY: all deps configure build mesh test bench clean
+
+all: build
+
+deps:
+	@bash .ci/install-deps
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release > /dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+# Mesh a bundled real molecule (gramicidin A by default) and verify the mesh.
+mesh: build
+	$(BUILD)/skinmesh mesh $(MOLECULE) -o $(OUT) --stats -
+
+# Run the whole test suite through ctest.
+test: build
+	cd $(BUILD) && ctest --output-on-failure
+
+# Google Benchmark: predicates, regular triangulation, the mesher (Table 1).
+bench: build
+	$(BUILD)/skinmesh_bench
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,28 @@
+// geometry/indexed_mesh.h: a plain triangle mesh (shared vertex array plus index
+// triples) with optional per-vertex data. The exchange format between the mesher,
+// the writers/readers (geometry/mesh_io) and the verifier (geometry/mesh_checks):
+// unlike the half-edge SurfaceMesh it can hold any triangle soup, including the
+// broken ones a verifier must diagnose.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace skinmesh::geometry {
+
+/// Triangle mesh as arrays. Triangles are counter-clockwise seen from outside
+/// (their normal (b-a)x(c-a) points out of the body). `normals` and `atom` are
+/// either empty or have one entry per vertex: the unit outward surface normal,
+/// and the index (0-based, into the input atom list) of the atom whose skin
+/// patch holds the vertex (-1 if none).
+struct IndexedMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<Vec3> normals;
+  std::vector<std::int32_t> atom;
+};
+
+}  // namespace skinmesh::geometry
