@@ -24,9 +24,11 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& f, int line, const std::string& p) {
-    std::string s = f;
-    if (line > 0) s += ":" + std::to_string(line);
-    return s + ": " + p;
+    std::string s;
+    s.append(f);
+    if (line > 0) s.append(":").append(std::to_string(line));
+    s.append(": ").append(p);
+    return s;
   }
   std::string file_;
   int line_;

@@ -1,0 +1,86 @@
+// morse/critical_points.cpp: analytic critical points per patch. skin-math §5.
+#include "morse/critical_points.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace skinmesh::morse {
+
+Vec3 default_height_direction() {
+  // y axis tilted by ~2.4° towards a generic x/z direction (constants are
+  // arbitrary irrational-looking numbers; fixed so runs are reproducible).
+  return Vec3(0.031415926535, 1.0, 0.027182818284).normalized();
+}
+
+std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e_in) {
+  const Vec3 e = e_in.normalized();
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  const double tol = 1e-9 * mc.length_scale();
+  std::vector<CriticalPoint> out;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    const skin::MixedCell& X = mc.cell(c);
+    if (X.bounding) continue;
+    const Mat3 A = mc.quadric_matrix(c);  // A^{-1} = A for s = 1/2
+    const Vec3 Ae = A * e;
+    const double eAe = e.dot(Ae);
+    if (eAe == 0.0) continue;  // e asymptotic: no finite candidate
+    const double mu2 = -X.focus_weight / (2.0 * eAe);
+    if (!(mu2 > 0.0)) continue;
+    const double mu = std::sqrt(mu2);
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      const Vec3 p = X.focus + (sgn * mu) * Ae;
+      if (mc.violation(c, p) > tol) continue;
+      CriticalPoint cp;
+      cp.position = p;
+      cp.cell = c;
+      cp.height = e.dot(p);
+      cp.rho = mc.rho(c, p);
+      // grad f = 2 A y = 2 (sgn mu) A A e = 2 sgn mu e, so n = sgn e.
+      cp.sigma = sgn;
+      const skin::PrincipalCurvatures k = skin.curvatures(c, p);
+      cp.k1 = k.k1;
+      cp.k2 = k.k2;
+      const double K = k.k1 * k.k2;
+      if (K < 0) {
+        cp.kind = CriticalKind::Saddle;
+        // Circle direction e_c = u x y / |u x y|; meridian e_m = n x e_c.
+        const Vec3 y = p - X.focus;
+        const Vec3 ec = X.axis.cross(y).normalized();
+        const Vec3 em = (sgn * e).cross(ec).normalized();
+        // Hessian of h in (e_c, e_m) is -sigma diag(k_circ, k_mer): k1 is the
+        // circle curvature for edges and triangles (SkinSurface::curvatures).
+        const bool circle_ascends = -sgn * k.k1 > 0;
+        cp.ascent = circle_ascends ? ec : em;
+        cp.descent = circle_ascends ? em : ec;
+      } else {
+        cp.kind = (sgn * k.k1 > 0) ? CriticalKind::Maximum : CriticalKind::Minimum;
+      }
+      out.push_back(cp);
+    }
+  }
+  // Merge duplicates found in two cells sharing a face.
+  std::sort(out.begin(), out.end(),
+            [](const CriticalPoint& a, const CriticalPoint& b) { return a.height < b.height; });
+  std::vector<CriticalPoint> merged;
+  for (const CriticalPoint& cp : out) {
+    bool dup = false;
+    for (std::size_t j = merged.size(); j-- > 0;) {
+      if (cp.height - merged[j].height > tol) break;
+      if ((merged[j].position - cp.position).norm() <= tol && merged[j].kind == cp.kind) dup = true;
+    }
+    if (!dup) merged.push_back(cp);
+  }
+  return merged;
+}
+
+MorseCount count_critical_points(const std::vector<CriticalPoint>& cps) {
+  MorseCount m;
+  for (const CriticalPoint& cp : cps) {
+    if (cp.kind == CriticalKind::Minimum) ++m.minima;
+    if (cp.kind == CriticalKind::Saddle) ++m.saddles;
+    if (cp.kind == CriticalKind::Maximum) ++m.maxima;
+  }
+  return m;
+}
+
+}  // namespace skinmesh::morse

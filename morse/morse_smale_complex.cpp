@@ -1,0 +1,186 @@
+// morse/morse_smale_complex.cpp: integral-line tracing (skin-math §6) and arc
+// contraction (Cheng & Shi §3.2, Figure 3).
+#include "morse/morse_smale_complex.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "geometry/point_grid.h"
+
+namespace skinmesh::morse {
+
+namespace {
+
+/// Unit ascent direction of the height on the surface: (e - (n·e) n) / |...|
+/// (skin-math §6; not the paper's g_p). Zero at critical points.
+Vec3 surface_ascent(const Vec3& n, const Vec3& e) {
+  const Vec3 g = e - n.dot(e) * n;
+  const double len = g.norm();
+  return len > 1e-300 ? Vec3(g / len) : Vec3::Zero();
+}
+
+}  // namespace
+
+IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
+                                 const std::vector<CriticalPoint>& cps,
+                                 const std::vector<double>& protect_radius, Index s,
+                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt) {
+  IntegralLine line;
+  line.saddle = s;
+  line.direction = sgn;
+  const CriticalPoint& sp = cps[s];
+  const CriticalKind target = sgn > 0 ? CriticalKind::Maximum : CriticalKind::Minimum;
+  double max_r = 0;
+  for (std::size_t i = 0; i < cps.size(); ++i) max_r = std::max(max_r, protect_radius[i]);
+  Index cell = sp.cell;
+  Vec3 x = skin.pull_back(sp.position + 1e-2 * sp.rho * dir, cell);
+  line.points.push_back(sp.position);
+  line.points.push_back(x);
+
+  auto find_end = [&](const Vec3& p, double h) -> Index {
+    Index best = kInvalidIndex;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < cps.size(); ++i) {
+      if (cps[i].kind != target) continue;
+      const double d = (cps[i].position - p).norm();
+      if (d <= std::max(3.0 * h, protect_radius[i]) && d < best_d) best = static_cast<Index>(i), best_d = d;
+    }
+    return best;
+  };
+
+  for (int step = 0; step < opt.max_steps; ++step) {
+    const skin::SkinSample sx = skin.sample(x, cell);
+    double h = opt.step_factor * sx.rho;
+    const Index end = find_end(x, h);
+    if (end != kInvalidIndex) {
+      line.points.push_back(cps[end].position);
+      line.end = end;
+      return line;
+    }
+    const Vec3 t1 = sgn * surface_ascent(sx.gradient.normalized(), e);
+    bool advanced = false;
+    for (int halve = 0; halve < 30 && !advanced; ++halve, h *= 0.5) {
+      Index c2 = sx.cell;
+      const Vec3 xp = skin.pull_back(x + h * t1, c2);
+      const Vec3 t2 = sgn * surface_ascent(skin.normal(xp, c2), e);
+      Index c3 = c2;
+      const Vec3 xn = skin.pull_back(x + 0.5 * h * (t1 + t2), c3);
+      if (sgn * (e.dot(xn) - e.dot(x)) > 0) {
+        x = xn;
+        cell = c3;
+        advanced = true;
+      }
+    }
+    if (!advanced) break;  // flat region: the line stalled (e.g. at another saddle)
+    line.points.push_back(x);
+  }
+  return line;
+}
+
+Index MorseSmaleComplex::arc_end(Index s, int k) const {
+  const Index l = arcs[s][k];
+  if (l == kInvalidIndex) return kInvalidIndex;
+  Index end = lines[l].end;
+  // Follow contractions: a cancelled extremum forwards to its replacement.
+  for (int guard = 0; end != kInvalidIndex && !live[end] && guard < 1000000; ++guard) {
+    Index next = kInvalidIndex;
+    for (const auto& pr : cancelled)
+      if (pr[1] == end) {
+        // The replacement is the other same-direction arc end of the saddle.
+        const Index sad = pr[0];
+        const int base = (critical[end].kind == CriticalKind::Maximum) ? 0 : 2;
+        for (int j = base; j < base + 2; ++j) {
+          const Index l2 = arcs[sad][j];
+          if (l2 != kInvalidIndex && lines[l2].end != end) next = lines[l2].end;
+        }
+      }
+    if (next == kInvalidIndex || next == end) return kInvalidIndex;
+    end = next;
+  }
+  return end;
+}
+
+MorseCount MorseSmaleComplex::live_count() const {
+  std::vector<CriticalPoint> l;
+  for (std::size_t i = 0; i < critical.size(); ++i)
+    if (live[i]) l.push_back(critical[i]);
+  return count_critical_points(l);
+}
+
+MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const Vec3& e_in,
+                                            const MorseSmaleOptions& opt) {
+  MorseSmaleComplex ms;
+  const Vec3 e = e_in.normalized();
+  ms.height_direction = e;
+  ms.critical = critical_points(skin, e);
+  const Index n = static_cast<Index>(ms.critical.size());
+  ms.protect_radius.resize(n);
+  for (Index i = 0; i < n; ++i) ms.protect_radius[i] = opt.protect_factor * ms.critical[i].rho;
+  ms.live.assign(n, 1);
+  ms.arcs.assign(n, {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+
+  // Four integral lines per saddle: ±ascent (ascending), ±descent (descending).
+  for (Index s = 0; s < n; ++s) {
+    const CriticalPoint& c = ms.critical[s];
+    if (c.kind != CriticalKind::Saddle) continue;
+    const Vec3 dirs[4] = {c.ascent, -c.ascent, c.descent, -c.descent};
+    for (int k = 0; k < 4; ++k) {
+      ms.arcs[s][k] = static_cast<Index>(ms.lines.size());
+      ms.lines.push_back(
+          trace_integral_line(skin, e, ms.critical, ms.protect_radius, s, dirs[k], k < 2 ? +1 : -1, opt));
+    }
+  }
+
+  // Arc contraction: (saddle, extremum) pairs joined by exactly one arc whose
+  // protecting spheres intersect, closest first; repeat until none is left.
+  auto spheres_meet = [&](Index a, Index b) {
+    return (ms.critical[a].position - ms.critical[b].position).norm() <
+           ms.protect_radius[a] + ms.protect_radius[b];
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    struct Cand {
+      double d;
+      Index s, x;
+    };
+    std::vector<Cand> cands;
+    for (Index s = 0; s < n; ++s) {
+      if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
+      for (int k = 0; k < 4; ++k) {
+        const Index x = ms.arc_end(s, k);
+        if (x == kInvalidIndex || !ms.live[x] || !spheres_meet(s, x)) continue;
+        cands.push_back({(ms.critical[s].position - ms.critical[x].position).norm(), s, x});
+      }
+    }
+    std::sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.d < b.d; });
+    for (const Cand& cd : cands) {
+      if (!ms.live[cd.s] || !ms.live[cd.x]) continue;
+      const int base = ms.critical[cd.x].kind == CriticalKind::Maximum ? 0 : 2;
+      const Index e0 = ms.arc_end(cd.s, base), e1 = ms.arc_end(cd.s, base + 1);
+      if (e0 == kInvalidIndex || e1 == kInvalidIndex) continue;
+      if (e0 == e1) continue;           // double arc: cancelling would change the topology
+      if (e0 != cd.x && e1 != cd.x) continue;  // stale after an earlier contraction
+      ms.live[cd.s] = ms.live[cd.x] = 0;
+      ms.cancelled.push_back({cd.s, cd.x});
+      changed = true;
+    }
+  }
+
+  // Remaining intersections between live protecting spheres.
+  double max_r = 0;
+  for (double r : ms.protect_radius) max_r = std::max(max_r, r);
+  geometry::PointGrid grid(std::max(2 * max_r, 1e-6));
+  for (Index i = 0; i < n; ++i)
+    if (ms.live[i]) grid.insert(i, ms.critical[i].position);
+  for (Index i = 0; i < n; ++i) {
+    if (!ms.live[i]) continue;
+    grid.for_each_near(ms.critical[i].position, 2 * max_r, [&](Index j, const Vec3&) {
+      if (j > i && spheres_meet(i, j)) ms.conflicts.push_back({i, j});
+    });
+  }
+  return ms;
+}
+
+}  // namespace skinmesh::morse

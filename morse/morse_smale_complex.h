@@ -1,0 +1,85 @@
+// morse/morse_smale_complex.h: integral lines of the height function traced
+// from every saddle, the Morse–Smale complex they form, protecting spheres, and
+// its simplification by arc contraction.
+// Cheng & Shi 2004 §3.2 ("Morse-Smale complex", "Construction", "Elimination of
+// the noisy critical points", Figure 3); skin-math §5, §6 (the paper's g_p is
+// not an ascent field: we follow V - (n·V) n).
+// Notes: papers/morse/morse_smale_complex.md
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/types.h"
+#include "morse/critical_points.h"
+#include "skin/skin_surface.h"
+
+namespace skinmesh::morse {
+
+/// A piecewise-linear integral line from a saddle to the extremum it reaches.
+struct IntegralLine {
+  Index saddle = kInvalidIndex;  ///< index into the critical point list
+  int direction = +1;            ///< +1 ascending (to a maximum), -1 descending
+  std::vector<Vec3> points;      ///< on the skin, from the saddle outwards
+  Index end = kInvalidIndex;     ///< extremum reached, kInvalidIndex if the trace failed
+};
+
+/// Options of the Morse–Smale construction.
+struct MorseSmaleOptions {
+  /// Step h = step_factor * rho(x) of the Heun integrator (skin-math §6: 0.04–0.05).
+  double step_factor = 0.04;
+  /// Protecting-sphere radius r_p = protect_factor * rho(c). The paper uses the
+  /// tangent-disc radius (§4.2, about 0.185–0.208 rho); we default to 0.25 rho
+  /// because a fan from a vertex just outside a sphere of the paper's size can
+  /// still cover the critical point (sweep-design-notes Q8.1,
+  /// papers/morse/morse_smale_complex.md).
+  double protect_factor = 0.25;
+  /// Maximum number of steps of one integral line.
+  int max_steps = 20000;
+};
+
+/// The Morse–Smale complex: critical points, the four arcs of every saddle,
+/// protecting spheres, and which critical points are still live after
+/// simplification.
+struct MorseSmaleComplex {
+  Vec3 height_direction = Vec3::UnitY();
+  std::vector<CriticalPoint> critical;
+  /// Protecting-sphere radius of each critical point (Å).
+  std::vector<double> protect_radius;
+  /// For saddle i: arcs[i] = {ascending +, ascending -, descending +, descending -}
+  /// as indices into `lines` (kInvalidIndex for non-saddles).
+  std::vector<std::array<Index, 4>> arcs;
+  std::vector<IntegralLine> lines;
+  /// False for critical points removed by arc contraction.
+  std::vector<char> live;
+  /// Pairs cancelled by arc contraction (saddle, extremum).
+  std::vector<std::array<Index, 2>> cancelled;
+  /// Pairs of live critical points whose protecting spheres still intersect.
+  std::vector<std::array<Index, 2>> conflicts;
+
+  /// Extremum at the end of arc k of saddle s after simplification (following
+  /// the rerouting of Figure 3).
+  Index arc_end(Index s, int k) const;
+  /// Morse count of the live critical points.
+  MorseCount live_count() const;
+};
+
+/// Traces one integral line from saddle `s` of `cps`, starting in tangent
+/// direction `dir` (unit), ascending (sgn = +1) or descending (sgn = -1), by
+/// Heun predictor–corrector steps with re-projection (skin-math §6), until it
+/// comes within max(3h, r_p) of an extremum of the right kind.
+IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
+                                 const std::vector<CriticalPoint>& cps,
+                                 const std::vector<double>& protect_radius, Index s,
+                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt);
+
+/// Builds the Morse–Smale complex of h(x) = e·x on the skin: critical points,
+/// four integral lines per saddle, protecting spheres; then contracts arcs
+/// (saddle, extremum) whose protecting spheres intersect, closest pairs first,
+/// when exactly one arc joins them (Cheng & Shi §3.2, Figure 3). Remaining
+/// intersections are listed in `conflicts`.
+MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const Vec3& e,
+                                            const MorseSmaleOptions& opt = {});
+
+}  // namespace skinmesh::morse

@@ -1,0 +1,113 @@
+// skin/dual_complex.cpp: K0 filtration values, Euler characteristic, components
+// and voids. skin-math §5.
+#include "skin/dual_complex.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+namespace skinmesh::skin {
+
+namespace {
+
+/// Union–find with path halving.
+struct DisjointSets {
+  std::vector<Index> parent;
+  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  Index find(Index a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void unite(Index a, Index b) { parent[find(a)] = find(b); }
+};
+
+/// The vertex of coface Y that is not in X.
+Index extra_vertex(const MixedCell& X, const MixedCell& Y) {
+  for (int i = 0; i <= Y.dim; ++i) {
+    const Index v = Y.vertices[i];
+    bool in_x = false;
+    for (int j = 0; j <= X.dim; ++j) in_x = in_x || X.vertices[j] == v;
+    if (!in_x) return v;
+  }
+  return kInvalidIndex;
+}
+
+}  // namespace
+
+SkinTopology dual_complex_topology(const MixedComplex& mc) {
+  const auto& rt = mc.triangulation();
+  const Index n = mc.num_cells();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> value(n, kInf);
+  // Filtration values, tetrahedra first (they have no cofaces).
+  for (int dim = 3; dim >= 0; --dim) {
+    for (Index c = 0; c < n; ++c) {
+      const MixedCell& X = mc.cell(c);
+      if (X.dim != dim || X.bounding) continue;
+      bool attached = false;
+      double coface_min = kInf;
+      for (const CellPlane& p : mc.planes(c)) {
+        const MixedCell& Y = mc.cell(p.neighbor);
+        if (Y.dim != dim + 1) continue;
+        coface_min = std::min(coface_min, value[p.neighbor]);
+        const Index k = extra_vertex(X, Y);
+        if (geometry::power_distance(rt.point(k), X.focus) < X.focus_weight) attached = true;
+      }
+      value[c] = attached ? coface_min : X.focus_weight;
+    }
+  }
+  auto in_k0 = [&](Index c) { return value[c] <= 0.0; };
+
+  SkinTopology topo;
+  for (Index c = 0; c < n; ++c)
+    if (in_k0(c)) ++topo.k0_simplices[mc.cell(c).dim];
+  topo.euler_k0 = topo.k0_simplices[0] - topo.k0_simplices[1] + topo.k0_simplices[2] -
+                  topo.k0_simplices[3];
+
+  // betti0: K0 vertices joined by K0 edges.
+  DisjointSets comp(n);
+  for (Index c = 0; c < n; ++c) {
+    if (mc.cell(c).dim != 1 || !in_k0(c)) continue;
+    for (const CellPlane& p : mc.planes(c))
+      if (mc.cell(p.neighbor).dim == 0) comp.unite(p.neighbor, c);
+  }
+  std::vector<char> seen(n, 0);
+  for (Index c = 0; c < n; ++c) {
+    if (mc.cell(c).dim != 0 || !in_k0(c)) continue;
+    const Index r = comp.find(c);
+    if (!seen[r]) seen[r] = 1, ++topo.betti0;
+  }
+
+  // betti2: components of the complement (tetrahedra not in K0 joined across
+  // triangles not in K0), minus the unbounded one.
+  DisjointSets outside(n);
+  Index any_outer = kInvalidIndex;
+  for (Index c = 0; c < n; ++c) {
+    const MixedCell& X = mc.cell(c);
+    if (X.dim == 3 && X.bounding) {
+      if (any_outer == kInvalidIndex) any_outer = c;
+      outside.unite(c, any_outer);
+    }
+    if (X.dim != 2 || in_k0(c)) continue;
+    Index first = kInvalidIndex;
+    for (const CellPlane& p : mc.planes(c)) {
+      if (mc.cell(p.neighbor).dim != 3) continue;
+      if (first == kInvalidIndex)
+        first = p.neighbor;
+      else
+        outside.unite(first, p.neighbor);
+    }
+  }
+  std::fill(seen.begin(), seen.end(), 0);
+  int complement = 0;
+  for (Index c = 0; c < n; ++c) {
+    if (mc.cell(c).dim != 3 || in_k0(c)) continue;
+    const Index r = outside.find(c);
+    if (!seen[r]) seen[r] = 1, ++complement;
+  }
+  topo.betti2 = complement - 1;
+  return topo;
+}
+
+}  // namespace skinmesh::skin

@@ -1,0 +1,34 @@
+// skin/dual_complex.h: the dual complex K0 (alpha shape at alpha = 0) of the
+// unshrunk weighted points, and the skin topology it predicts.
+// skin-math §5 "Global check"; Edelsbrunner 1999 (the skin body, shrink 1/2,
+// has the homotopy type of the union of the input balls, hence of K0).
+// Notes: papers/skin/dual_complex.md
+#pragma once
+
+#include "skin/mixed_complex.h"
+
+namespace skinmesh::skin {
+
+/// Topology of the skin predicted from K0, independently of any critical point.
+struct SkinTopology {
+  int k0_simplices[4] = {0, 0, 0, 0};  ///< vertices, edges, triangles, tetrahedra of K0
+  int euler_k0 = 0;                    ///< chi(K0)
+  int betti0 = 0;                      ///< components of K0 (= of the skin body)
+  int betti2 = 0;                      ///< voids of K0 (= cavities of the body)
+  /// chi(skin) = 2 chi(K0): the skin is the boundary of a body homotopic to K0.
+  int euler_skin() const { return 2 * euler_k0; }
+  /// Number of skin components: one outer surface per body component plus one
+  /// per cavity (Alexander duality: the complement of |K0| has betti2 + 1 components).
+  int components() const { return betti0 + betti2; }
+  /// Total genus of the skin components: sum g_i = components - chi / 2.
+  int total_genus() const { return components() - euler_k0; }
+};
+
+/// Builds K0 from the mixed complex's simplices with the standard filtration:
+/// a simplex X has value w_X if it is unattached (pi_k(z_X) >= w_X for every
+/// vertex k of every coface) and otherwise the minimum value of its cofaces;
+/// X is in K0 iff its value <= 0 (skin-math §5). Simplices with a bounding
+/// point are never in K0. Counts components and voids with union–find.
+SkinTopology dual_complex_topology(const MixedComplex& mc);
+
+}  // namespace skinmesh::skin

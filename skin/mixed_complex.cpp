@@ -1,0 +1,312 @@
+// skin/mixed_complex.cpp: construction of the mixed complex and point location.
+// Cheng & Shi 2004 §2.1; skin-math §2.2 (foci), §2.3 (half-space form), §3.2.
+#include "skin/mixed_complex.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <unordered_map>
+
+#include "geometry/assert.h"
+#include "geometry/errors.h"
+
+namespace skinmesh::skin {
+
+// Focus Computation
+
+void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w) {
+  const std::size_t k = pts.size() - 1;  // dimension of the simplex
+  const Vec3 z0 = pts[0].z;
+  const double w0 = pts[0].w;
+  if (k == 0) {
+    z = z0;
+    w = -w0;
+    return;
+  }
+  if (k == 1) {
+    // Edge: t = (d² + w0 - w1) / (2d) along u (skin-math §2.2 special case).
+    const Vec3 e = pts[1].z - z0;
+    const double d2 = e.squaredNorm();
+    const double t_over_d = (d2 + w0 - pts[1].w) / (2.0 * d2);
+    const Vec3 off = t_over_d * e;
+    z = z0 + off;
+    w = off.squaredNorm() - w0;
+    return;
+  }
+  // Triangle or tetrahedron: 2 E E^T beta = r, z = z0 + E^T beta.
+  Vec3 off;
+  if (k == 2) {
+    const Vec3 e1 = pts[1].z - z0, e2 = pts[2].z - z0;
+    const double r1 = e1.squaredNorm() + w0 - pts[1].w;
+    const double r2 = e2.squaredNorm() + w0 - pts[2].w;
+    const double g11 = 2 * e1.dot(e1), g12 = 2 * e1.dot(e2), g22 = 2 * e2.dot(e2);
+    const double det = g11 * g22 - g12 * g12;
+    const double b1 = (r1 * g22 - r2 * g12) / det;
+    const double b2 = (g11 * r2 - g12 * r1) / det;
+    off = b1 * e1 + b2 * e2;
+  } else {
+    Mat3 E;
+    Vec3 r;
+    for (int j = 1; j <= 3; ++j) {
+      const Vec3 e = pts[j].z - z0;
+      E.row(j - 1) = e.transpose();
+      r(j - 1) = e.squaredNorm() + w0 - pts[j].w;
+    }
+    off = E.fullPivLu().solve(0.5 * r);
+  }
+  z = z0 + off;
+  w = off.squaredNorm() - w0;
+}
+
+// MixedComplex Construction
+
+namespace {
+
+/// Key of a sorted edge or triangle: vertex ids packed in 21-bit fields.
+std::uint64_t simplex_key(const std::array<Index, 4>& v, int dim) {
+  std::uint64_t k = 0;
+  for (int i = 0; i <= dim; ++i) k = (k << 21) | static_cast<std::uint64_t>(v[i]);
+  return k;
+}
+
+constexpr Index kMaxPoints = (1u << 21) - 1;
+
+}  // namespace
+
+MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) {
+  const Index np = rt.num_points();
+  SKINMESH_ASSERT_MSG(np <= kMaxPoints, "at most 2^21 - 1 weighted points are supported");
+  const Index nt = rt.num_tets();
+
+  // Length scale of the input (skin-math §9).
+  {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    double rmax = 0;
+    for (Index v = 0; v < rt.num_input_points(); ++v) {
+      const WeightedPoint& p = rt.point(v);
+      lo = lo.cwiseMin(p.z);
+      hi = hi.cwiseMax(p.z);
+      rmax = std::max(rmax, std::sqrt(std::max(p.w, 0.0)));
+    }
+    length_scale_ = std::max((hi - lo).norm() + 2 * rmax, 1.0);
+  }
+
+  // Enumerate the simplices: vertices, then edges, triangles, tetrahedra.
+  vertex_cell_.assign(np, kInvalidIndex);
+  auto add_cell = [&](int dim, std::array<Index, 4> v) {
+    MixedCell c;
+    c.dim = dim;
+    c.vertices = v;
+    for (int i = 0; i <= dim; ++i) c.bounding = c.bounding || rt.is_bounding(v[i]);
+    cells_.push_back(c);
+    return static_cast<Index>(cells_.size() - 1);
+  };
+  for (Index v = 0; v < np; ++v)
+    if (rt.is_vertex(v)) vertex_cell_[v] = add_cell(0, {v, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+
+  std::unordered_map<std::uint64_t, Index> edge_id, tri_id;
+  edge_id.reserve(nt * 2);
+  tri_id.reserve(nt * 3);
+  // Facet/coface pairs (X, Y, k) with Y = X + {k}: one shared plane each.
+  struct Pair {
+    Index x, y, k;
+  };
+  std::vector<Pair> pairs;
+  pairs.reserve(static_cast<std::size_t>(nt) * 10);
+
+  std::vector<Index> tet_cell(nt);
+  for (Index t = 0; t < nt; ++t) {
+    std::array<Index, 4> tv = rt.tet(t);
+    std::sort(tv.begin(), tv.end());
+    tet_cell[t] = add_cell(3, tv);
+  }
+  auto edge_of = [&](Index a, Index b) {
+    std::array<Index, 4> v{std::min(a, b), std::max(a, b), kInvalidIndex, kInvalidIndex};
+    auto [it, fresh] = edge_id.try_emplace(simplex_key(v, 1), 0);
+    if (fresh) {
+      it->second = add_cell(1, v);
+      pairs.push_back({vertex_cell_[v[0]], it->second, v[1]});
+      pairs.push_back({vertex_cell_[v[1]], it->second, v[0]});
+    }
+    return it->second;
+  };
+  for (Index t = 0; t < nt; ++t) {
+    const std::array<Index, 4> tv = cells_[tet_cell[t]].vertices;
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 4> f{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (i != skip) f[j++] = tv[i];
+      auto [it, fresh] = tri_id.try_emplace(simplex_key(f, 2), 0);
+      if (fresh) {
+        it->second = add_cell(2, f);
+        const Index tc = it->second;
+        pairs.push_back({edge_of(f[0], f[1]), tc, f[2]});
+        pairs.push_back({edge_of(f[0], f[2]), tc, f[1]});
+        pairs.push_back({edge_of(f[1], f[2]), tc, f[0]});
+      }
+      pairs.push_back({it->second, tet_cell[t], tv[skip]});
+    }
+  }
+
+  // Foci and axes.
+  for (MixedCell& c : cells_) {
+    std::array<WeightedPoint, 4> p;
+    for (int i = 0; i <= c.dim; ++i) p[i] = rt.point(c.vertices[i]);
+    focus_of(std::span<const WeightedPoint>(p.data(), c.dim + 1), c.focus, c.focus_weight);
+    if (c.dim == 1) c.axis = (p[1].z - p[0].z).normalized();
+    if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
+  }
+
+  // Planes (skin-math §2.3): for X ⊂ Y = X ∪ {k}, m = P_perp^X (z_k - z_X);
+  // mu_X ⊆ {m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X)}, mu_Y on the other side.
+  constexpr double s = 0.5;
+  std::vector<Index> count(cells_.size(), 0);
+  for (const Pair& pr : pairs) {
+    ++count[pr.x];
+    ++count[pr.y];
+  }
+  Index total = 0;
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    cells_[c].first_plane = total;
+    cells_[c].num_planes = count[c];
+    total += count[c];
+  }
+  planes_.resize(total);
+  std::vector<Index> fill(cells_.size(), 0);
+  for (const Pair& pr : pairs) {
+    const MixedCell& X = cells_[pr.x];
+    const WeightedPoint& pk = rt.point(pr.k);
+    Vec3 m = pk.z - X.focus;
+    if (X.dim == 1) m -= m.dot(X.axis) * X.axis;
+    if (X.dim == 2) m = m.dot(X.axis) * X.axis;
+    const double pi_k = (X.focus - pk.z).squaredNorm() - pk.w;
+    const double rhs = 0.5 * s * (pi_k - X.focus_weight);
+    const double len = m.norm();
+    SKINMESH_ASSERT_MSG(len > 0, "degenerate facet/coface pair in the mixed complex");
+    const Vec3 n = m / len;
+    const double off = (m.dot(X.focus) + rhs) / len;
+    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y};
+    const MixedCell& Y = cells_[pr.y];
+    planes_[Y.first_plane + fill[pr.y]++] = {-n, -off, pr.x};
+  }
+}
+
+Index MixedComplex::num_cells_of_dim(int d) const {
+  Index n = 0;
+  for (const MixedCell& c : cells_) n += (c.dim == d && !c.bounding) ? 1 : 0;
+  return n;
+}
+
+// MixedComplex Evaluation
+
+double MixedComplex::violation(Index c, const Vec3& x) const {
+  double worst = -std::numeric_limits<double>::infinity();
+  for (const CellPlane& p : planes(c)) worst = std::max(worst, p.normal.dot(x) - p.offset);
+  return worst;
+}
+
+Index MixedComplex::locate(const Vec3& x, Index hint) const {
+  const double tol = 1e-12 * length_scale_;
+  Index c = hint;
+  if (c == kInvalidIndex || c >= cells_.size()) {
+    // Start from the vertex cell of the tet's vertex nearest in power distance.
+    const Index t = rt_->locate(x);
+    if (t == kInvalidIndex)
+      throw GeometryError("mixed complex: point (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) +
+                          ", " + std::to_string(x.z()) + ") lies outside the bounding tetrahedron");
+    Index best = kInvalidIndex;
+    double best_pow = std::numeric_limits<double>::infinity();
+    for (Index v : rt_->tet(t)) {
+      if (vertex_cell_[v] == kInvalidIndex) continue;
+      const double pw = geometry::power_distance(rt_->point(v), x);
+      if (pw < best_pow) {
+        best_pow = pw;
+        best = v;
+      }
+    }
+    c = vertex_cell_[best];
+  }
+  // Visibility walk: cross the most violated plane. Bounded number of steps.
+  const std::size_t max_steps = 64 + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * 8);
+  for (std::size_t step = 0; step < max_steps; ++step) {
+    double worst = tol;
+    Index next = kInvalidIndex;
+    for (const CellPlane& p : planes(c)) {
+      const double v = p.normal.dot(x) - p.offset;
+      if (v > worst) {
+        worst = v;
+        next = p.neighbor;
+      }
+    }
+    if (next == kInvalidIndex) return c;
+    c = next;
+  }
+  // Fallback: the cell with the smallest violation.
+  Index best = kInvalidIndex;
+  double best_v = std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < cells_.size(); ++i) {
+    const double v = violation(i, x);
+    if (v < best_v) {
+      best_v = v;
+      best = i;
+    }
+  }
+  if (best_v > 1e-9 * length_scale_)
+    throw GeometryError("mixed complex: no cell contains the point (" + std::to_string(x.x()) + ", " +
+                        std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")");
+  return best;
+}
+
+double MixedComplex::f(Index c, const Vec3& x) const {
+  const MixedCell& m = cells_[c];
+  const Vec3 y = x - m.focus;
+  const double yy = y.squaredNorm();
+  switch (m.dim) {
+    case 0:
+      return yy + 0.5 * m.focus_weight;
+    case 1: {
+      const double a = y.dot(m.axis);
+      return yy - 2.0 * a * a + 0.5 * m.focus_weight;
+    }
+    case 2: {
+      const double a = y.dot(m.axis);
+      return 2.0 * a * a - yy + 0.5 * m.focus_weight;
+    }
+    default:
+      return -yy + 0.5 * m.focus_weight;
+  }
+}
+
+Vec3 MixedComplex::gradient(Index c, const Vec3& x) const {
+  const MixedCell& m = cells_[c];
+  const Vec3 y = x - m.focus;
+  switch (m.dim) {
+    case 0:
+      return 2.0 * y;
+    case 1:
+      return 2.0 * (y - 2.0 * y.dot(m.axis) * m.axis);
+    case 2:
+      return 2.0 * (2.0 * y.dot(m.axis) * m.axis - y);
+    default:
+      return -2.0 * y;
+  }
+}
+
+Mat3 MixedComplex::quadric_matrix(Index c) const {
+  const MixedCell& m = cells_[c];
+  switch (m.dim) {
+    case 0:
+      return Mat3::Identity();
+    case 1:
+      return Mat3::Identity() - 2.0 * m.axis * m.axis.transpose();
+    case 2:
+      return 2.0 * m.axis * m.axis.transpose() - Mat3::Identity();
+    default:
+      return -Mat3::Identity();
+  }
+}
+
+}  // namespace skinmesh::skin

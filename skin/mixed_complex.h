@@ -1,0 +1,115 @@
+// skin/mixed_complex.h: the mixed complex M_B of a set of weighted points
+// (shrink factor s = 1/2), in half-space form, with point location by walking.
+// Cheng & Shi 2004 §2.1 and §4.1 "Initialization"; skin-math §2.3, §3, §9.
+// Notes: papers/skin/mixed_complex.md
+#pragma once
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "geometry/regular_triangulation.h"
+#include "geometry/types.h"
+#include "geometry/weighted_point.h"
+
+namespace skinmesh::skin {
+
+using geometry::WeightedPoint;
+
+// MixedCell Definition
+
+/// One bounding plane of a mixed cell: the cell lies in {x : normal·x <= offset}.
+/// `normal` is a unit vector (Å⁰), `offset` in Å. `neighbor` is the cell on
+/// the other side of the plane (it shares the plane, skin-math §2.3).
+struct CellPlane {
+  Vec3 normal;
+  double offset;
+  Index neighbor;
+};
+
+/// The mixed cell mu_X of a simplex X of the regular triangulation and the
+/// quadric patch f_X it carries (skin-math §3.2 with s = 1/2):
+///   f_X(x) = |P_perp y|² - |P_par y|² + w_X / 2,   y = x - z_X,
+/// where P_par projects onto the direction space of aff X. `dim` is 0 (vertex:
+/// sphere patch), 1 (edge: hyperboloid about the edge line), 2 (triangle:
+/// hyperboloid about the normal line through z_X) or 3 (tetrahedron: cavity
+/// sphere). `vertices[0..dim]` are point indices of the triangulation (sorted).
+struct MixedCell {
+  int dim = 0;
+  std::array<Index, 4> vertices{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
+  /// Focus (orthocentre) z_X (Å) and focus weight w_X (Å²), skin-math §2.2.
+  Vec3 focus = Vec3::Zero();
+  double focus_weight = 0.0;
+  /// Edge direction (dim 1) or triangle normal (dim 2), unit; zero otherwise.
+  Vec3 axis = Vec3::Zero();
+  /// Planes of this cell: planes()[first_plane, first_plane + num_planes).
+  Index first_plane = 0;
+  Index num_planes = 0;
+  /// True if a vertex of X is one of the triangulation's bounding points: such
+  /// cells lie far from the skin (papers/skin/mixed_complex.md).
+  bool bounding = false;
+};
+
+// MixedComplex Definition
+
+/// The mixed complex of the (non-redundant) weighted points of a regular
+/// triangulation: one cell per simplex, cells tile the bounding tetrahedron.
+/// Construction is O(#simplices); evaluation of f, grad f and rho at a point
+/// costs one point location (a walk from a nearby cell) plus O(1).
+class MixedComplex {
+ public:
+  /// Builds every cell (foci, axes, bounding planes) from the triangulation.
+  /// The shrink factor is fixed at s = 1/2 (Cheng & Shi §2.1).
+  explicit MixedComplex(const geometry::RegularTriangulation& rt);
+
+  Index num_cells() const { return static_cast<Index>(cells_.size()); }
+  const MixedCell& cell(Index c) const { return cells_[c]; }
+  std::span<const CellPlane> planes(Index c) const {
+    const MixedCell& m = cells_[c];
+    return {planes_.data() + m.first_plane, m.num_planes};
+  }
+  const geometry::RegularTriangulation& triangulation() const { return *rt_; }
+  /// Number of cells of dimension d (0..3) that do not touch a bounding point.
+  Index num_cells_of_dim(int d) const;
+  /// Vertex cell of triangulation point v, or kInvalidIndex if v is redundant.
+  Index vertex_cell(Index v) const { return vertex_cell_[v]; }
+  /// Length scale L of the input (bounding-box diagonal of the non-bounding
+  /// points plus their radii, Å): the unit for tolerances (skin-math §9).
+  double length_scale() const { return length_scale_; }
+
+  /// Largest signed distance (Å) by which x lies outside the planes of cell c
+  /// (<= 0 inside).
+  double violation(Index c, const Vec3& x) const;
+  /// Mixed cell containing x, found by a visibility walk from `hint` (any cell;
+  /// kInvalidIndex starts from the cell of the triangulation point nearest in
+  /// power distance found by walking the triangulation). Points on a shared
+  /// face may be reported in either cell: f, grad f and rho are continuous
+  /// there. Falls back to a scan of all cells if the walk cycles.
+  /// Pre: x finite and inside the bounding tetrahedron. Throws GeometryError
+  /// if no cell contains x within 1e-9 L.
+  Index locate(const Vec3& x, Index hint = kInvalidIndex) const;
+
+  /// f_X(x) (Å²) of cell c (valid as the skin function for x in mu_c).
+  double f(Index c, const Vec3& x) const;
+  /// grad f_X(x) = 2 (P_perp y - P_par y) (Å).
+  Vec3 gradient(Index c, const Vec3& x) const;
+  /// Local length scale rho(x) = |x - z_X| (Å), skin-math §4.1 (s = 1/2).
+  double rho(Index c, const Vec3& x) const { return (x - cells_[c].focus).norm(); }
+  /// A = P_perp - P_par (half the Hessian of f_X).
+  Mat3 quadric_matrix(Index c) const;
+
+ private:
+  const geometry::RegularTriangulation* rt_;
+  std::vector<MixedCell> cells_;
+  std::vector<CellPlane> planes_;
+  std::vector<Index> vertex_cell_;
+  double length_scale_ = 1.0;
+};
+
+/// Focus z_X and focus weight w_X of the simplex with the given vertices
+/// (1 to 4 weighted points), skin-math §2.2: the point of aff X with equal
+/// power distance w_X to every vertex. Computed in coordinates relative to the
+/// first vertex. Pre: the points are affinely independent.
+void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w);
+
+}  // namespace skinmesh::skin

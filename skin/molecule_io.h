@@ -1,0 +1,63 @@
+// skin/molecule_io.h: read_molecule() turns a PDB, mmCIF, PQR or XYZR file into a
+// Molecule (atom centres and radii, Å). The first stage of the pipeline (STYLE.md §2).
+// PDB and mmCIF go through gemmi; radii come from Bondi (skin/element_radii.h).
+#pragma once
+
+#include <string>
+
+#include "skin/molecule.h"
+
+namespace skinmesh::skin {
+
+// Molecule Reading Options
+
+/// What read_molecule() keeps and how it recognises the format.
+struct ReadOptions {
+  /// Keep water molecules (residues HOH, WAT, DOD, H2O, TIP3, SOL, ...). Default:
+  /// drop them, one note each.
+  bool keep_water = false;
+  /// Keep hydrogen (and deuterium) atoms when the file has them. Default: keep.
+  bool keep_hydrogens = true;
+  /// File formats. Auto chooses by extension: .pdb .ent -> Pdb; .cif .mmcif ->
+  /// Mmcif; .pqr -> Pqr; .xyzr -> Xyzr; each optionally followed by .gz (gzip).
+  enum class Format { Auto, Pdb, Mmcif, Pqr, Xyzr };
+  Format format = Format::Auto;
+};
+
+// Molecule Reading Public Functions
+
+/// Reads the atoms of `path`, in file order.
+///
+/// - PDB (fixed columns; x, y, z from columns 31-54) and mmCIF (_atom_site) are
+///   read with gemmi: first model only; first alternate location only (an atom is
+///   kept if its altloc is blank or the first letter seen for that atom; a residue
+///   whose atoms all carry one other letter, a micro-heterogeneity alternative, is
+///   dropped whole); waters dropped unless `opt.keep_water`; hydrogens dropped if
+///   `!opt.keep_hydrogens`. The element comes from the element column (PDB columns
+///   77-78, mmCIF type_symbol), else is guessed by gemmi from the atom name (one
+///   summary note). The radius is Bondi's (bondi_radius); an element Bondi does
+///   not list gets kFallbackRadius and a note.
+/// - PQR: whitespace separated `ATOM|HETATM serial name resName [chain] resSeq x y
+///   z charge radius`; x, y, z, charge, radius are the last five fields. The
+///   radius is the file's. A hydrogen with radius 0 is skipped with a note. The
+///   element is guessed from the atom name (first letter after leading digits, or
+///   the name itself for single-atom ion residues such as "NA NA").
+/// - XYZR (MSMS): `x y z r` per line, extra fields ignored, blank lines and `#`
+///   comments allowed; element, names and ids empty/0, serial = 1-based index.
+///
+/// Every skipped or repaired atom gets one line in Molecule::notes
+/// ("path:line: ..."). Throws InputError(path, line, problem) for: a file that
+/// cannot be opened or read ("cannot open file"), an unknown format, a malformed
+/// record, a non-numeric or non-finite coordinate ("non-numeric x coordinate
+/// 'abc'", "non-finite y coordinate 'nan'"), a radius <= 0 (except the hydrogen
+/// case above), an unknown element, and a file without atoms ("no atoms found").
+/// Line numbers are 1-based; 0 when unknown (some errors reported by gemmi
+/// itself, an mmCIF _atom_site written as tag-value pairs rather than a loop).
+Molecule read_molecule(const std::string& path, const ReadOptions& opt = {});
+
+/// The format read_molecule() would choose for `path` by its extension (case
+/// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr or Xyzr. Throws InputError(path, 0, "unknown
+/// format (expected .pdb, .cif, .pqr or .xyzr)") for anything else.
+ReadOptions::Format format_from_extension(const std::string& path);
+
+}  // namespace skinmesh::skin

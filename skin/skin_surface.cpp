@@ -1,0 +1,190 @@
+// skin/skin_surface.cpp: evaluation and projection on the skin surface.
+// skin-math §3 (patches), §4.1 (curvature), §7.2 (normal-line projection),
+// §7.3 (gradient–Newton pull-back).
+#include "skin/skin_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "geometry/errors.h"
+
+namespace skinmesh::skin {
+
+SkinSurface::SkinSurface(std::vector<geometry::WeightedPoint> points) : points_(std::move(points)) {
+  if (points_.empty()) throw InputError("", 0, "no weighted points (no atoms)");
+  for (const auto& p : points_)
+    if (!p.z.allFinite() || !std::isfinite(p.w))
+      throw InputError("", 0, "non-finite weighted point");
+  rt_ = std::make_unique<geometry::RegularTriangulation>(points_);
+  mc_ = std::make_unique<MixedComplex>(*rt_);
+}
+
+SkinSample SkinSurface::sample(const Vec3& x, Index hint) const {
+  SkinSample s;
+  s.cell = mc_->locate(x, hint);
+  s.f = mc_->f(s.cell, x);
+  s.gradient = mc_->gradient(s.cell, x);
+  s.rho = mc_->rho(s.cell, x);
+  return s;
+}
+
+Vec3 SkinSurface::normal(const Vec3& x, Index hint) const {
+  return sample(x, hint).gradient.normalized();
+}
+
+PrincipalCurvatures SkinSurface::curvatures(Index c, const Vec3& x) const {
+  const MixedCell& m = mc_->cell(c);
+  const double r = mc_->rho(c, x);
+  const double k_mer = m.focus_weight / (2.0 * r * r * r);
+  switch (m.dim) {
+    case 0:
+      return {1.0 / r, 1.0 / r};
+    case 1:
+      return {1.0 / r, k_mer};
+    case 2:
+      return {-1.0 / r, k_mer};
+    default:
+      return {-1.0 / r, -1.0 / r};
+  }
+}
+
+double SkinSurface::distance_estimate(const Vec3& x, Index hint) const {
+  const SkinSample s = sample(x, hint);
+  return std::abs(s.f) / s.gradient.norm();
+}
+
+Index SkinSurface::atom_of(Index c, const Vec3& x) const {
+  const MixedCell& m = mc_->cell(c);
+  Index best = kInvalidIndex;
+  double best_pow = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= m.dim; ++i) {
+    const Index v = m.vertices[i];
+    if (rt_->is_bounding(v)) continue;
+    const double pw = geometry::power_distance(rt_->point(v), x);
+    if (pw < best_pow) {
+      best_pow = pw;
+      best = v;
+    }
+  }
+  return best;
+}
+
+// Projection Along a Line
+
+namespace {
+
+/// Roots of a t² + 2 b t + c = 0 in [lo, hi] (numerically stable form);
+/// returns how many were written to r (sorted).
+int quadratic_roots(double a, double b, double c, double lo, double hi, double r[2]) {
+  int n = 0;
+  double cand[2];
+  int nc = 0;
+  const double scale = std::max({std::abs(a), std::abs(b), 1e-300});
+  if (std::abs(a) <= 1e-14 * scale) {
+    if (b != 0) cand[nc++] = -c / (2 * b);
+  } else {
+    const double disc = b * b - a * c;
+    if (disc < 0) return 0;
+    const double sq = std::sqrt(disc);
+    const double qv = -(b + std::copysign(sq, b));
+    if (qv != 0) {
+      cand[nc++] = qv / a;
+      cand[nc++] = c / qv;
+    } else {
+      cand[nc++] = 0;  // b = 0 and disc = 0: double root at 0 (c = 0)
+    }
+  }
+  for (int i = 0; i < nc; ++i)
+    if (cand[i] >= lo && cand[i] <= hi) r[n++] = cand[i];
+  if (n == 2 && r[0] > r[1]) std::swap(r[0], r[1]);
+  return n;
+}
+
+}  // namespace
+
+bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out,
+                                     Index& cell) const {
+  const MixedComplex& mc = *mc_;
+  const double eta = 1e-12 * mc.length_scale();
+  // Parametric interval [lo, hi] of the line q + t n inside cell c.
+  auto interval = [&](Index c, double& lo, double& hi) {
+    lo = -std::numeric_limits<double>::infinity();
+    hi = std::numeric_limits<double>::infinity();
+    Index exit_hi = kInvalidIndex, exit_lo = kInvalidIndex;
+    for (const CellPlane& p : mc.planes(c)) {
+      const double dn = p.normal.dot(n);
+      const double rhs = p.offset - p.normal.dot(q);
+      if (dn > 0) {
+        const double t = rhs / dn;
+        if (t < hi) hi = t, exit_hi = p.neighbor;
+      } else if (dn < 0) {
+        const double t = rhs / dn;
+        if (t > lo) lo = t, exit_lo = p.neighbor;
+      }
+    }
+    return std::pair<Index, Index>{exit_lo, exit_hi};
+  };
+  // Roots of f_c(q + t n) on [lo, hi] ∩ [-delta, delta].
+  auto roots_in = [&](Index c, double lo, double hi, double r[2]) {
+    const Vec3 y = q - mc.cell(c).focus;
+    const Mat3 A = mc.quadric_matrix(c);
+    const Vec3 An = A * n;
+    return quadratic_roots(n.dot(An), y.dot(An), mc.f(c, q), std::max(lo, -delta) - eta,
+                           std::min(hi, delta) + eta, r);
+  };
+
+  const Index c0 = mc.locate(q, cell);
+  double best_t = std::numeric_limits<double>::infinity();
+  Index best_c = kInvalidIndex;
+  // Walk outwards from t = 0 in both directions, cell by cell; the first root
+  // met on each side is that side's closest.
+  for (int dir = +1; dir >= -1; dir -= 2) {
+    Index c = c0;
+    double lo, hi;
+    auto ex = interval(c, lo, hi);
+    double r[2];
+    for (int guard = 0; guard < 64; ++guard) {
+      const double seg_lo = dir > 0 ? std::max(lo, 0.0) : lo;
+      const double seg_hi = dir > 0 ? hi : std::min(hi, 0.0);
+      const int nr = roots_in(c, seg_lo, seg_hi, r);
+      if (nr > 0) {
+        const double t = dir > 0 ? r[0] : r[nr - 1];
+        if (std::abs(t) < std::abs(best_t)) best_t = t, best_c = c;
+        break;
+      }
+      const double t_exit = dir > 0 ? hi : lo;
+      if (std::abs(t_exit) >= delta || !std::isfinite(t_exit)) break;
+      const Index next = dir > 0 ? ex.second : ex.first;
+      if (next == kInvalidIndex) break;
+      c = mc.locate(q + (t_exit + dir * eta) * n, next);
+      ex = interval(c, lo, hi);
+    }
+  }
+  if (best_c == kInvalidIndex) return false;
+  out = q + best_t * n;
+  cell = mc.locate(out, best_c);
+  return true;
+}
+
+Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell) const {
+  Vec3 x = x0;
+  const double tol = 1e-14 * length_scale();
+  for (int it = 0; it < 100; ++it) {
+    const SkinSample s = sample(x, cell);
+    cell = s.cell;
+    const double g2 = s.gradient.squaredNorm();
+    if (g2 <= 0) break;
+    const double dist = std::abs(s.f) / std::sqrt(g2);
+    if (dist <= tol) return x;
+    x -= (s.f / g2) * s.gradient;
+  }
+  const SkinSample s = sample(x, cell);
+  cell = s.cell;
+  if (std::abs(s.f) / s.gradient.norm() <= 1e-11 * length_scale()) return x;
+  throw GeometryError("pull_back did not converge near (" + std::to_string(x0.x()) + ", " +
+                      std::to_string(x0.y()) + ", " + std::to_string(x0.z()) + ")");
+}
+
+}  // namespace skinmesh::skin

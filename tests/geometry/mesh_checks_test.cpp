@@ -1,0 +1,507 @@
+// tests/geometry/mesh_checks_test.cpp: the mesh verifier (geometry/mesh_checks)
+// on good meshes with known invariants (icosahedron, torus, spheres) and on
+// meshes broken in one known way each; the grid broad phase against brute force.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh_checks.h"
+#include "geometry/triangle_intersection.h"
+
+using skinmesh::Index;
+using skinmesh::Vec3;
+using namespace skinmesh::geometry;
+
+namespace {
+
+// Fixtures ----------------------------------------------------------------------
+
+// Regular icosahedron with edge length 2, faces counter-clockwise seen from outside.
+IndexedMesh icosahedron() {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  IndexedMesh m;
+  m.positions = {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0),
+                 Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
+                 Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  return m;
+}
+
+// Icosahedron subdivided `levels` times (1 -> 4 triangles), projected on the unit sphere.
+IndexedMesh sphere(int levels) {
+  IndexedMesh m = icosahedron();
+  for (Vec3& p : m.positions) p.normalize();
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<Index, Index>, Index> mid;
+    auto midpoint = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      const Index i = Index(m.positions.size());
+      m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+      mid.emplace(key, i);
+      return i;
+    };
+    std::vector<std::array<Index, 3>> next;
+    for (const auto& t : m.triangles) {
+      const Index ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      next.push_back({t[0], ab, ca});
+      next.push_back({ab, t[1], bc});
+      next.push_back({ca, bc, t[2]});
+      next.push_back({ab, bc, ca});
+    }
+    m.triangles = next;
+  }
+  return m;
+}
+
+// Torus with radii R = 2, r = 0.7 from an n x m grid; outward orientation
+// (d/du x d/dv points away from the core circle).
+IndexedMesh torus(int n, int m) {
+  IndexedMesh t;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double u = 2 * pi * i / n, v = 2 * pi * j / m;
+      t.positions.emplace_back((2 + 0.7 * std::cos(v)) * std::cos(u),
+                               (2 + 0.7 * std::cos(v)) * std::sin(u), 0.7 * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return Index(((i + n) % n) * m + (j + m) % m); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      t.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      t.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return t;
+}
+
+// Closed cone with its apex at `apex`, opening along +z (dir = 1) or -z (dir = -1):
+// apex, a ring of k vertices at height dir, the centre of the base.
+IndexedMesh cone(const Vec3& apex, int dir, int k) {
+  IndexedMesh c;
+  c.positions.push_back(apex);
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * std::numbers::pi * i / k;
+    c.positions.push_back(apex + Vec3(std::cos(a), std::sin(a), dir));
+  }
+  c.positions.push_back(apex + Vec3(0, 0, dir));
+  const Index base = Index(k + 1);
+  for (int i = 0; i < k; ++i) {
+    const Index r0 = Index(1 + i), r1 = Index(1 + (i + 1) % k);
+    if (dir > 0) {
+      c.triangles.push_back({0, r1, r0});
+      c.triangles.push_back({base, r0, r1});
+    } else {
+      c.triangles.push_back({0, r0, r1});
+      c.triangles.push_back({base, r1, r0});
+    }
+  }
+  return c;
+}
+
+// Unit tetrahedron (0, e_x, e_y, e_z) translated by t, outward oriented.
+IndexedMesh tetrahedron(const Vec3& t) {
+  IndexedMesh m;
+  m.positions = {t, t + Vec3(1, 0, 0), t + Vec3(0, 1, 0), t + Vec3(0, 0, 1)};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
+// b's vertices and triangles appended to a (indices shifted).
+IndexedMesh join(IndexedMesh a, const IndexedMesh& b) {
+  const Index off = Index(a.positions.size());
+  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) a.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  return a;
+}
+
+// Brute-force list of intersecting pairs (the same exact narrow phase, all pairs).
+std::vector<std::array<Index, 2>> brute_force_intersections(const IndexedMesh& m) {
+  std::vector<std::array<Index, 2>> out;
+  const auto& T = m.triangles;
+  auto usable = [&](const std::array<Index, 3>& t) {
+    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+           !is_degenerate_triangle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  };
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    if (!usable(T[i])) continue;
+    for (std::size_t j = i + 1; j < T.size(); ++j) {
+      if (!usable(T[j])) continue;
+      int shared = 0;
+      for (Index a : T[i])
+        for (Index b : T[j]) shared += a == b;
+      if (shared == 3) continue;
+      if (mesh_triangles_intersect(T[i], T[j], m.positions)) out.push_back({Index(i), Index(j)});
+    }
+  }
+  return out;
+}
+
+// Brackets balance outside strings and the text is one object.
+bool looks_like_json_object(const std::string& s) {
+  if (s.empty() || s.front() != '{' || s.back() != '}') return false;
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '{' || c == '[') ++depth;
+    else if (c == '}' || c == ']') {
+      if (--depth < 0) return false;
+      if (depth == 0 && i + 1 != s.size()) return false;
+    }
+  }
+  return depth == 0 && !in_string;
+}
+
+}  // namespace
+
+TEST_SUITE("geometry") {
+
+TEST_CASE("check_mesh: icosahedron") {
+  const MeshCheckReport r = check_mesh(icosahedron());
+  CHECK(r.ok());
+  CHECK(r.problems.empty());
+  CHECK(r.num_vertices == 12);
+  CHECK(r.num_triangles == 20);
+  CHECK(r.num_edges == 30);
+  CHECK(r.num_unreferenced_vertices == 0);
+  CHECK(r.closed);
+  CHECK(r.edge_manifold);
+  CHECK(r.vertex_manifold);
+  CHECK(r.oriented);
+  REQUIRE(r.components.size() == 1);
+  const MeshComponent& c = r.components[0];
+  CHECK(c.vertices == 12);
+  CHECK(c.edges == 30);
+  CHECK(c.faces == 20);
+  CHECK(c.euler == 2);
+  REQUIRE(c.genus.has_value());
+  CHECK(*c.genus == 0);
+  // Volume of the regular icosahedron with edge a = 2: (5/12)(3 + sqrt 5) a^3.
+  CHECK(c.volume == doctest::Approx(5.0 / 12.0 * (3.0 + std::sqrt(5.0)) * 8.0).epsilon(1e-12));
+  CHECK(c.area == doctest::Approx(20 * std::sqrt(3.0)).epsilon(1e-12));
+  CHECK(r.num_vertex_components == 1);
+  CHECK(r.self_intersections_checked);
+  CHECK(r.num_self_intersections == 0);
+  CHECK(r.num_pairs_tested >= 30);  // at least the edge-adjacent pairs went through the exact test
+  CHECK(r.min_angle_deg == doctest::Approx(60.0).epsilon(1e-12));
+  CHECK(r.max_angle_deg == doctest::Approx(60.0).epsilon(1e-12));
+  CHECK(r.worst_triangle < 20);
+  const std::size_t in_5_or_6 = r.angle_histogram[5] + r.angle_histogram[6];
+  CHECK(in_5_or_6 == 60);  // 60° sits on the 50-60 / 60-70 bin border: rounding decides
+  CHECK(r.num_small_angle_triangles == 0);
+  const std::string json = r.to_json();
+  CHECK(looks_like_json_object(json));
+  CHECK(json.find("\"closed\":true") != std::string::npos);
+  CHECK(json.find("\"genus\":0") != std::string::npos);
+  CHECK(json.find("\"ok\":true") != std::string::npos);
+}
+
+TEST_CASE("check_mesh: a finer sphere, a torus and two spheres") {
+  SUBCASE("sphere") {
+    const MeshCheckReport r = check_mesh(sphere(3));
+    CHECK(r.ok());
+    REQUIRE(r.components.size() == 1);
+    CHECK(r.components[0].euler == 2);
+    CHECK(r.components[0].genus == 0);
+    const double ball = 4.0 / 3.0 * std::numbers::pi;
+    CHECK(r.components[0].volume < ball);  // inscribed polyhedron
+    CHECK(r.components[0].volume > 0.97 * ball);
+    CHECK(r.min_angle_deg > 40.0);
+    CHECK(r.max_angle_deg < 80.0);
+  }
+  SUBCASE("torus") {
+    const MeshCheckReport r = check_mesh(torus(24, 12));
+    CHECK(r.ok());
+    REQUIRE(r.components.size() == 1);
+    CHECK(r.components[0].euler == 0);
+    REQUIRE(r.components[0].genus.has_value());
+    CHECK(*r.components[0].genus == 1);
+    const double solid = 2 * std::numbers::pi * std::numbers::pi * 2.0 * 0.7 * 0.7;
+    CHECK(r.components[0].volume > 0.9 * solid);
+    CHECK(r.components[0].volume < solid);
+    CHECK(r.num_self_intersections == 0);
+  }
+  SUBCASE("two disjoint spheres") {
+    IndexedMesh b = sphere(1);
+    for (Vec3& p : b.positions) p += Vec3(3, 0, 0);
+    const MeshCheckReport r = check_mesh(join(sphere(1), b));
+    CHECK(r.ok());
+    REQUIRE(r.components.size() == 2);
+    for (const MeshComponent& c : r.components) {
+      CHECK(c.euler == 2);
+      CHECK(c.genus == 0);
+      CHECK(c.faces == 80);
+      CHECK(c.volume > 0);
+    }
+    CHECK(r.num_vertex_components == 2);
+  }
+}
+
+TEST_CASE("check_mesh: one flipped triangle breaks the orientation") {
+  IndexedMesh m = icosahedron();
+  std::swap(m.triangles[7][1], m.triangles[7][2]);
+  const MeshCheckReport r = check_mesh(m);
+  CHECK_FALSE(r.ok());
+  CHECK_FALSE(r.oriented);
+  CHECK(r.num_misoriented_edges == 3);
+  CHECK(r.misoriented_edge_examples.size() == 3);
+  CHECK(r.closed);
+  CHECK(r.edge_manifold);
+  CHECK(r.vertex_manifold);
+  REQUIRE(r.components.size() == 1);
+  CHECK_FALSE(r.components[0].oriented);
+  CHECK_FALSE(r.components[0].genus.has_value());
+  CHECK(r.components[0].euler == 2);
+  CHECK(r.problems.size() == 1);
+  CHECK(r.to_json().find("\"genus\":null") != std::string::npos);
+}
+
+TEST_CASE("check_mesh: a missing triangle opens the surface") {
+  IndexedMesh m = icosahedron();
+  m.triangles.erase(m.triangles.begin() + 4);  // (0, 10, 11)
+  const MeshCheckReport r = check_mesh(m);
+  CHECK_FALSE(r.ok());
+  CHECK_FALSE(r.closed);
+  CHECK(r.num_boundary_edges == 3);
+  std::vector<std::array<Index, 2>> expect = {{0, 10}, {0, 11}, {10, 11}};
+  CHECK(r.boundary_edge_examples == expect);
+  CHECK(r.oriented);
+  CHECK(r.vertex_manifold);
+  REQUIRE(r.components.size() == 1);
+  CHECK(r.components[0].euler == 1);
+  CHECK_FALSE(r.components[0].closed);
+  CHECK_FALSE(r.components[0].genus.has_value());
+}
+
+TEST_CASE("check_mesh: a duplicated triangle makes non-manifold edges") {
+  IndexedMesh m = icosahedron();
+  m.triangles.push_back(m.triangles[2]);
+  const MeshCheckReport r = check_mesh(m);
+  CHECK_FALSE(r.ok());
+  CHECK_FALSE(r.edge_manifold);
+  CHECK(r.num_nonmanifold_edges == 3);
+  CHECK(r.num_duplicate_triangles == 1);
+  CHECK(r.num_nonmanifold_vertices == 3);  // the corners of the doubled triangle
+  CHECK(r.num_self_intersections == 0);    // the duplicate pair is not double-counted
+  REQUIRE(r.components.size() == 1);
+  CHECK_FALSE(r.components[0].manifold);
+}
+
+TEST_CASE("check_mesh: two cones touching at their tips") {
+  IndexedMesh up = cone(Vec3(0, 0, 0), +1, 8), down = cone(Vec3(0, 0, 0), -1, 8);
+  IndexedMesh m = join(up, down);
+  // Weld the second apex onto the first.
+  const Index second_apex = Index(up.positions.size());
+  for (auto& t : m.triangles)
+    for (Index& v : t)
+      if (v == second_apex) v = 0;
+  const MeshCheckReport r = check_mesh(m);
+  CHECK_FALSE(r.ok());
+  CHECK(r.closed);
+  CHECK(r.edge_manifold);
+  CHECK(r.oriented);
+  CHECK_FALSE(r.vertex_manifold);
+  CHECK(r.num_nonmanifold_vertices == 1);
+  CHECK(r.nonmanifold_vertex_examples == std::vector<Index>{0});
+  CHECK(r.num_unreferenced_vertices == 1);  // the second apex, now unused
+  REQUIRE(r.components.size() == 2);
+  for (const MeshComponent& c : r.components) {
+    CHECK(c.euler == 2);
+    CHECK(c.manifold);
+    CHECK(c.genus == 0);
+    // A cone over a regular octagon of circumradius 1, height 1: (1/3) (8/2) sin(45°).
+    CHECK(c.volume == doctest::Approx(4.0 / 3.0 * std::sin(std::numbers::pi / 4)).epsilon(1e-12));
+  }
+  CHECK(r.num_vertex_components == 1);
+  CHECK(r.num_self_intersections == 0);  // they meet only at the shared vertex
+}
+
+TEST_CASE("check_mesh: two interpenetrating tetrahedra") {
+  const IndexedMesh m = join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, 0.25)));
+  MeshCheckOptions opt;
+  opt.max_examples = 100;
+  const MeshCheckReport r = check_mesh(m, opt);
+  CHECK(r.closed);
+  CHECK(r.oriented);
+  CHECK(r.vertex_manifold);
+  CHECK(r.components.size() == 2);
+  CHECK_FALSE(r.ok());
+  CHECK(r.num_self_intersections > 0);
+  for (const auto& p : r.self_intersection_examples) {
+    CHECK(p[0] < 4);  // one face of each tetrahedron
+    CHECK(p[1] >= 4);
+  }
+  CHECK(r.self_intersection_examples == brute_force_intersections(m));
+  // Apart, they do not intersect.
+  const MeshCheckReport apart = check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(1.01, 0, 0))));
+  CHECK(apart.ok());
+  // Touching at a point (a vertex of one on a face of the other) counts.
+  const MeshCheckReport touch =
+      check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, -1))));
+  CHECK(touch.num_self_intersections >= 1);
+}
+
+TEST_CASE("check_mesh: adjacent triangles that overlap in their plane") {
+  MeshCheckOptions opt;
+  SUBCASE("sharing an edge, apexes on the same side") {
+    IndexedMesh m;
+    m.positions = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(3, 1, 0)};
+    m.triangles = {{0, 1, 2}, {1, 0, 3}};  // consistently oriented, but folded onto each other
+    const MeshCheckReport r = check_mesh(m, opt);
+    CHECK(r.oriented);
+    CHECK(r.num_self_intersections == 1);
+    CHECK(r.self_intersection_examples == std::vector<std::array<Index, 2>>{{0, 1}});
+  }
+  SUBCASE("sharing an edge, apexes on opposite sides (a flat quad)") {
+    IndexedMesh m;
+    m.positions = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(3, -1, 0)};
+    m.triangles = {{0, 1, 2}, {1, 0, 3}};
+    CHECK(check_mesh(m, opt).num_self_intersections == 0);
+  }
+  SUBCASE("sharing a vertex") {
+    IndexedMesh m;
+    m.positions = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(3, 3, 0), Vec3(-1, 3, 0)};
+    m.triangles = {{0, 1, 2}, {0, 3, 4}};
+    const MeshCheckReport r = check_mesh(m, opt);
+    CHECK(r.num_self_intersections == 1);
+    CHECK_FALSE(r.vertex_manifold);  // two fans at vertex 0
+  }
+  SUBCASE("sharing a vertex, apart") {
+    IndexedMesh m;
+    m.positions = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(-3, -3, 0), Vec3(-1, -3, 0)};
+    m.triangles = {{0, 1, 2}, {0, 3, 4}};
+    CHECK(check_mesh(m, opt).num_self_intersections == 0);
+  }
+}
+
+TEST_CASE("check_mesh: the grid finds exactly the pairs brute force finds") {
+  const unsigned seed = 987654321;
+  INFO("seed = " << seed);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> small(-0.05, 0.05);
+  IndexedMesh m;
+  // A pool of points, with triangles of different sizes drawn from it so that
+  // some share one or two vertices; a few large triangles cross many cells.
+  for (int i = 0; i < 300; ++i) m.positions.emplace_back(unit(rng), unit(rng), unit(rng));
+  std::uniform_int_distribution<Index> pick(0, 299);
+  for (int i = 0; i < 500; ++i) {
+    const Index a = pick(rng);
+    const Vec3 c = m.positions[a];
+    const Index b = Index(m.positions.size());
+    m.positions.push_back(c + Vec3(small(rng), small(rng), small(rng)));
+    Index d = pick(rng);
+    if (i % 3 == 0) {  // a small triangle with a fresh third vertex
+      d = Index(m.positions.size());
+      m.positions.push_back(c + Vec3(small(rng), small(rng), small(rng)));
+    }
+    if (d == a) continue;
+    m.triangles.push_back({a, b, d});
+  }
+  // Edge-sharing pairs: reuse existing edges.
+  const std::size_t n0 = m.triangles.size();
+  for (std::size_t i = 0; i < n0; i += 7) {
+    const auto t = m.triangles[i];
+    m.triangles.push_back({t[1], t[0], pick(rng)});
+  }
+  MeshCheckOptions opt;
+  opt.max_examples = 1000000;
+  const MeshCheckReport r = check_mesh(m, opt);
+  const auto expect = brute_force_intersections(m);
+  INFO("intersecting pairs: " << expect.size());
+  CHECK(expect.size() > 100);
+  CHECK(r.num_self_intersections == expect.size());
+  CHECK(r.self_intersection_examples == expect);
+}
+
+TEST_CASE("check_mesh: degenerate, out-of-range and non-finite input") {
+  IndexedMesh m = icosahedron();
+  const Index n = Index(m.positions.size());
+  m.positions.push_back(Vec3(0, 0, 0));                                    // n: unreferenced
+  m.positions.push_back(Vec3(0.1, 0.2, 0.3));                              // n+1
+  m.positions.push_back(Vec3(0.2, 0.4, 0.6));                              // n+2: 2 x (n+1)
+  m.positions.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));  // n+3
+  m.triangles.push_back({1, 1, 2});          // repeated index
+  m.triangles.push_back({n, n + 1, n + 2});  // collinear: 0, p, 2p
+  m.triangles.push_back({0, 1, 99});         // out of range
+  m.triangles.push_back({n + 3, n + 1, n});  // a NaN vertex
+  const MeshCheckReport r = check_mesh(m);
+  CHECK_FALSE(r.ok());
+  CHECK(r.num_repeated_index_triangles == 1);
+  CHECK(r.num_zero_area_triangles == 1);
+  CHECK(r.num_degenerate_triangles == 2);
+  CHECK(r.degenerate_triangle_examples == std::vector<Index>{20, 21});
+  CHECK(r.num_out_of_range_triangles == 1);
+  CHECK(r.num_nonfinite_vertices == 1);
+  CHECK(r.num_unreferenced_vertices == 0);
+  CHECK(r.min_angle_deg == 0.0);          // the collinear triangle: 0, 0, 180 degrees
+  CHECK(r.max_angle_deg == doctest::Approx(180.0));
+  CHECK(r.worst_triangle == 21);
+  CHECK(r.angle_histogram[17] >= 1);
+  CHECK(r.num_self_intersections == 0);  // the degenerate ones are not tested
+  CHECK(looks_like_json_object(r.to_json()));
+}
+
+TEST_CASE("check_mesh: angle statistics") {
+  IndexedMesh m;
+  m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(10, 0, 0), Vec3(10, 1, 0)};
+  m.triangles = {{0, 1, 2}, {1, 3, 4}};  // 45-45-90 and a thin one
+  MeshCheckOptions opt;
+  opt.small_angle_threshold_deg = 30.0;
+  const MeshCheckReport r = check_mesh(m, opt);
+  const double thin = std::atan2(1.0, 9.0) * 180.0 / std::numbers::pi;  // angle at vertex 1
+  CHECK(r.min_angle_deg == doctest::Approx(thin));
+  CHECK(r.max_angle_deg == doctest::Approx(90.0));  // the right angles at vertices 0 and 3
+  CHECK(r.worst_triangle == 1);
+  CHECK(r.num_small_angle_triangles == 1);
+  CHECK(r.small_angle_threshold_deg == 30.0);
+  std::size_t total = 0;
+  for (std::size_t x : r.angle_histogram) total += x;
+  CHECK(total == 6);
+  CHECK(r.angle_histogram[4] == 2);  // the two 45° angles
+  CHECK(r.angle_histogram[0] == 1);  // the thin angle, about 6.3°
+  CHECK(r.angle_histogram[8] + r.angle_histogram[9] == 3);  // 83.7° and the two right angles
+}
+
+TEST_CASE("check_mesh: self-intersection check can be skipped") {
+  MeshCheckOptions opt;
+  opt.check_self_intersections = false;
+  const MeshCheckReport r =
+      check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, 0.25))), opt);
+  CHECK_FALSE(r.self_intersections_checked);
+  CHECK(r.num_self_intersections == 0);
+  CHECK(r.num_pairs_tested == 0);
+  CHECK(r.to_json().find("\"self_intersections_checked\":false") != std::string::npos);
+}
+
+TEST_CASE("check_mesh: empty mesh and lone vertices") {
+  const MeshCheckReport empty = check_mesh(IndexedMesh{});
+  CHECK(empty.num_triangles == 0);
+  CHECK(empty.components.empty());
+  CHECK(empty.worst_triangle == skinmesh::kInvalidIndex);
+  CHECK(empty.ok());
+  CHECK(empty.to_json().find("\"worst_triangle\":null") != std::string::npos);
+  IndexedMesh lone;
+  lone.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  const MeshCheckReport r = check_mesh(lone);
+  CHECK(r.num_unreferenced_vertices == 2);
+  CHECK(r.num_vertex_components == 0);
+}
+
+}  // TEST_SUITE

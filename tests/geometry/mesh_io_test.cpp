@@ -1,0 +1,357 @@
+// tests/geometry/mesh_io_test.cpp: write_mesh()/read_mesh() round trips (bit-exact
+// positions), hand-written inputs, and the errors of broken or unwritable files.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "geometry/errors.h"
+#include "geometry/mesh_io.h"
+
+namespace {
+
+using skinmesh::InputError;
+using skinmesh::Vec3;
+using skinmesh::geometry::IndexedMesh;
+using skinmesh::geometry::MeshWriteOptions;
+using skinmesh::geometry::read_mesh;
+using skinmesh::geometry::write_mesh;
+
+/// A scratch directory for this test run, removed at exit.
+struct ScratchDir {
+  std::filesystem::path dir;
+  ScratchDir() {
+    dir = std::filesystem::temp_directory_path() /
+          ("skinmesh_mesh_io_test_" + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(dir);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(path(name), std::ios::binary) << bytes;
+    return path(name);
+  }
+};
+
+const ScratchDir& scratch() {
+  static const ScratchDir d;
+  return d;
+}
+
+/// An octahedron with coordinates that need all 17 significant digits (fixed
+/// seed 20240611), unit normals and atom ids.
+IndexedMesh octahedron() {
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  IndexedMesh m;
+  const Vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const Vec3& d : dirs) {
+    const Vec3 p = (12.345678901234567 + jitter(rng)) * d + Vec3(jitter(rng), -1.0 / 3.0, 1e-300);
+    m.positions.push_back(p);
+    m.normals.push_back(p.normalized());
+  }
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  m.atom = {0, 1, 2, -1, 4, 2147483647};
+  return m;
+}
+
+/// Bitwise equality of two vectors (distinguishes -0.0 from 0.0).
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; }
+
+void check_same_geometry(const IndexedMesh& a, const IndexedMesh& b, bool with_normals) {
+  REQUIRE(a.positions.size() == b.positions.size());
+  for (std::size_t i = 0; i < a.positions.size(); ++i) CHECK(same_bits(a.positions[i], b.positions[i]));
+  CHECK(a.triangles == b.triangles);
+  if (with_normals) {
+    REQUIRE(a.normals.size() == b.normals.size());
+    for (std::size_t i = 0; i < a.normals.size(); ++i) CHECK(same_bits(a.normals[i], b.normals[i]));
+  } else {
+    CHECK(b.normals.empty());
+  }
+}
+
+/// The InputError thrown by read_mesh(path); fails the test if none.
+InputError read_error(const std::string& path) {
+  try {
+    read_mesh(path);
+  } catch (const InputError& e) {
+    return e;
+  }
+  FAIL("no InputError for " << path);
+  return InputError(path, 0, "unreachable");
+}
+
+bool contains(const InputError& e, const std::string& s) { return std::string(e.what()).find(s) != std::string::npos; }
+
+}  // namespace
+
+TEST_SUITE("geometry") {
+
+TEST_CASE("mesh_io: PLY round trip is bit-exact with doubles") {
+  const IndexedMesh m = octahedron();
+  const std::string path = scratch().path("octa.ply");
+  write_mesh(path, m);
+  const IndexedMesh r = read_mesh(path);
+  check_same_geometry(m, r, true);
+  CHECK(r.atom == m.atom);
+  // the header is what the documentation promises
+  std::ifstream in(path, std::ios::binary);
+  std::string header, line;
+  while (std::getline(in, line) && line != "end_header") header += line + "\n";
+  CHECK(header.find("format binary_little_endian 1.0\n") != std::string::npos);
+  CHECK(header.find("element vertex 6\nproperty double x\nproperty double y\nproperty double z\n"
+                    "property double nx\nproperty double ny\nproperty double nz\nproperty int atom\n"
+                    "element face 8\nproperty list uchar int vertex_indices\n") != std::string::npos);
+}
+
+TEST_CASE("mesh_io: PLY with float32 stores float-rounded values") {
+  IndexedMesh m = octahedron();
+  m.atom.clear();
+  const std::string path = scratch().path("octa_float.ply");
+  write_mesh(path, m, MeshWriteOptions{.double_precision = false});
+  const IndexedMesh r = read_mesh(path);
+  REQUIRE(r.positions.size() == m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      CHECK(r.positions[i][k] == static_cast<double>(static_cast<float>(m.positions[i][k])));
+      CHECK(r.normals[i][k] == static_cast<double>(static_cast<float>(m.normals[i][k])));
+    }
+  CHECK(r.atom.empty());
+  CHECK(r.triangles == m.triangles);
+  CHECK(std::filesystem::file_size(path) < std::filesystem::file_size(scratch().path("octa.ply")));
+}
+
+TEST_CASE("mesh_io: OFF and OBJ round trips are bit-exact") {
+  const IndexedMesh m = octahedron();
+  for (const char* name : {"octa.off", "octa.obj"}) {
+    CAPTURE(name);
+    const std::string path = scratch().path(name);
+    write_mesh(path, m);
+    const IndexedMesh r = read_mesh(path);
+    check_same_geometry(m, r, true);
+    CHECK(r.atom.empty());  // OFF and OBJ do not store atom ids
+    IndexedMesh plain = m;
+    plain.normals.clear();
+    write_mesh(path, plain);
+    check_same_geometry(plain, read_mesh(path), false);
+  }
+  std::ifstream off(scratch().path("octa.off"));
+  std::string first;
+  std::getline(off, first);
+  CHECK(first == "OFF");  // the mesh without normals was written last
+}
+
+TEST_CASE("mesh_io: empty mesh round trips") {
+  for (const char* name : {"empty.ply", "empty.off", "empty.obj"}) {
+    CAPTURE(name);
+    write_mesh(scratch().path(name), IndexedMesh{});
+    const IndexedMesh r = read_mesh(scratch().path(name));
+    CHECK(r.positions.empty());
+    CHECK(r.triangles.empty());
+  }
+}
+
+TEST_CASE("mesh_io: hand-written ascii PLY with extra properties and elements") {
+  const std::string text =
+      "ply\r\n"
+      "format ascii 1.0\n"
+      "comment made by hand\n"
+      "element vertex 4\n"
+      "property float x\n"
+      "property float y\n"
+      "property float z\n"
+      "property uchar red\n"
+      "property list uchar float extra\n"
+      "property short atom\n"
+      "element face 2\n"
+      "property uchar flags\n"
+      "property list uchar uint vertex_index\n"
+      "element edge 1\n"
+      "property int vertex1\n"
+      "property int vertex2\n"
+      "end_header\n"
+      "0 0 0 255 2 1.5 2.5 7\n"
+      "1 0 0 255 0 -1\n"
+      "0 1 0 255 1 nan 3\n"
+      "0 0 1.25e0 255 0 4\n"
+      "0 3 0 2 1\n"
+      "1 3 0 1 3\n"
+      "0 1\n";
+  const IndexedMesh m = read_mesh(scratch().write("hand.ply", text));
+  REQUIRE(m.positions.size() == 4);
+  CHECK(m.positions[3] == Vec3(0, 0, 1.25));
+  CHECK(m.normals.empty());
+  CHECK(m.atom == std::vector<std::int32_t>{7, -1, 3, 4});
+  REQUIRE(m.triangles.size() == 2);
+  CHECK(m.triangles[0] == std::array<skinmesh::Index, 3>{0, 2, 1});
+  CHECK(m.triangles[1] == std::array<skinmesh::Index, 3>{0, 1, 3});
+}
+
+TEST_CASE("mesh_io: binary big-endian PLY with float and ushort indices") {
+  std::string bytes =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar ushort vertex_indices\nend_header\n";
+  auto put_be = [&](const void* p, std::size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i)
+      bytes.push_back(static_cast<char>(c[std::endian::native == std::endian::little ? n - 1 - i : i]));
+  };
+  const float coords[9] = {0.5f, 0, 0, 0, 1.5f, 0, 0, 0, -2.25f};
+  for (float f : coords) put_be(&f, 4);
+  bytes.push_back(3);
+  for (std::uint16_t v : {std::uint16_t{2}, std::uint16_t{1}, std::uint16_t{0}}) put_be(&v, 2);
+  const IndexedMesh m = read_mesh(scratch().write("be.ply", bytes));
+  REQUIRE(m.positions.size() == 3);
+  CHECK(m.positions[0] == Vec3(0.5, 0, 0));
+  CHECK(m.positions[2] == Vec3(0, 0, -2.25));
+  REQUIRE(m.triangles.size() == 1);
+  CHECK(m.triangles[0] == std::array<skinmesh::Index, 3>{2, 1, 0});
+
+  // the same file cut short
+  const InputError e = read_error(scratch().write("cut.ply", bytes.substr(0, bytes.size() - 3)));
+  CHECK(contains(e, "cut.ply: unexpected end of binary data in element 'face' 0"));
+}
+
+TEST_CASE("mesh_io: OBJ index forms, negative indices, ignored statements") {
+  const std::string text =
+      "# hand made\nmtllib x.mtl\no thing\n"
+      "v 0 0 0\nv 1 0 0\nv 0 1 0 1.0\nv 0 0 1\n"
+      "vt 0 0\nvn 0 0 1\nvn 0 1 0\n"
+      "g group\ns off\nusemtl m\n"
+      "f 1/1/1 2/1/1 3/1/1\n"
+      "f -4//1 -3//1 -1//2\n";
+  const IndexedMesh m = read_mesh(scratch().write("hand.obj", text));
+  REQUIRE(m.positions.size() == 4);
+  REQUIRE(m.triangles.size() == 2);
+  CHECK(m.triangles[1] == std::array<skinmesh::Index, 3>{0, 1, 3});
+  // vertex 0 gets normal 1 in the first face and normal 1 in the second: consistent
+  REQUIRE(m.normals.size() == 4);
+  CHECK(m.normals[3] == Vec3(0, 1, 0));
+  CHECK(m.normals[0] == Vec3(0, 0, 1));
+  // split normals at a vertex: per-vertex normals are dropped
+  const IndexedMesh split = read_mesh(scratch().write("split.obj", text + "f 1//2 2//1 4//2\n"));
+  CHECK(split.normals.empty());
+  CHECK(split.triangles.size() == 3);
+}
+
+TEST_CASE("mesh_io: a quad face is rejected with its line") {
+  SUBCASE("ascii PLY") {
+    const std::string text =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+        "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3\n";
+    const InputError e = read_error(scratch().write("quad.ply", text));
+    CHECK(e.line() == 15);
+    CHECK(contains(e, "quad.ply:15: face 1 has 4 vertices; only triangles are accepted"));
+  }
+  SUBCASE("binary PLY") {
+    IndexedMesh m = octahedron();
+    const std::string path = scratch().path("quad_bin.ply");
+    write_mesh(path, m);
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t face0 = bytes.size() - 8 * 13;  // 8 faces of 1 + 3*4 bytes
+    REQUIRE(bytes[face0] == 3);
+    bytes[face0 + 13] = 4;  // face 1 claims 4 vertices
+    const InputError e = read_error(scratch().write("quad_bin.ply", bytes));
+    CHECK(e.line() == 0);
+    CHECK(contains(e, "face 1 has 4 vertices; only triangles are accepted"));
+  }
+  SUBCASE("OFF") {
+    const InputError e = read_error(scratch().write("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"));
+    CHECK(contains(e, "quad.off:7: face 0 has 4 vertices; only triangles are accepted"));
+  }
+  SUBCASE("OBJ") {
+    const InputError e = read_error(scratch().write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
+    CHECK(contains(e, "quad.obj:5: face 0 has 4 vertices; only triangles are accepted"));
+  }
+}
+
+TEST_CASE("mesh_io: malformed inputs name the file and the line") {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  CHECK(contains(read_error(scratch().write("idx.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")),
+                 "idx.ply:13: face 0: vertex index 3 out of range (3 vertices)"));
+  CHECK(contains(read_error(scratch().write("nan.ply", header + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n")),
+                 "nan.ply:11: non-finite y in element 'vertex' 1"));
+  CHECK(contains(read_error(scratch().write("abc.ply", header + "0 0 0\n1 abc 0\n0 1 0\n3 0 1 2\n")),
+                 "abc.ply:11: non-numeric value 'abc'"));
+  CHECK(contains(read_error(scratch().write("short.ply", header + "0 0 0\n1 0 0\n")), "short.ply:12: unexpected end"));
+  CHECK(contains(read_error(scratch().write("notply.ply", "PLY\n")), "notply.ply:1: not a PLY file"));
+  CHECK(contains(read_error(scratch().write("noend.ply", "ply\nformat ascii 1.0\n")), "without end_header"));
+  CHECK(contains(read_error(scratch().write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n")),
+                 "type.ply:4: unknown PLY property type 'quad'"));
+  CHECK(contains(read_error(scratch().write("v.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n")),
+                 "v.off:4: non-numeric or non-finite vertex coordinate 'zero'"));
+  CHECK(contains(read_error(scratch().write("few.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n")), "few.off:4: unexpected end"));
+  CHECK(contains(read_error(scratch().write("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n")),
+                 "range.off:6: face 0: vertex index -1 out of range"));
+  CHECK(contains(read_error(scratch().write("hdr.off", "MESH\n")), "hdr.off:1: not an OFF file"));
+  CHECK(contains(read_error(scratch().write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 0 1 2\n")),
+                 "zero.obj:5: vertex index 0 out of range"));
+  CHECK(contains(read_error(scratch().write("inf.obj", "v 0 0 inf\n")), "inf.obj:1: non-numeric or non-finite"));
+  CHECK(contains(read_error(scratch().path("missing.ply")), "missing.ply: cannot open file"));
+  CHECK(contains(read_error(scratch().write("mesh.stl", "solid\n")), "unknown mesh format (expected .ply, .off or .obj)"));
+}
+
+TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
+  const IndexedMesh m = octahedron();
+  SUBCASE("missing directory") {
+    const std::string path = scratch().path("no_such_dir/out.ply");
+    try {
+      write_mesh(path, m);
+      FAIL("no InputError");
+    } catch (const InputError& e) {
+      CHECK(e.file() == path);
+      CHECK(contains(e, "cannot write"));
+    }
+    CHECK_FALSE(std::filesystem::exists(path));
+    CHECK_FALSE(std::filesystem::exists(scratch().path("no_such_dir")));
+  }
+  SUBCASE("rename onto a directory fails after the data was written") {
+    const std::filesystem::path sub = scratch().dir / "sub";
+    std::filesystem::create_directories(sub / "taken.obj");  // a directory where the file should go
+    const std::string path = (sub / "taken.obj").string();
+    CHECK_THROWS_AS(write_mesh(path, m), InputError);
+    CHECK(std::filesystem::is_directory(path));
+    std::size_t entries = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(sub)) {
+      (void)entry;
+      ++entries;
+    }
+    CHECK(entries == 1);  // no temporary file left next to it
+  }
+  SUBCASE("an existing file is replaced only by a complete one") {
+    const std::string path = scratch().path("keep.off");
+    write_mesh(path, m);
+    const auto size = std::filesystem::file_size(path);
+    IndexedMesh bad = m;
+    bad.triangles.push_back({0, 1, 99});  // violates the precondition: nothing is written
+    CHECK_THROWS_AS(write_mesh(path, bad), std::logic_error);
+    CHECK(std::filesystem::file_size(path) == size);
+    CHECK(read_mesh(path).triangles == m.triangles);
+  }
+  SUBCASE("unknown extension") {
+    CHECK_THROWS_AS(write_mesh(scratch().path("out.stl"), m), InputError);
+    CHECK_FALSE(std::filesystem::exists(scratch().path("out.stl")));
+  }
+}
+
+}  // TEST_SUITE("geometry")

@@ -1,0 +1,151 @@
+// tests/refine/skin_mesh_check_test.cpp: the skin-aware verifier on meshes
+// whose properties are known: icospheres on a one-atom skin (the restricted
+// Delaunay triangulation of points on a sphere is their convex hull).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+
+#include "refine/restricted_delaunay.h"
+#include "refine/skin_mesh_check.h"
+#include "refine/size_conditions.h"
+
+using namespace skinmesh;
+
+namespace {
+
+/// Icosphere of radius R about c with `levels` 1:4 subdivisions, CCW outward.
+geometry::IndexedMesh icosphere(const Vec3& c, double R, int levels) {
+  geometry::IndexedMesh m;
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& p : v) p.normalize();
+  std::vector<std::array<Index, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                         {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<Index, Index>, Index> mid;
+    auto midpoint = [&](Index a, Index b) {
+      auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back((v[a] + v[b]).normalized());
+      return mid[key] = static_cast<Index>(v.size() - 1);
+    };
+    std::vector<std::array<Index, 3>> g;
+    for (auto& tri : f) {
+      const Index a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), cc = midpoint(tri[2], tri[0]);
+      g.push_back({tri[0], a, cc});
+      g.push_back({tri[1], b, a});
+      g.push_back({tri[2], cc, b});
+      g.push_back({a, b, cc});
+    }
+    f = g;
+  }
+  for (auto& p : v) m.positions.push_back(c + R * p);
+  m.triangles = f;
+  return m;
+}
+
+}  // namespace
+
+TEST_SUITE("refine") {
+
+TEST_CASE("size constants: the numbers of skin-math §8") {
+  refine::SizeConstants k;
+  CHECK(k.min_angle_bound_deg() == doctest::Approx(21.5498).epsilon(1e-4));
+  CHECK(k.disc_factor_lower() == doctest::Approx(0.107383).epsilon(1e-5));
+  CHECK(k.disc_factor_upper() == doctest::Approx(0.207719).epsilon(1e-5));
+  CHECK(refine::circumradius(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)) == doctest::Approx(std::sqrt(0.5)));
+}
+
+TEST_CASE("surface Delaunay centre of a triangle on a sphere is on the sphere") {
+  skin::SkinSurface skin({{Vec3(1, 2, 3), 2 * 4.0}});  // sphere of radius 2 about (1,2,3)
+  const Vec3 c(1, 2, 3);
+  const Vec3 a = c + 2 * Vec3(1, 0.1, 0).normalized(), b = c + 2 * Vec3(1, 0, 0.1).normalized(),
+             d = c + 2 * Vec3(1, -0.1, -0.05).normalized();
+  Vec3 m;
+  Index cell = kInvalidIndex;
+  REQUIRE(refine::surface_delaunay_centre(skin, a, b, d, m, cell));
+  CHECK(std::abs((m - c).norm() - 2.0) < 1e-12);
+  CHECK(std::abs((m - a).norm() - (m - b).norm()) < 1e-12);
+  CHECK(std::abs((m - a).norm() - (m - d).norm()) < 1e-12);
+}
+
+TEST_CASE("icosphere on a one-atom skin passes every check at the right density") {
+  const Vec3 c(0.3, -0.2, 0.1);
+  const double R = 2.0;
+  skin::SkinSurface skin({{c, 2 * R * R}});  // skin: sphere of radius R
+  const auto rep = refine::check_skin_mesh(skin, icosphere(c, R, 3));
+  INFO(rep.to_json());
+  CHECK(rep.ok());
+  CHECK(rep.mesh.closed);
+  CHECK(rep.topology_matches);
+  CHECK(rep.max_vertex_distance < 1e-12);
+  CHECK(rep.num_L_violations == 0);
+  CHECK(rep.num_U_violations == 0);
+  CHECK(rep.num_rdt_violations == 0);
+  CHECK(rep.num_inward_triangles == 0);
+}
+
+TEST_CASE("the verifier finds each kind of defect") {
+  const Vec3 c(0, 0, 0);
+  const double R = 2.0;
+  skin::SkinSurface skin({{c, 2 * R * R}});
+  SUBCASE("too coarse: [U] violations") {
+    const auto rep = refine::check_skin_mesh(skin, icosphere(c, R, 1));
+    CHECK(rep.num_U_violations > 0);
+    CHECK(!rep.ok());
+  }
+  SUBCASE("too fine: [L] violations") {
+    refine::SkinCheckOptions opt;
+    opt.check_self_intersections = false;
+    const auto rep = refine::check_skin_mesh(skin, icosphere(c, R, 5), opt);
+    CHECK(rep.num_L_violations > 0);
+  }
+  SUBCASE("a vertex off the surface") {
+    auto m = icosphere(c, R, 3);
+    m.positions[7] *= 1.001;
+    const auto rep = refine::check_skin_mesh(skin, m);
+    CHECK(rep.num_far_vertices == 1);
+    CHECK(rep.max_vertex_distance > 1e-4);
+  }
+  SUBCASE("inside-out mesh") {
+    auto m = icosphere(c, R, 3);
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    const auto rep = refine::check_skin_mesh(skin, m);
+    CHECK(rep.num_inward_triangles == m.triangles.size());
+  }
+  SUBCASE("a flipped edge breaks the restricted Delaunay property") {
+    auto m = icosphere(c, R, 3);
+    // Flip the edge shared by triangles 0 and its neighbour across edge (t0[0], t0[1]).
+    const auto t0 = m.triangles[0];
+    std::size_t j = 0;
+    for (; j < m.triangles.size(); ++j) {
+      const auto& t = m.triangles[j];
+      bool has0 = false, has1 = false;
+      for (Index v : t) has0 |= v == t0[0], has1 |= v == t0[1];
+      if (j != 0 && has0 && has1) break;
+    }
+    REQUIRE(j < m.triangles.size());
+    Index d = kInvalidIndex;
+    for (Index v : m.triangles[j])
+      if (v != t0[0] && v != t0[1]) d = v;
+    m.triangles[0] = {t0[2], t0[0], d};
+    m.triangles[j] = {t0[2], d, t0[1]};
+    const auto rep = refine::check_skin_mesh(skin, m);
+    CHECK(rep.mesh.closed);
+    CHECK(rep.num_rdt_violations >= 2);
+  }
+  SUBCASE("a missing sphere: wrong topology") {
+    std::vector<geometry::WeightedPoint> two = {{Vec3(0, 0, 0), 2.0}, {Vec3(5, 0, 0), 2.0}};
+    skin::SkinSurface skin2(two);
+    const auto rep = refine::check_skin_mesh(skin2, icosphere(Vec3(0, 0, 0), 1.0, 3));
+    CHECK(!rep.topology_matches);
+    CHECK(rep.expected.components() == 2);
+  }
+}
+
+}  // TEST_SUITE

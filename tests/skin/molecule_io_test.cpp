@@ -1,0 +1,465 @@
+// tests/skin/molecule_io_test.cpp: read_molecule() on the bundled molecules (atom
+// counts from data/README.md) and on small broken files written by the tests.
+#include <doctest/doctest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/errors.h"
+#include "skin/element_radii.h"
+#include "skin/molecule_io.h"
+
+namespace {
+
+using skinmesh::InputError;
+using skinmesh::skin::Molecule;
+using skinmesh::skin::read_molecule;
+using skinmesh::skin::ReadOptions;
+
+std::string data_file(const std::string& name) { return std::string(SKINMESH_DATA) + "/" + name; }
+
+/// A scratch directory for this test run, removed at exit.
+struct ScratchDir {
+  std::filesystem::path dir;
+  ScratchDir() {
+    dir = std::filesystem::temp_directory_path() /
+          ("skinmesh_molecule_io_test_" + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(dir);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string path = (dir / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+};
+
+const ScratchDir& scratch() {
+  static const ScratchDir d;
+  return d;
+}
+
+/// One fixed-column PDB ATOM/HETATM record (columns as in the PDB v3.3 spec).
+std::string pdb_atom(const char* record, int serial, const char* name, char altloc, const char* res,
+                     const char* chain, int resnum, const char* x, const char* y, const char* z,
+                     const char* element) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%-6s%5d %-4s%c%3s %1s%4d    %8s%8s%8s%6.2f%6.2f          %2s", record, serial,
+                name, altloc, res, chain, resnum, x, y, z, 1.0, 10.0, element);
+  return std::string(buf) + "\n";
+}
+
+/// The InputError thrown by read_molecule(path, opt); fails the test if none.
+InputError error_of(const std::string& path, const ReadOptions& opt = {}) {
+  try {
+    read_molecule(path, opt);
+  } catch (const InputError& e) {
+    return e;
+  }
+  FAIL("no InputError for " << path);
+  return InputError(path, 0, "unreachable");
+}
+
+std::size_t count_notes_containing(const Molecule& m, const std::string& s) {
+  std::size_t n = 0;
+  for (const std::string& note : m.notes) n += note.find(s) != std::string::npos;
+  return n;
+}
+
+}  // namespace
+
+TEST_SUITE("skin") {
+
+TEST_CASE("element radii: Bondi values, deuterium, fallback, symbols") {
+  using namespace skinmesh::skin;
+  CHECK(bondi_radius("H") == 1.20);
+  CHECK(bondi_radius("C") == 1.70);
+  CHECK(bondi_radius("N") == 1.55);
+  CHECK(bondi_radius("O") == 1.52);
+  CHECK(bondi_radius("F") == 1.47);
+  CHECK(bondi_radius("P") == 1.80);
+  CHECK(bondi_radius("S") == 1.80);
+  CHECK(bondi_radius("CL") == 1.75);
+  CHECK(bondi_radius(" Br") == 1.85);
+  CHECK(bondi_radius("i") == 1.98);
+  CHECK(bondi_radius("Se") == 1.90);
+  CHECK(bondi_radius("Zn") == 1.39);
+  CHECK(bondi_radius("U") == 1.86);
+  CHECK(bondi_radius("D") == 1.20);
+  for (const char* metal : {"Fe", "Ca", "Mn", "Co", "Mo"}) {
+    CHECK_FALSE(bondi_radius(metal).has_value());
+    const VanDerWaalsRadius r = van_der_waals_radius(metal);
+    CHECK(r.radius == kFallbackRadius);
+    CHECK_FALSE(r.from_bondi);
+  }
+  CHECK(van_der_waals_radius("cl").from_bondi);
+  CHECK(canonical_element_symbol("CL") == "Cl");
+  CHECK(canonical_element_symbol(" fe ") == "Fe");
+  CHECK(canonical_element_symbol("Og") == "Og");
+  CHECK(canonical_element_symbol("XX").empty());
+  CHECK(canonical_element_symbol("").empty());
+}
+
+TEST_CASE("read_molecule: bundled molecules have the documented atom counts") {
+  // data/README.md: total ATOM/HETATM records, minus waters by default.
+  const std::map<std::string, std::size_t> expected = {
+      {"ligand_2zmm.pdb", 31},           {"ligand_1hpv_amprenavir.pdb", 35},
+      {"ligand_1hvr_xk263.pdb", 46},     {"gramicidinA_1grm_model1.pdb", 272},
+      {"crambin_1crn.pdb", 327},         {"adna_3dna_fiber_30bp.pdb", 1230},
+      {"hivprotease_xk263_1hvr.pdb", 1890}, {"src_kinase_2src.pdb", 3915 - 269},
+  };
+  for (const auto& [name, count] : expected) {
+    CAPTURE(name);
+    const Molecule m = read_molecule(data_file(name));
+    CHECK(m.source == data_file(name));
+    CHECK(m.atoms.size() == count);
+    int previous_line = 0;
+    for (const auto& a : m.atoms) {
+      CHECK(a.line > previous_line);  // file order, every line known
+      previous_line = a.line;
+      CHECK(std::isfinite(a.centre.x()));
+      CHECK(a.radius > 0.0);
+      // PDB radii are Bondi's, by element.
+      REQUIRE(skinmesh::skin::bondi_radius(a.element).has_value());
+      CHECK(a.radius == *skinmesh::skin::bondi_radius(a.element));
+    }
+  }
+}
+
+TEST_CASE("read_molecule: crambin PDB atoms, identifiers and radii") {
+  const Molecule m = read_molecule(data_file("crambin_1crn.pdb"));
+  REQUIRE(m.atoms.size() == 327);
+  const auto& first = m.atoms.front();
+  // ATOM      1  N   THR A   1      17.047  14.099   3.625  1.00 13.79           N
+  CHECK(first.centre == skinmesh::Vec3(17.047, 14.099, 3.625));
+  CHECK(first.element == "N");
+  CHECK(first.radius == 1.55);
+  CHECK(first.name == "N");
+  CHECK(first.residue == "THR");
+  CHECK(first.chain == "A");
+  CHECK(first.residue_number == 1);
+  CHECK(first.serial == 1);
+  std::map<std::string, int> by_element;
+  for (const auto& a : m.atoms) ++by_element[a.element];
+  CHECK(by_element == std::map<std::string, int>{{"C", 202}, {"N", 55}, {"O", 64}, {"S", 6}});
+  for (const auto& a : m.atoms) {
+    if (a.element == "C") CHECK(a.radius == 1.70);
+    if (a.element == "O") CHECK(a.radius == 1.52);
+    if (a.element == "S") CHECK(a.radius == 1.80);
+  }
+  CHECK(m.notes.empty());
+}
+
+TEST_CASE("read_molecule: 3DNA A-DNA without element column gets C/N/O/P from atom names") {
+  const Molecule m = read_molecule(data_file("adna_3dna_fiber_30bp.pdb"));
+  REQUIRE(m.atoms.size() == 1230);
+  std::map<std::string, int> by_element;
+  for (const auto& a : m.atoms) ++by_element[a.element];
+  // Atom names (data/README.md): P O1P O2P O5' C5' ... 60 P, and no other elements.
+  CHECK(by_element.size() == 4);
+  CHECK(by_element["P"] == 60);
+  CHECK(by_element["C"] + by_element["N"] + by_element["O"] + by_element["P"] == 1230);
+  for (const auto& a : m.atoms) {
+    if (a.name == "O1P" || a.name == "O2P" || a.name == "O5'") CHECK(a.element == "O");
+    if (a.name == "C5'" || a.name == "C5M") CHECK(a.element == "C");
+    if (a.name == "N9") CHECK(a.element == "N");
+  }
+  CHECK(count_notes_containing(m, "elements guessed from atom names") == 1);
+  // the 3DNA rows in this file are exactly 54 characters long (no occupancy)
+  CHECK(m.atoms.front().centre == skinmesh::Vec3(3.063, 8.025, -4.135));
+}
+
+TEST_CASE("read_molecule: waters excluded by default, kept on demand (2SRC, 269 waters)") {
+  const Molecule dry = read_molecule(data_file("src_kinase_2src.pdb"));
+  CHECK(dry.atoms.size() == 3646);
+  CHECK(dry.notes.size() == 269);
+  CHECK(count_notes_containing(dry, "water HOH") == 269);
+  for (const auto& a : dry.atoms) CHECK(a.residue != "HOH");
+  // the note names the file and the line of the record
+  CHECK(dry.notes.front().rfind(data_file("src_kinase_2src.pdb") + ":", 0) == 0);
+
+  ReadOptions wet;
+  wet.keep_water = true;
+  const Molecule m = read_molecule(data_file("src_kinase_2src.pdb"), wet);
+  CHECK(m.atoms.size() == 3915);
+  CHECK(m.notes.empty());
+  std::size_t waters = 0;
+  for (const auto& a : m.atoms) waters += a.residue == "HOH";
+  CHECK(waters == 269);
+}
+
+TEST_CASE("read_molecule: hydrogens kept by default, dropped on demand (1HVR, 330 H)") {
+  const Molecule with_h = read_molecule(data_file("hivprotease_xk263_1hvr.pdb"));
+  std::size_t h = 0;
+  for (const auto& a : with_h.atoms) h += a.element == "H";
+  CHECK(h == 330);
+  for (const auto& a : with_h.atoms)
+    if (a.element == "H") CHECK(a.radius == 1.20);
+
+  ReadOptions opt;
+  opt.keep_hydrogens = false;
+  const Molecule heavy = read_molecule(data_file("hivprotease_xk263_1hvr.pdb"), opt);
+  CHECK(heavy.atoms.size() == 1560);
+  CHECK(count_notes_containing(heavy, "hydrogen") == 330);
+}
+
+TEST_CASE("read_molecule: crambin PQR takes radii from the file, skips zero-radius hydrogens") {
+  const Molecule m = read_molecule(data_file("crambin_1crn.pqr"));
+  // 642 records (data/README.md) = 406 atoms kept + 236 hydrogens of radius 0.
+  CHECK(m.atoms.size() == 406);
+  CHECK(m.notes.size() == 236);
+  CHECK(m.atoms.size() + m.notes.size() == 642);
+  CHECK(count_notes_containing(m, "has radius 0; skipped") == 236);
+  // ATOM      1  N   THR     1      17.047  14.099   3.625 -0.3200 2.0000
+  const auto& first = m.atoms.front();
+  CHECK(first.centre == skinmesh::Vec3(17.047, 14.099, 3.625));
+  CHECK(first.radius == 2.0);
+  CHECK(first.element == "N");
+  CHECK(first.residue == "THR");
+  CHECK(first.chain.empty());
+  CHECK(first.residue_number == 1);
+  CHECK(first.line == 8);  // after 7 REMARK lines
+  const std::set<double> parse_radii = {1.0, 1.4, 1.5, 1.7, 1.85, 2.0};
+  std::size_t hydrogens = 0;
+  for (const auto& a : m.atoms) {
+    CHECK(parse_radii.count(a.radius) == 1);
+    hydrogens += a.element == "H";
+  }
+  CHECK(hydrogens == 642 - 327 - 236);
+  // radii from the file differ from Bondi's: the first carbon (CA) has 2.0, not 1.70
+  CHECK(m.atoms[1].name == "CA");
+  CHECK(m.atoms[1].radius == 2.0);
+}
+
+TEST_CASE("read_molecule: mmCIF gives the same atoms as PDB, with line numbers") {
+  const Molecule pdb = read_molecule(data_file("crambin_1crn.pdb"));
+  std::ostringstream cif;
+  cif << "data_1CRN\n#\nloop_\n"
+         "_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
+         "_atom_site.label_alt_id\n_atom_site.label_comp_id\n_atom_site.label_asym_id\n"
+         "_atom_site.label_seq_id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n"
+         "_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n_atom_site.auth_seq_id\n"
+         "_atom_site.pdbx_PDB_model_num\n";
+  char buf[256];
+  for (const auto& a : pdb.atoms) {
+    std::snprintf(buf, sizeof buf, "ATOM %d %s %s . %s %s %d %.3f %.3f %.3f 1.00 10.00 %d 1\n", a.serial,
+                  a.element.c_str(), a.name.c_str(), a.residue.c_str(), a.chain.c_str(), a.residue_number,
+                  a.centre.x(), a.centre.y(), a.centre.z(), a.residue_number);
+    cif << buf;
+  }
+  // a second model that must be ignored
+  cif << "ATOM 9999 C CA . THR A 1 0.000 0.000 0.000 1.00 10.00 1 2\n#\n";
+  const std::string path = scratch().write("crambin.cif", cif.str());
+  const Molecule m = read_molecule(path);
+  REQUIRE(m.atoms.size() == pdb.atoms.size());
+  for (std::size_t i = 0; i < m.atoms.size(); ++i) {
+    CHECK(m.atoms[i].centre == pdb.atoms[i].centre);
+    CHECK(m.atoms[i].radius == pdb.atoms[i].radius);
+    CHECK(m.atoms[i].name == pdb.atoms[i].name);
+    CHECK(m.atoms[i].line == static_cast<int>(i) + 19);  // 18 header lines
+  }
+
+  // a bad coordinate is reported at its line
+  std::string text = cif.str();
+  const std::size_t at = text.find(" 17.047 ");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 8, " 17.0x7 ");
+  const InputError e = error_of(scratch().write("bad.cif", text));
+  CHECK(e.line() == 19);
+  CHECK(std::string(e.what()).find("bad.cif:19: non-numeric x coordinate '17.0x7'") != std::string::npos);
+}
+
+TEST_CASE("read_molecule: gzipped PDB") {
+  const std::string path = (scratch().dir / "small.pdb.gz").string();
+  const std::string text = pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.000", "2.000", "3.000", "C") +
+                           pdb_atom("ATOM", 2, " N", ' ', "ALA", "A", 1, "2.000", "2.000", "3.000", "N");
+  gzFile f = gzopen(path.c_str(), "wb");
+  REQUIRE(f != nullptr);
+  gzwrite(f, text.data(), static_cast<unsigned>(text.size()));
+  gzclose(f);
+  const Molecule m = read_molecule(path);
+  REQUIRE(m.atoms.size() == 2);
+  CHECK(m.atoms[1].element == "N");
+  CHECK(m.atoms[1].line == 2);
+}
+
+TEST_CASE("read_molecule: first model, first alternate location, fallback radius notes") {
+  std::string text = "HEADER    TEST\nMODEL        1\n";
+  text += pdb_atom("ATOM", 1, " N", ' ', "SER", "A", 5, "0.000", "0.000", "0.000", "N");      // line 3
+  text += pdb_atom("ATOM", 2, " CA", 'A', "SER", "A", 5, "1.000", "0.000", "0.000", "C");     // kept
+  text += pdb_atom("ATOM", 3, " CA", 'B', "SER", "A", 5, "1.100", "0.000", "0.000", "C");     // line 5 skipped
+  text += pdb_atom("ATOM", 4, " CB", 'A', "SER", "A", 6, "2.000", "0.000", "0.000", "C");     // kept
+  text += pdb_atom("ATOM", 5, " CB", 'B', "THR", "A", 6, "2.100", "0.000", "0.000", "C");     // alt residue
+  text += pdb_atom("ATOM", 6, " OG1", 'B', "THR", "A", 6, "2.200", "0.000", "0.000", "O");    // alt residue
+  text += pdb_atom("HETATM", 7, "FE", ' ', "HEM", "A", 7, "3.000", "0.000", "0.000", "FE");  // line 9
+  text += "ENDMDL\nMODEL        2\n";
+  text += pdb_atom("ATOM", 1, " N", ' ', "SER", "A", 5, "9.000", "0.000", "0.000", "N");
+  text += "ENDMDL\nEND\n";
+  const std::string path = scratch().write("altloc.pdb", text);
+  const Molecule m = read_molecule(path);
+  REQUIRE(m.atoms.size() == 4);
+  CHECK(m.atoms[0].line == 3);
+  CHECK(m.atoms[1].centre.x() == 1.0);
+  CHECK(m.atoms[2].centre.x() == 2.0);
+  CHECK(m.atoms[3].element == "Fe");
+  CHECK(m.atoms[3].radius == skinmesh::skin::kFallbackRadius);
+  CHECK(m.atoms[3].line == 9);
+  REQUIRE(m.notes.size() == 4);
+  CHECK(m.notes[0].rfind(path + ":5: alternate location B", 0) == 0);
+  CHECK(m.notes[1].rfind(path + ":7: alternate location B", 0) == 0);
+  CHECK(m.notes[2].rfind(path + ":8: alternate location B", 0) == 0);
+  CHECK(m.notes[3].rfind(path + ":9: no Bondi radius for element Fe", 0) == 0);
+}
+
+TEST_CASE("read_molecule: bad inputs name the file and the line") {
+  SUBCASE("missing file") {
+    const std::string path = (scratch().dir / "does_not_exist.pdb").string();
+    const InputError e = error_of(path);
+    CHECK(e.file() == path);
+    CHECK(std::string(e.what()).find("cannot open file") != std::string::npos);
+  }
+  SUBCASE("unknown extension") {
+    const std::string path = scratch().write("atoms.txt", "1 2 3 4\n");
+    const InputError e = error_of(path);
+    CHECK(std::string(e.what()).find("atoms.txt: unknown format (expected .pdb, .cif, .pqr or .xyzr)") !=
+          std::string::npos);
+    // ... unless the format is given
+    ReadOptions opt;
+    opt.format = ReadOptions::Format::Xyzr;
+    CHECK(read_molecule(path, opt).atoms.size() == 1);
+  }
+  SUBCASE("empty files") {
+    for (const char* name : {"empty.pdb", "empty.pqr", "empty.xyzr", "empty.cif"}) {
+      CAPTURE(name);
+      const InputError e = error_of(scratch().write(name, name == std::string("empty.cif") ? "data_x\n" : ""));
+      CHECK(std::string(e.what()).find(std::string(name) + ": no atoms found") != std::string::npos);
+    }
+  }
+  SUBCASE("only waters") {
+    const InputError e =
+        error_of(scratch().write("water.pdb", pdb_atom("HETATM", 1, " O", ' ', "HOH", "A", 1, "1.0", "2.0", "3.0", "O")));
+    CHECK(std::string(e.what()).find("no atoms found (1 skipped") != std::string::npos);
+  }
+  SUBCASE("PDB non-numeric coordinate (gemmi alone would read 0)") {
+    const std::string text = "REMARK   1\n" +
+                             pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.000", "2.000", "3.000", "C") +
+                             pdb_atom("ATOM", 2, " CB", ' ', "ALA", "A", 1, "1.000", "abc", "3.000", "C");
+    const InputError e = error_of(scratch().write("garbage.pdb", text));
+    CHECK(e.line() == 3);
+    CHECK(std::string(e.what()).find("garbage.pdb:3: non-numeric y coordinate 'abc'") != std::string::npos);
+  }
+  SUBCASE("PDB number followed by garbage (gemmi alone would read 12.1)") {
+    const InputError e = error_of(scratch().write(
+        "trailing.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "12.1x4", "2.000", "3.000", "C")));
+    CHECK(std::string(e.what()).find("trailing.pdb:1: non-numeric x coordinate '12.1x4'") != std::string::npos);
+  }
+  SUBCASE("PDB blank coordinate") {
+    const InputError e = error_of(
+        scratch().write("blank.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "", "C")));
+    CHECK(std::string(e.what()).find("blank.pdb:1: non-numeric z coordinate ''") != std::string::npos);
+  }
+  SUBCASE("PDB nan and inf") {
+    const InputError e = error_of(scratch().write(
+        "nan.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
+                       pdb_atom("ATOM", 2, " CB", ' ', "ALA", "A", 1, "1.0", "2.0", "nan", "C")));
+    CHECK(std::string(e.what()).find("nan.pdb:2: non-finite z coordinate 'nan'") != std::string::npos);
+    const InputError f = error_of(
+        scratch().write("inf.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "-1e999", "2.0", "3.0", "C")));
+    CHECK(std::string(f.what()).find("inf.pdb:1: non-finite x coordinate '-1e999'") != std::string::npos);
+  }
+  SUBCASE("PDB record too short for coordinates") {
+    const InputError e = error_of(scratch().write("short.pdb", "ATOM      1  CA  ALA A   1       1.000   2.000\n"));
+    CHECK(e.line() == 1);
+    CHECK(std::string(e.what()).find("short.pdb:1: ATOM/HETATM record too short") != std::string::npos);
+  }
+  SUBCASE("PDB unknown element") {
+    const InputError e = error_of(scratch().write(
+        "elem.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
+                        pdb_atom("HETATM", 2, "QQ", ' ', "UNK", "A", 2, "1.0", "2.0", "4.0", "QQ")));
+    CHECK(std::string(e.what()).find("elem.pdb:2: unknown element") != std::string::npos);
+  }
+  SUBCASE("PQR: chain column optional, fields by whitespace") {
+    const std::string text =
+        "REMARK PQR\n"
+        "ATOM      1  N   ALA     1      1.000  2.000  3.000 -0.3000 1.8240\n"
+        "ATOM 2 CA ALA B 17 -1.5 2.25 3 0.1 1.9080\n"
+        "HETATM 3 NA NA 18 10 10 10 1.0 1.8680\n";
+    const Molecule m = read_molecule(scratch().write("ok.pqr", text));
+    REQUIRE(m.atoms.size() == 3);
+    CHECK(m.atoms[0].radius == 1.824);
+    CHECK(m.atoms[0].chain.empty());
+    CHECK(m.atoms[1].centre == skinmesh::Vec3(-1.5, 2.25, 3.0));
+    CHECK(m.atoms[1].chain == "B");
+    CHECK(m.atoms[1].residue_number == 17);
+    CHECK(m.atoms[1].element == "C");
+    CHECK(m.atoms[2].element == "Na");
+    CHECK(m.atoms[2].line == 4);
+  }
+  SUBCASE("PQR hydrogen with radius 0 is skipped with a note") {
+    const std::string text =
+        "ATOM      1  N   ALA     1      1.000  2.000  3.000 -0.3000 1.8240\n"
+        "ATOM      2  HA  ALA     1      1.500  2.000  3.000  0.1000 0.0000\n";
+    const std::string path = scratch().write("h0.pqr", text);
+    const Molecule m = read_molecule(path);
+    CHECK(m.atoms.size() == 1);
+    REQUIRE(m.notes.size() == 1);
+    CHECK(m.notes[0].rfind(path + ":2: hydrogen atom HA of ALA 1 has radius 0; skipped", 0) == 0);
+  }
+  SUBCASE("PQR radius 0 on a carbon") {
+    const std::string text =
+        "ATOM      1  N   ALA     1      1.000  2.000  3.000 -0.3000 1.8240\n"
+        "ATOM      2  CA  ALA     1      1.500  2.000  3.000  0.1000 0.0000\n";
+    const InputError e = error_of(scratch().write("c0.pqr", text));
+    CHECK(e.line() == 2);
+    CHECK(std::string(e.what()).find("c0.pqr:2: non-positive radius '0.0000'") != std::string::npos);
+  }
+  SUBCASE("PQR negative radius on a hydrogen") {
+    const InputError e =
+        error_of(scratch().write("hneg.pqr", "ATOM 1 H ALA 1 1.0 2.0 3.0 0.1 -1.0\n"));
+    CHECK(std::string(e.what()).find("hneg.pqr:1: non-positive radius '-1.0'") != std::string::npos);
+  }
+  SUBCASE("PQR non-numeric and non-finite fields") {
+    const InputError e = error_of(scratch().write("x.pqr", "ATOM 1 CA ALA 1 abc 2.0 3.0 0.1 1.9\n"));
+    CHECK(std::string(e.what()).find("x.pqr:1: non-numeric x coordinate 'abc'") != std::string::npos);
+    const InputError f = error_of(scratch().write("r.pqr", "\nATOM 1 CA ALA 1 1.0 2.0 3.0 0.1 nan\n"));
+    CHECK(std::string(f.what()).find("r.pqr:2: non-finite radius 'nan'") != std::string::npos);
+    const InputError g = error_of(scratch().write("few.pqr", "ATOM 1 CA ALA 1.0 2.0 3.0 0.1 1.9\n"));
+    CHECK(std::string(g.what()).find("few.pqr:1: PQR record has 9 fields") != std::string::npos);
+  }
+  SUBCASE("XYZR: comments, blank lines, line numbers") {
+    const std::string text = "# MSMS input\n\n1.0 2.0 3.0 1.5\n  -1 -2 -3 2.0   # an ion\n";
+    const Molecule m = read_molecule(scratch().write("ok.xyzr", text));
+    REQUIRE(m.atoms.size() == 2);
+    CHECK(m.atoms[0].line == 3);
+    CHECK(m.atoms[1].line == 4);
+    CHECK(m.atoms[1].centre == skinmesh::Vec3(-1, -2, -3));
+    CHECK(m.atoms[1].radius == 2.0);
+    CHECK(m.atoms[1].element.empty());
+    CHECK(m.atoms[1].serial == 2);
+  }
+  SUBCASE("XYZR radius 0, non-numeric, nan, too few fields") {
+    const InputError e = error_of(scratch().write("r0.xyzr", "1 2 3 1.5\n1 2 3 0\n"));
+    CHECK(e.line() == 2);
+    CHECK(std::string(e.what()).find("r0.xyzr:2: non-positive radius '0'") != std::string::npos);
+    const InputError f = error_of(scratch().write("abc.xyzr", "1 abc 3 1.5\n"));
+    CHECK(std::string(f.what()).find("abc.xyzr:1: non-numeric y coordinate 'abc'") != std::string::npos);
+    const InputError g = error_of(scratch().write("nan.xyzr", "# c\nnan 2 3 1.5\n"));
+    CHECK(std::string(g.what()).find("nan.xyzr:2: non-finite x coordinate 'nan'") != std::string::npos);
+    const InputError h = error_of(scratch().write("three.xyzr", "1 2 3\n"));
+    CHECK(std::string(h.what()).find("three.xyzr:1: expected 'x y z r'") != std::string::npos);
+  }
+}
+
+}  // TEST_SUITE("skin")
