@@ -18,6 +18,7 @@
 
 #include "apps/cli.h"
 #include "geometry/errors.h"
+#include "front/sweep_mesher.h"
 #include "geometry/mesh_io.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
@@ -240,11 +241,95 @@ int run_check(const cli::Args& args) {
   return rep.ok() ? 0 : 1;
 }
 
+/// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
+std::size_t peak_memory_bytes() {
+  std::ifstream is("/proc/self/status");
+  std::string line;
+  while (std::getline(is, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+  return 0;
+}
+
 int run_mesh(const cli::Args& args) {
   if (args.flag("--help")) return std::cout << kMeshHelp << kMoleculeOptions, 0;
   args.expect_positional(1, "skinmesh mesh IN -o OUT");
-  if (!args.value("-o")) throw cli::UsageError("mesh needs an output file: -o OUT");
-  throw cli::UsageError("the sweeping front (front/) is not implemented yet; 'info' and 'check' work");
+  const auto out = args.value("-o");
+  if (!out) throw cli::UsageError("mesh needs an output file: -o OUT");
+  geometry::mesh_format_from_extension(*out);  // unknown extension: fail before the work
+  const bool quiet = args.flag("--quiet");
+  using Clock = std::chrono::steady_clock;
+  std::vector<std::pair<std::string, double>> seconds;
+  auto t0 = Clock::now();
+  auto lap = [&](const std::string& stage) {
+    const auto t1 = Clock::now();
+    seconds.emplace_back(stage, std::chrono::duration<double>(t1 - t0).count());
+    t0 = t1;
+  };
+  const auto start = Clock::now();
+
+  const skin::Molecule mol = load_molecule(args, args.positional(0));
+  lap("read");
+  const double probe = probe_radius(args);
+  const skin::SkinSurface skin(weighted_points(mol, probe));
+  lap("skin");
+  const Vec3 e = height_direction(args);
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, e);
+  const skin::SkinTopology topo = skin::dual_complex_topology(skin.mixed_complex());
+  const morse::MorseCount mc = morse::count_critical_points(ms.critical);
+  if (mc.euler() != topo.euler_skin())
+    throw TopologyError("Morse count " + std::to_string(mc.euler()) +
+                        " differs from the expected Euler characteristic " + std::to_string(topo.euler_skin()));
+  lap("morse");
+  front::SweepOptions sopt;
+  sopt.size.C = args.number("--C", sopt.size.C);
+  sopt.size.Q = args.number("--Q", sopt.size.Q);
+  const front::SweepResult res = front::sweep_mesh(skin, ms, sopt);
+  lap("sweep");
+
+  refine::SkinCheckReport rep;
+  const bool checked = !args.flag("--no-check");
+  if (checked) {
+    refine::SkinCheckOptions copt;
+    copt.size = sopt.size;
+    rep = refine::check_skin_mesh(skin, res.mesh, copt);
+    lap("check");
+  }
+  const bool failed = checked && !rep.ok();
+  if (failed && !args.flag("--force")) {
+    for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
+    std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
+    if (auto st = args.value("--stats")) cli::write_text_file(*st, rep.to_json());
+    return 3;
+  }
+  geometry::write_mesh(*out, res.mesh);
+  lap("write");
+  const double total = std::chrono::duration<double>(Clock::now() - start).count();
+
+  std::ostringstream js;
+  js << "{\n  \"input\": \"" << args.positional(0) << "\",\n  \"output\": \"" << *out
+     << "\",\n  \"atoms\": " << mol.atoms.size() << ",\n  \"vertices\": " << res.mesh.positions.size()
+     << ",\n  \"triangles\": " << res.mesh.triangles.size();
+  if (checked)
+    js << ",\n  \"min_angle_deg\": " << rep.mesh.min_angle_deg << ",\n  \"max_angle_deg\": "
+       << rep.mesh.max_angle_deg << ",\n  \"checks_passed\": " << (rep.ok() ? "true" : "false");
+  js << ",\n  \"operations\": {\"creations\": " << res.stats.creations << ", \"creeps\": " << res.stats.creeps
+     << ", \"wings\": " << res.stats.wings << ", \"bridges\": " << res.stats.bridges
+     << ", \"seals\": " << res.stats.seals << ", \"held\": " << res.stats.held
+     << ", \"flips\": " << res.stats.flips << ", \"contractions\": " << res.stats.contractions
+     << ", \"insertions\": " << res.stats.insertions << "}";
+  js << ",\n  \"seconds\": {";
+  for (std::size_t i = 0; i < seconds.size(); ++i)
+    js << (i ? ", " : "") << "\"" << seconds[i].first << "\": " << seconds[i].second;
+  js << ", \"total\": " << total << "}";
+  js << ",\n  \"peak_memory_bytes\": " << peak_memory_bytes() << "\n}\n";
+  if (auto st = args.value("--stats")) cli::write_text_file(*st, js.str());
+  if (!quiet)
+    std::cerr << "wrote " << *out << ": " << res.mesh.triangles.size() << " triangles"
+              << (checked ? ", min angle " + std::to_string(rep.mesh.min_angle_deg) + "°" : std::string())
+              << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s\n";
+  if (failed)
+    for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
+  return failed ? 3 : 0;
 }
 
 }  // namespace

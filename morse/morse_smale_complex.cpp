@@ -24,16 +24,13 @@ Vec3 surface_ascent(const Vec3& n, const Vec3& e) {
 }  // namespace
 
 IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
-                                 const std::vector<CriticalPoint>& cps,
-                                 const std::vector<double>& protect_radius, Index s,
+                                 const std::vector<CriticalPoint>& cps, Index s,
                                  const Vec3& dir, int sgn, const MorseSmaleOptions& opt) {
   IntegralLine line;
   line.saddle = s;
   line.direction = sgn;
   const CriticalPoint& sp = cps[s];
   const CriticalKind target = sgn > 0 ? CriticalKind::Maximum : CriticalKind::Minimum;
-  double max_r = 0;
-  for (std::size_t i = 0; i < cps.size(); ++i) max_r = std::max(max_r, protect_radius[i]);
   Index cell = sp.cell;
   Vec3 x = skin.pull_back(sp.position + 1e-2 * sp.rho * dir, cell);
   line.points.push_back(sp.position);
@@ -45,7 +42,10 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
     for (std::size_t i = 0; i < cps.size(); ++i) {
       if (cps[i].kind != target) continue;
       const double d = (cps[i].position - p).norm();
-      if (d <= std::max(3.0 * h, protect_radius[i]) && d < best_d) best = static_cast<Index>(i), best_d = d;
+      // Within 3h, but never within half the saddle's own distance: a line
+      // that starts next to an extremum must first head towards it.
+      const double stop = std::min(3.0 * h, 0.5 * (cps[i].position - sp.position).norm());
+      if (d <= stop && d < best_d) best = static_cast<Index>(i), best_d = d;
     }
     return best;
   };
@@ -129,15 +129,19 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     for (int k = 0; k < 4; ++k) {
       ms.arcs[s][k] = static_cast<Index>(ms.lines.size());
       ms.lines.push_back(
-          trace_integral_line(skin, e, ms.critical, ms.protect_radius, s, dirs[k], k < 2 ? +1 : -1, opt));
+          trace_integral_line(skin, e, ms.critical, s, dirs[k], k < 2 ? +1 : -1, opt));
     }
   }
 
-  // Arc contraction: (saddle, extremum) pairs joined by exactly one arc whose
-  // protecting spheres intersect, closest first; repeat until none is left.
+  // Arc contraction: noisy (saddle, extremum) pairs joined by exactly one arc,
+  // closest first; repeat until none is left.
   auto spheres_meet = [&](Index a, Index b) {
     return (ms.critical[a].position - ms.critical[b].position).norm() <
            ms.protect_radius[a] + ms.protect_radius[b];
+  };
+  auto noisy = [&](Index a, Index b) {
+    return (ms.critical[a].position - ms.critical[b].position).norm() <
+           opt.cancel_factor * (ms.critical[a].rho + ms.critical[b].rho);
   };
   for (bool changed = true; changed;) {
     changed = false;
@@ -150,7 +154,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
       if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
       for (int k = 0; k < 4; ++k) {
         const Index x = ms.arc_end(s, k);
-        if (x == kInvalidIndex || !ms.live[x] || !spheres_meet(s, x)) continue;
+        if (x == kInvalidIndex || !ms.live[x] || !noisy(s, x)) continue;
         cands.push_back({(ms.critical[s].position - ms.critical[x].position).norm(), s, x});
       }
     }

@@ -35,6 +35,13 @@ struct MorseSmaleOptions {
   /// still cover the critical point (sweep-design-notes Q8.1,
   /// papers/morse/morse_smale_complex.md).
   double protect_factor = 0.25;
+  /// Arc contraction cancels a (saddle, extremum) pair joined by a single arc
+  /// when their distance is below cancel_factor * (rho_s + rho_c): the pair is
+  /// "noisy" (its basin is about one edge long, so the front covers it without
+  /// a topological event). Farther pairs stay live even if their protecting
+  /// spheres meet: the sweep holds front vertices at the nearest live critical
+  /// point (papers/morse/morse_smale_complex.md).
+  double cancel_factor = 0.1;
   /// Maximum number of steps of one integral line.
   int max_steps = 20000;
 };
@@ -68,17 +75,18 @@ struct MorseSmaleComplex {
 /// Traces one integral line from saddle `s` of `cps`, starting in tangent
 /// direction `dir` (unit), ascending (sgn = +1) or descending (sgn = -1), by
 /// Heun predictor–corrector steps with re-projection (skin-math §6), until it
-/// comes within max(3h, r_p) of an extremum of the right kind.
+/// comes within min(3h, |c - s| / 2) of an extremum c of the right kind (not
+/// within its protecting sphere, which may contain the saddle itself when the
+/// two are close).
 IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
-                                 const std::vector<CriticalPoint>& cps,
-                                 const std::vector<double>& protect_radius, Index s,
+                                 const std::vector<CriticalPoint>& cps, Index s,
                                  const Vec3& dir, int sgn, const MorseSmaleOptions& opt);
 
 /// Builds the Morse–Smale complex of h(x) = e·x on the skin: critical points,
 /// four integral lines per saddle, protecting spheres; then contracts arcs
-/// (saddle, extremum) whose protecting spheres intersect, closest pairs first,
-/// when exactly one arc joins them (Cheng & Shi §3.2, Figure 3). Remaining
-/// intersections are listed in `conflicts`.
+/// (saddle, extremum) closer than cancel_factor (rho_s + rho_c), closest pairs
+/// first, when exactly one arc joins them (Cheng & Shi §3.2, Figure 3).
+/// Remaining intersections of protecting spheres are listed in `conflicts`.
 MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const Vec3& e,
                                             const MorseSmaleOptions& opt = {});
 

@@ -1,0 +1,579 @@
+// front/sweep_mesher.cpp: the sweep of Cheng & Shi 2004 §4.1 (Algorithm 1).
+//
+// The front is the set of boundary half-edges of the partial SurfaceMesh (a
+// boundary half-edge has the hole on its left; faces are counter-clockwise
+// about the outward normal), so there is no second front list to keep in sync
+// (sweep-design-notes Q1.1). Departure vertices come from a min-heap keyed by
+// height with lazy deletion (Q1.2).
+#include "front/sweep_mesher.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <numbers>
+#include <queue>
+#include <sstream>
+
+#include "geometry/assert.h"
+#include "geometry/errors.h"
+#include "geometry/mesh_io.h"
+#include "geometry/point_grid.h"
+#include "geometry/predicates.h"
+
+namespace skinmesh::front {
+
+using geometry::Face;
+using geometry::Halfedge;
+using geometry::SurfaceMesh;
+using geometry::Vertex;
+using morse::CriticalKind;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180.0;
+
+/// State of a mesh vertex during the sweep.
+enum class VState : std::uint8_t { Interior, Front, Held };
+
+/// Unit tangent direction from p towards x, in the tangent plane with normal n.
+Vec3 tangent_dir(const Vec3& p, const Vec3& n, const Vec3& x) {
+  Vec3 d = x - p;
+  d -= d.dot(n) * n;
+  const double len = d.norm();
+  return len > 0 ? Vec3(d / len) : Vec3::Zero();
+}
+
+/// Counter-clockwise angle (about n) from unit tangent a to unit tangent b, in [0, 2 pi).
+double ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
+  double t = std::atan2(a.cross(b).dot(n), a.dot(b));
+  if (t < 0) t += 2 * kPi;
+  return t;
+}
+
+/// Rotates tangent vector a about unit axis n by angle t.
+Vec3 rotate(const Vec3& a, const Vec3& n, double t) {
+  return std::cos(t) * a + std::sin(t) * n.cross(a) + (1 - std::cos(t)) * n.dot(a) * n;
+}
+
+/// The smallest angle (radians) of triangle abc.
+double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
+}
+
+// Sweep Definition
+
+class Sweep {
+ public:
+  Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt)
+      : skin_(skin), ms_(ms), opt_(opt), e_(ms.height_direction) {
+    normal_ = mesh_.add_vertex_property<Vec3>("v:normal", Vec3::Zero());
+    rho_ = mesh_.add_vertex_property<double>("v:rho", 0.0);
+    cell_ = mesh_.add_vertex_property<Index>("v:cell", kInvalidIndex);
+    state_ = mesh_.add_vertex_property<VState>("v:state", VState::Interior);
+    held_by_ = mesh_.add_vertex_property<Index>("v:held_by", kInvalidIndex);
+    stamp_ = mesh_.add_vertex_property<std::uint32_t>("v:stamp", 0);
+    const std::size_t nc = ms.critical.size();
+    resolved_.assign(nc, 0);
+    held_.resize(nc);
+    double rmax = 0;
+    for (std::size_t i = 0; i < nc; ++i) rmax = std::max(rmax, ms.protect_radius[i]);
+    hold_grid_ = std::make_unique<geometry::PointGrid>(std::max(2 * rmax, 1e-6));
+    for (std::size_t i = 0; i < nc; ++i)
+      if (ms.live[i] && ms.critical[i].kind != CriticalKind::Minimum)
+        hold_grid_->insert(static_cast<Index>(i), ms.critical[i].position);
+    max_hold_radius_ = rmax;
+  }
+
+  SweepResult run();
+
+ private:
+  // Vertices and the queue
+  Vertex new_vertex(const Vec3& p, Index cell);
+  void push(Vertex v);
+  double height(Vertex v) const { return e_.dot(mesh_.position(v)); }
+  double disc_radius(Vertex v) const { return opt_.disc_factor * rho_[v]; }
+  Vec3 project_tangent(Vertex v, const Vec3& dir, double r);
+  Index hold_region(Vertex v) const;
+
+  // Algorithm 1's operations
+  void creation(Index c);
+  void creep(Vertex v);
+  bool wing(Vertex v, bool force);
+  void drain_wings();
+  bool try_bridge(Index c);
+  void bridge(Halfedge ab, Halfedge cd, Index c);
+  void seal_all();
+  void seal_loop(Halfedge h);
+  Face add_triangle(Vertex a, Vertex b, Vertex c);
+
+  // Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
+  struct Corner {
+    Vertex u, w;
+    Halfedge in, out;
+    double angle;  ///< hole angle at v (radians), measured in T_v
+    Vec3 dw;       ///< unit tangent direction to w
+  };
+  Corner corner(Vertex v) const;
+
+  const skin::SkinSurface& skin_;
+  const morse::MorseSmaleComplex& ms_;
+  const SweepOptions& opt_;
+  const Vec3 e_;
+  SurfaceMesh mesh_;
+  geometry::VertexProperty<Vec3> normal_;
+  geometry::VertexProperty<double> rho_;
+  geometry::VertexProperty<Index> cell_;
+  geometry::VertexProperty<VState> state_;
+  geometry::VertexProperty<Index> held_by_;
+  geometry::VertexProperty<std::uint32_t> stamp_;
+
+  struct QueueEntry {
+    double h;
+    Index v;
+    std::uint32_t stamp;
+    bool operator>(const QueueEntry& o) const { return h != o.h ? h > o.h : v > o.v; }
+  };
+  std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
+  std::vector<Vertex> wing_worklist_;
+  std::vector<char> resolved_;              ///< saddle bridged / maximum sealed
+  std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
+  std::unique_ptr<geometry::PointGrid> hold_grid_;
+  double max_hold_radius_ = 0;
+  SweepStats stats_;
+};
+
+// Vertices, Queue, Projection
+
+Vertex Sweep::new_vertex(const Vec3& p, Index cell) {
+  const skin::SkinSample s = skin_.sample(p, cell);
+  const Vertex v = mesh_.add_vertex(p);
+  normal_[v] = s.gradient.normalized();
+  rho_[v] = s.rho;
+  cell_[v] = s.cell;
+  state_[v] = VState::Front;
+  return v;
+}
+
+void Sweep::push(Vertex v) {
+  ++stamp_[v];
+  queue_.push({height(v), v.idx(), stamp_[v]});
+}
+
+Vec3 Sweep::project_tangent(Vertex v, const Vec3& dir, double r) {
+  // Normal-line projection of q = v + r dir (skin-math §7.2): the bracket
+  // [-delta, delta] comes from the sandwiching balls of radius rho(v).
+  const double rho = rho_[v];
+  const Vec3 n = normal_[v];
+  const Vec3 q = mesh_.position(v) + r * dir;
+  double delta = rho - std::sqrt(std::max(rho * rho - r * r, 0.0));
+  Vec3 out;
+  Index cell = cell_[v];
+  for (int attempt = 0; attempt < 4; ++attempt, delta *= 2) {
+    if (skin_.project_along_line(q, n, delta * (1 + 1e-9) + 1e-12 * skin_.length_scale(), out, cell)) return out;
+  }
+  // Fall back on the gradient pull-back (skin-math §7.3).
+  cell = cell_[v];
+  return skin_.pull_back(q, cell);
+}
+
+Index Sweep::hold_region(Vertex v) const {
+  // v is held if its tangent disc meets the protecting sphere of a live
+  // saddle or maximum not yet resolved, so that no fan enters the sphere
+  // (Cheng & Shi §4.2: "each step of the front advancing must not cross to the
+  // other side of the spheres"); the nearest such critical point holds it.
+  const Vec3& p = mesh_.position(v);
+  const double r = disc_radius(v);
+  Index best = kInvalidIndex;
+  double best_d = std::numeric_limits<double>::infinity();
+  hold_grid_->for_each_near(p, max_hold_radius_ + r, [&](Index c, const Vec3& q) {
+    if (resolved_[c]) return;
+    const double d = (p - q).norm();
+    if (d < ms_.protect_radius[c] + r && d < best_d) best = c, best_d = d;
+  });
+  return best;
+}
+
+Face Sweep::add_triangle(Vertex a, Vertex b, Vertex c) { return mesh_.add_triangle(a, b, c); }
+
+Sweep::Corner Sweep::corner(Vertex v) const {
+  Corner k;
+  k.out = mesh_.halfedge(v);
+  SKINMESH_ASSERT(mesh_.is_boundary(k.out));
+  k.in = mesh_.prev(k.out);
+  k.w = mesh_.to_vertex(k.out);
+  k.u = mesh_.from_vertex(k.in);
+  const Vec3& p = mesh_.position(v);
+  const Vec3& n = normal_[v];
+  k.dw = tangent_dir(p, n, mesh_.position(k.w));
+  const Vec3 du = tangent_dir(p, n, mesh_.position(k.u));
+  k.angle = ccw_angle(k.dw, du, n);
+  return k;
+}
+
+// creation() at a minimum (Cheng & Shi §4.1 "Initial front", Figure 5)
+
+void Sweep::creation(Index c) {
+  const morse::CriticalPoint& cp = ms_.critical[c];
+  const Vertex p0 = new_vertex(cp.position, cp.cell);
+  const Vec3 n = normal_[p0];
+  Vec3 t1 = n.unitOrthogonal();
+  const double r = disc_radius(p0);
+  std::array<Vertex, 6> ring;
+  for (int i = 0; i < 6; ++i) {
+    const Vec3 dir = rotate(t1, n, i * 60.0 * kDeg);
+    const Vec3 p = project_tangent(p0, dir, r);
+    ring[i] = new_vertex(p, cell_[p0]);
+  }
+  for (int i = 0; i < 6; ++i) add_triangle(p0, ring[i], ring[(i + 1) % 6]);
+  state_[p0] = VState::Interior;
+  for (Vertex v : ring) push(v);
+  ++stats_.creations;
+}
+
+// creep() at the departure vertex (§4.1 "Creeping triangles", Figure 6)
+
+void Sweep::creep(Vertex v) {
+  const double r = disc_radius(v);
+  const Vec3& n = normal_[v];
+  const Vec3& pv = mesh_.position(v);
+  // 2D coordinates in the tangent plane T_v.
+  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  auto xy = [&](const Vec3& x) { return std::array<double, 2>{(x - pv).dot(t1), (x - pv).dot(t2)}; };
+  auto left_of = [&](const Vec3& a, const Vec3& b, const Vec3& x) {
+    const auto pa = xy(a), pb = xy(b), px = xy(x);
+    return geometry::orient2d(pa[0], pa[1], pb[0], pb[1], px[0], px[1]) == Sign::Positive;
+  };
+  Corner k;
+  int m = 1;
+  // Figure 7: if the first (last) fan point would not lie on the hole side of
+  // the next front edge w -> w' (u' -> u), or would come close to w' (u'),
+  // wing w (u) first and look again.
+  for (int attempt = 0;; ++attempt) {
+    k = corner(v);
+    if (k.angle < 90.0 * kDeg && wing(v, false)) return;
+    m = std::max(1, static_cast<int>(std::ceil(k.angle / (60.0 * kDeg) - 1e-9)));
+    if (m == 1 || attempt >= 8) break;
+    const Vec3 p1 = pv + r * rotate(k.dw, n, k.angle / m);
+    const Vec3 pm = pv + r * rotate(k.dw, n, k.angle * (m - 1) / m);
+    const Vertex w2 = mesh_.to_vertex(mesh_.next(k.out));
+    const Vertex u2 = mesh_.from_vertex(mesh_.prev(k.in));
+    const Vec3 &pw = mesh_.position(k.w), &pw2 = mesh_.position(w2);
+    const Vec3 &pu = mesh_.position(k.u), &pu2 = mesh_.position(u2);
+    const bool bad_w = w2 != k.u && (!left_of(pw, pw2, p1) || (p1 - pw2).norm() < 0.5 * r);
+    const bool bad_u = u2 != k.w && (!left_of(pu2, pu, pm) || (pm - pu2).norm() < 0.5 * r);
+    if (bad_w && wing(k.w, true)) continue;
+    if (bad_u && wing(k.u, true)) continue;
+    break;
+  }
+  // Fold check (sweep-design-notes Q4.1): the tangent angles of the triangles
+  // at v plus the hole angle make a full turn.
+  double covered = 0;
+  for (Face f : mesh_.faces(v)) {
+    Vertex a, b;
+    for (Halfedge h : mesh_.halfedges(f))
+      if (mesh_.from_vertex(h) == v) a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
+    covered += ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
+  }
+  if (std::abs(covered + k.angle - 2 * kPi) > 5 * kDeg) {
+    std::ostringstream os;
+    os << "creep: the mesh folds at vertex " << v.idx() << " (" << pv.transpose() << "): triangles cover "
+       << covered / kDeg << "°, hole " << k.angle / kDeg << "°";
+    throw TopologyError(os.str());
+  }
+  std::vector<Vertex> fan;
+  fan.push_back(k.w);
+  for (int i = 1; i < m; ++i) {
+    const Vec3 dir = rotate(k.dw, n, i * k.angle / m);
+    fan.push_back(new_vertex(project_tangent(v, dir, r), cell_[v]));
+  }
+  fan.push_back(k.u);
+  for (int i = 1; i <= m; ++i) add_triangle(v, fan[i - 1], fan[i]);
+  state_[v] = VState::Interior;
+  for (int i = 1; i < m; ++i) push(fan[i]);
+  wing_worklist_.push_back(k.u);
+  wing_worklist_.push_back(k.w);
+  for (int i = 1; i < m; ++i) wing_worklist_.push_back(fan[i]);
+  ++stats_.creeps;
+}
+
+// wing(): close a front angle below 90° (§4.1, Figure 7)
+
+bool Sweep::wing(Vertex v, bool force) {
+  if (state_[v] != VState::Front || !mesh_.is_boundary(v)) return false;
+  const Corner k = corner(v);
+  if (k.angle >= (force ? 180.0 : 90.0) * kDeg) return false;
+  // A 3-gon is closed only by seal; the new edge u-w must not exist yet.
+  if (mesh_.next(k.out) == k.in || mesh_.find_halfedge(k.w, k.u).is_valid()) return false;
+  if (state_[k.u] == VState::Held || state_[k.w] == VState::Held) return false;
+  const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
+  if (nt.dot(normal_[v]) <= 0) return false;
+  add_triangle(v, k.w, k.u);
+  state_[v] = VState::Interior;
+  wing_worklist_.push_back(k.u);
+  wing_worklist_.push_back(k.w);
+  ++stats_.wings;
+  return true;
+}
+
+void Sweep::drain_wings() {
+  while (!wing_worklist_.empty()) {
+    const Vertex v = wing_worklist_.back();
+    wing_worklist_.pop_back();
+    wing(v, false);
+  }
+}
+
+// bridge() at a saddle (§4.1 "Bridging the front", Figure 8)
+
+bool Sweep::try_bridge(Index c) {
+  const morse::CriticalPoint& cp = ms_.critical[c];
+  // Held front edges a -> b with both ends held by c, classified by side of
+  // the saddle along its descending direction (sweep-design-notes Q6.1).
+  std::vector<Halfedge> side[2];
+  for (Vertex v : held_[c]) {
+    if (state_[v] != VState::Held || held_by_[v] != c || !mesh_.is_boundary(v)) continue;
+    const Halfedge h = mesh_.halfedge(v);
+    const Vertex w = mesh_.to_vertex(h);
+    if (state_[w] != VState::Held || held_by_[w] != c) continue;
+    const double sv = (mesh_.position(v) - cp.position).dot(cp.descent);
+    const double sw = (mesh_.position(w) - cp.position).dot(cp.descent);
+    if ((sv > 0) != (sw > 0)) continue;
+    side[sv > 0 ? 0 : 1].push_back(h);
+  }
+  if (side[0].empty() || side[1].empty()) return false;
+  // The pair with the closest midpoints.
+  double best = std::numeric_limits<double>::infinity();
+  Halfedge ba, bc;
+  for (Halfedge h0 : side[0])
+    for (Halfedge h1 : side[1]) {
+      const Vertex a = mesh_.from_vertex(h0), b = mesh_.to_vertex(h0);
+      const Vertex cc = mesh_.from_vertex(h1), d = mesh_.to_vertex(h1);
+      if (a == cc || a == d || b == cc || b == d) continue;
+      const double dist =
+          (0.5 * (mesh_.position(a) + mesh_.position(b)) - 0.5 * (mesh_.position(cc) + mesh_.position(d))).norm();
+      if (dist < best) best = dist, ba = h0, bc = h1;
+    }
+  if (!ba.is_valid()) return false;
+  bridge(ba, bc, c);
+  return true;
+}
+
+void Sweep::bridge(Halfedge ab, Halfedge cd, Index c) {
+  const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
+  const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
+  // Ladder of k rows across the gap (sweep-design-notes Q6.2): left rail a -> d,
+  // right rail b -> c, intermediate points pulled back onto the skin.
+  const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(cv), pd = mesh_.position(d);
+  const double gap = (0.5 * (pa + pb) - 0.5 * (pc + pd)).norm();
+  const double ell = opt_.disc_factor * ms_.critical[c].rho;
+  const int rows = std::max(1, static_cast<int>(std::lround(gap / ell)));
+  std::vector<Vertex> L{a}, R{b};
+  for (int j = 1; j < rows; ++j) {
+    const double t = double(j) / rows;
+    Index cl = cell_[a], cr = cell_[b];
+    const Vec3 ql = skin_.pull_back((1 - t) * pa + t * pd, cl);
+    const Vec3 qr = skin_.pull_back((1 - t) * pb + t * pc, cr);
+    L.push_back(new_vertex(ql, cl));
+    R.push_back(new_vertex(qr, cr));
+  }
+  L.push_back(d);
+  R.push_back(cv);
+  for (int j = 1; j <= rows; ++j) {
+    const Vertex l0 = L[j - 1], r0 = R[j - 1], r1 = R[j], l1 = L[j];
+    // Quad l0 r0 r1 l1 (counter-clockwise): split by the diagonal with the
+    // better minimum angle.
+    const double d1 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(r1)),
+                               min_angle(mesh_.position(r1), mesh_.position(l1), mesh_.position(l0)));
+    const double d2 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(l1)),
+                               min_angle(mesh_.position(r0), mesh_.position(r1), mesh_.position(l1)));
+    if (d1 >= d2) {
+      add_triangle(l0, r0, r1);
+      add_triangle(r1, l1, l0);
+    } else {
+      add_triangle(l0, r0, l1);
+      add_triangle(r0, r1, l1);
+    }
+  }
+  stats_.bridge_rows += rows;
+  ++stats_.bridges;
+  resolved_[c] = 1;
+  // Release the vertices held by c and push the new ones.
+  for (Vertex v : held_[c])
+    if (state_[v] == VState::Held && held_by_[v] == c) {
+      state_[v] = VState::Front;
+      held_by_[v] = kInvalidIndex;
+    }
+  held_[c].clear();
+  for (std::size_t j = 0; j < L.size(); ++j)
+    for (Vertex v : {L[j], R[j]})
+      if (mesh_.is_boundary(v) && state_[v] != VState::Interior) state_[v] = VState::Front;
+  for (Vertex v : mesh_.vertices())
+    if (state_[v] == VState::Front && mesh_.is_boundary(v) && !mesh_.is_isolated(v)) {
+      // Re-push everything near the saddle (cheap: lazy deletion).
+      if ((mesh_.position(v) - ms_.critical[c].position).norm() < 3 * ms_.protect_radius[c]) push(v);
+    }
+  for (Vertex v : {a, b, cv, d}) {
+    if (mesh_.is_boundary(v) && state_[v] == VState::Front) wing_worklist_.push_back(v);
+    if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+  }
+  for (std::size_t j = 1; j + 1 < L.size(); ++j)
+    for (Vertex v : {L[j], R[j]})
+      if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+}
+
+// seal() the holes at maxima (§4.1 "Sealing holes")
+
+void Sweep::seal_all() {
+  for (;;) {
+    Halfedge start;
+    for (Vertex v : mesh_.vertices())
+      if (!mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
+        start = mesh_.halfedge(v);
+        break;
+      }
+    if (!start.is_valid()) return;
+    seal_loop(start);
+  }
+}
+
+void Sweep::seal_loop(Halfedge start) {
+  std::vector<Halfedge> loop = mesh_.boundary_loop(start);
+  // Plane of projection: the average vertex normal of the hole.
+  Vec3 n = Vec3::Zero();
+  Vec3 centre = Vec3::Zero();
+  for (Halfedge h : loop) {
+    n += normal_[mesh_.to_vertex(h)];
+    centre += mesh_.position(mesh_.to_vertex(h));
+  }
+  centre /= double(loop.size());
+  if (n.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
+  n.normalize();
+  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  std::vector<Vertex> poly;
+  for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
+  auto proj = [&](Vertex v) {
+    const Vec3 d = mesh_.position(v) - centre;
+    return std::array<double, 2>{d.dot(t1), d.dot(t2)};
+  };
+  // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
+  // left turn with no other polygon vertex inside; take the best 3D angle.
+  while (poly.size() > 3) {
+    const std::size_t k = poly.size();
+    double best = -1;
+    std::size_t bi = k;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vertex u = poly[(i + k - 1) % k], v = poly[i], w = poly[(i + 1) % k];
+      const auto pu = proj(u), pv = proj(v), pw = proj(w);
+      if (geometry::orient2d(pu[0], pu[1], pv[0], pv[1], pw[0], pw[1]) != Sign::Positive) continue;
+      if (mesh_.find_halfedge(w, u).is_valid()) continue;
+      bool empty = true;
+      for (std::size_t j = 0; j < k && empty; ++j) {
+        const Vertex x = poly[j];
+        if (x == u || x == v || x == w) continue;
+        const auto px = proj(x);
+        if (geometry::orient2d(pu[0], pu[1], pv[0], pv[1], px[0], px[1]) != Sign::Negative &&
+            geometry::orient2d(pv[0], pv[1], pw[0], pw[1], px[0], px[1]) != Sign::Negative &&
+            geometry::orient2d(pw[0], pw[1], pu[0], pu[1], px[0], px[1]) != Sign::Negative)
+          empty = false;
+      }
+      if (!empty) continue;
+      const double q = min_angle(mesh_.position(u), mesh_.position(v), mesh_.position(w));
+      if (q > best) best = q, bi = i;
+    }
+    if (bi == k) {
+      std::ostringstream os;
+      os << "seal: no ear in a hole of " << k << " vertices near (" << centre.transpose() << "):";
+      for (Vertex x : poly) {
+        const auto px = proj(x);
+        os << " [" << px[0] << "," << px[1] << "]";
+      }
+      throw TopologyError(os.str());
+    }
+    const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
+    add_triangle(v, w, u);
+    state_[v] = VState::Interior;
+    poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
+  }
+  add_triangle(poly[0], poly[1], poly[2]);
+  for (Vertex v : poly) state_[v] = VState::Interior;
+  ++stats_.seals;
+}
+
+// The sweep (Algorithm 1)
+
+SweepResult Sweep::run() {
+  // Initial front: a bowl at every live minimum.
+  for (std::size_t c = 0; c < ms_.critical.size(); ++c)
+    if (ms_.live[c] && ms_.critical[c].kind == CriticalKind::Minimum) creation(static_cast<Index>(c));
+
+  // Creeping triangles.
+  const char* max_steps_env = std::getenv("SKINMESH_MAX_STEPS");
+  const long max_steps = max_steps_env ? std::atol(max_steps_env) : -1;
+  long steps = 0;
+  while (!queue_.empty()) {
+    if (max_steps >= 0 && steps++ >= max_steps) {
+      if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL")) geometry::write_mesh(dump, mesh_.to_indexed_mesh());
+      throw TopologyError("stopped after SKINMESH_MAX_STEPS steps");
+    }
+    const QueueEntry top = queue_.top();
+    queue_.pop();
+    const Vertex v(top.v);
+    if (top.stamp != stamp_[v] || state_[v] != VState::Front || !mesh_.is_boundary(v)) continue;
+    const Index c = hold_region(v);
+    if (c != kInvalidIndex) {
+      state_[v] = VState::Held;
+      held_by_[v] = c;
+      held_[c].push_back(v);
+      ++stats_.held;
+      if (ms_.critical[c].kind == CriticalKind::Saddle) try_bridge(c);
+      drain_wings();
+      continue;
+    }
+    creep(v);
+    drain_wings();
+  }
+
+  // Saddles that were never bridged mean the front did not reach them from two sides.
+  for (std::size_t c = 0; c < ms_.critical.size(); ++c)
+    if (ms_.live[c] && ms_.critical[c].kind == CriticalKind::Saddle && !resolved_[c]) {
+      std::ostringstream os;
+      os << "saddle " << c << " at (" << ms_.critical[c].position.transpose()
+         << ") was not bridged: the front reached it from " << (held_[c].empty() ? "no side" : "one side only");
+      throw TopologyError(os.str());
+    }
+
+  if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL")) {
+    geometry::IndexedMesh m = mesh_.to_indexed_mesh();
+    geometry::write_mesh(dump, m);
+  }
+  seal_all();
+
+  SweepResult res;
+  mesh_.garbage_collection();
+  res.mesh = mesh_.to_indexed_mesh();
+  res.mesh.normals.resize(res.mesh.positions.size());
+  res.mesh.atom.resize(res.mesh.positions.size());
+  Index i = 0;
+  for (Vertex v : mesh_.vertices()) {
+    res.mesh.normals[i] = normal_[v];
+    res.mesh.atom[i] = static_cast<std::int32_t>(skin_.atom_of(cell_[v], mesh_.position(v)));
+    ++i;
+  }
+  res.stats = stats_;
+  return res;
+}
+
+}  // namespace
+
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                       const SweepOptions& opt) {
+  Sweep sweep(skin, ms, opt);
+  return sweep.run();
+}
+
+}  // namespace skinmesh::front
