@@ -8,6 +8,7 @@
 #include "front/sweep_mesher.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <numbers>
@@ -87,6 +88,10 @@ class Sweep {
       if (ms.live[i] && ms.critical[i].kind != CriticalKind::Minimum)
         hold_grid_->insert(static_cast<Index>(i), ms.critical[i].position);
     max_hold_radius_ = rmax;
+    // A generous bound on the vertex count: 8 times what a separate sphere per
+    // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere).
+    const double per_atom = 4 * kPi / (opt.disc_factor * opt.disc_factor * 0.866);
+    vertex_budget_ = static_cast<std::size_t>(1e5 + 8 * per_atom * skin.points().size());
   }
 
   SweepResult run();
@@ -144,12 +149,19 @@ class Sweep {
   std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
   std::unique_ptr<geometry::PointGrid> hold_grid_;
   double max_hold_radius_ = 0;
+  std::size_t vertex_budget_ = 0;
   SweepStats stats_;
 };
 
 // Vertices, Queue, Projection
 
 Vertex Sweep::new_vertex(const Vec3& p, Index cell) {
+  if (mesh_.vertices_size() >= vertex_budget_) {
+    std::ostringstream os;
+    os << "the front created more than " << vertex_budget_
+       << " vertices without closing: it is running away (a bug; please report the input)";
+    throw TopologyError(os.str());
+  }
   const skin::SkinSample s = skin_.sample(p, cell);
   const Vertex v = mesh_.add_vertex(p);
   normal_[v] = s.gradient.normalized();
@@ -239,8 +251,9 @@ void Sweep::creation(Index c) {
 
 void Sweep::creep(Vertex v) {
   const double r = disc_radius(v);
-  const Vec3& n = normal_[v];
-  const Vec3& pv = mesh_.position(v);
+  // Copies: new vertices grow the property arrays and would invalidate references.
+  const Vec3 n = normal_[v];
+  const Vec3 pv = mesh_.position(v);
   // 2D coordinates in the tangent plane T_v.
   const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   auto xy = [&](const Vec3& x) { return std::array<double, 2>{(x - pv).dot(t1), (x - pv).dot(t2)}; };
@@ -255,6 +268,12 @@ void Sweep::creep(Vertex v) {
   // wing w (u) first and look again.
   for (int attempt = 0;; ++attempt) {
     k = corner(v);
+    if (!std::isfinite(k.angle)) {
+      std::ostringstream os;
+      os << "creep: undefined front angle at vertex " << v.idx() << " (" << pv.transpose()
+         << "): a front neighbour coincides with it in the tangent plane";
+      throw TopologyError(os.str());
+    }
     if (k.angle < 90.0 * kDeg && wing(v, false)) return;
     m = std::max(1, static_cast<int>(std::ceil(k.angle / (60.0 * kDeg) - 1e-9)));
     if (m == 1 || attempt >= 8) break;
@@ -266,6 +285,9 @@ void Sweep::creep(Vertex v) {
     const Vec3 &pu = mesh_.position(k.u), &pu2 = mesh_.position(u2);
     const bool bad_w = w2 != k.u && (!left_of(pw, pw2, p1) || (p1 - pw2).norm() < 0.5 * r);
     const bool bad_u = u2 != k.w && (!left_of(pu2, pu, pm) || (pm - pu2).norm() < 0.5 * r);
+    if (std::getenv("SKINMESH_TRACE"))
+      std::fprintf(stderr, "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
+                   k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
     if (bad_w && wing(k.w, true)) continue;
     if (bad_u && wing(k.u, true)) continue;
     break;
@@ -346,7 +368,29 @@ bool Sweep::try_bridge(Index c) {
     side[sv > 0 ? 0 : 1].push_back(h);
   }
   if (side[0].empty() || side[1].empty()) return false;
-  // The pair with the closest midpoints.
+  // True if the front path from vertex x to vertex y (along next) leaves the
+  // hold region of c; false if it stays inside it or does not reach y (y is
+  // on another boundary loop).
+  auto path_leaves = [&](Vertex x, Vertex y, bool& same_loop) {
+    Halfedge h = mesh_.halfedge(x);
+    bool left = false;
+    for (std::size_t guard = 0; guard < mesh_.n_halfedges(); ++guard) {
+      const Vertex z = mesh_.from_vertex(h);
+      if (z == y) {
+        same_loop = true;
+        return left;
+      }
+      if (!(state_[z] == VState::Held && held_by_[z] == c)) left = true;
+      h = mesh_.next(h);
+      if (mesh_.from_vertex(h) == x) break;
+    }
+    same_loop = false;
+    return left;
+  };
+  // The pair with the closest midpoints among the admissible ones: on two
+  // different loops (merge), or on one loop with both connecting paths
+  // leaving the hold region (split): a bowl or a front piece that straddles
+  // the saddle's descending plane inside the region is one side, not two.
   double best = std::numeric_limits<double>::infinity();
   Halfedge ba, bc;
   for (Halfedge h0 : side[0])
@@ -356,7 +400,14 @@ bool Sweep::try_bridge(Index c) {
       if (a == cc || a == d || b == cc || b == d) continue;
       const double dist =
           (0.5 * (mesh_.position(a) + mesh_.position(b)) - 0.5 * (mesh_.position(cc) + mesh_.position(d))).norm();
-      if (dist < best) best = dist, ba = h0, bc = h1;
+      if (dist >= best) continue;
+      bool same = false;
+      const bool leaves1 = path_leaves(b, cc, same);
+      if (same) {
+        bool same2 = false;
+        if (!leaves1 || !path_leaves(d, a, same2)) continue;
+      }
+      best = dist, ba = h0, bc = h1;
     }
   if (!ba.is_valid()) return false;
   bridge(ba, bc, c);
@@ -372,6 +423,9 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c) {
   const double gap = (0.5 * (pa + pb) - 0.5 * (pc + pd)).norm();
   const double ell = opt_.disc_factor * ms_.critical[c].rho;
   const int rows = std::max(1, static_cast<int>(std::lround(gap / ell)));
+  if (std::getenv("SKINMESH_TRACE"))
+    std::fprintf(stderr, "bridge saddle %u: a v%u b v%u c v%u d v%u gap %.3f rows %d\n", c, a.idx(), b.idx(), cv.idx(),
+                 d.idx(), gap, rows);
   std::vector<Vertex> L{a}, R{b};
   for (int j = 1; j < rows; ++j) {
     const double t = double(j) / rows;

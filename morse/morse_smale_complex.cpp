@@ -84,20 +84,9 @@ Index MorseSmaleComplex::arc_end(Index s, int k) const {
   if (l == kInvalidIndex) return kInvalidIndex;
   Index end = lines[l].end;
   // Follow contractions: a cancelled extremum forwards to its replacement.
-  for (int guard = 0; end != kInvalidIndex && !live[end] && guard < 1000000; ++guard) {
-    Index next = kInvalidIndex;
-    for (const auto& pr : cancelled)
-      if (pr[1] == end) {
-        // The replacement is the other same-direction arc end of the saddle.
-        const Index sad = pr[0];
-        const int base = (critical[end].kind == CriticalKind::Maximum) ? 0 : 2;
-        for (int j = base; j < base + 2; ++j) {
-          const Index l2 = arcs[sad][j];
-          if (l2 != kInvalidIndex && lines[l2].end != end) next = lines[l2].end;
-        }
-      }
-    if (next == kInvalidIndex || next == end) return kInvalidIndex;
-    end = next;
+  for (std::size_t guard = 0; end != kInvalidIndex && !live[end]; ++guard) {
+    if (guard > critical.size()) return kInvalidIndex;
+    end = replaced_by[end];
   }
   return end;
 }
@@ -119,6 +108,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   ms.protect_radius.resize(n);
   for (Index i = 0; i < n; ++i) ms.protect_radius[i] = opt.protect_factor * ms.critical[i].rho;
   ms.live.assign(n, 1);
+  ms.replaced_by.assign(n, kInvalidIndex);
   ms.arcs.assign(n, {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
 
   // Four integral lines per saddle: ±ascent (ascending), ±descent (descending).
@@ -167,6 +157,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
       if (e0 == e1) continue;           // double arc: cancelling would change the topology
       if (e0 != cd.x && e1 != cd.x) continue;  // stale after an earlier contraction
       ms.live[cd.s] = ms.live[cd.x] = 0;
+      ms.replaced_by[cd.x] = e0 == cd.x ? e1 : e0;
       ms.cancelled.push_back({cd.s, cd.x});
       changed = true;
     }

@@ -62,6 +62,9 @@ struct MorseSmaleComplex {
   std::vector<char> live;
   /// Pairs cancelled by arc contraction (saddle, extremum).
   std::vector<std::array<Index, 2>> cancelled;
+  /// For a cancelled extremum x: the extremum that replaces it (the other end,
+  /// at cancellation time, of its saddle's same-direction arcs; Figure 3).
+  std::vector<Index> replaced_by;
   /// Pairs of live critical points whose protecting spheres still intersect.
   std::vector<std::array<Index, 2>> conflicts;
 

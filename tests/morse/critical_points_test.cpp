@@ -5,6 +5,7 @@
 #include <random>
 
 #include "morse/critical_points.h"
+#include "morse/morse_smale_complex.h"
 #include "skin/dual_complex.h"
 #include "tests/skin/skin_test_util.h"
 
@@ -114,6 +115,66 @@ TEST_CASE("tetrahedron void, e = y: 3 minima, 2 saddles, 3 maxima") {
   CHECK(m.minima == 3);
   CHECK(m.saddles == 2);
   CHECK(m.maxima == 3);
+}
+
+}  // TEST_SUITE
+
+TEST_SUITE("morse") {
+
+TEST_CASE("Morse-Smale complex of two balls: the neck saddles join the two balls") {
+  skin::SkinSurface skin(test::two_balls());
+  const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  int saddles = 0;
+  for (std::size_t s = 0; s < ms.critical.size(); ++s) {
+    if (ms.critical[s].kind != CriticalKind::Saddle) continue;
+    ++saddles;
+    const Index up0 = ms.arc_end(s, 0), up1 = ms.arc_end(s, 1), dn0 = ms.arc_end(s, 2), dn1 = ms.arc_end(s, 3);
+    REQUIRE(up0 != kInvalidIndex);
+    REQUIRE(dn0 != kInvalidIndex);
+    // Upper saddle (normal +e): its ascending arcs climb the meridian into the
+    // two balls' tops; lower saddle: its descending arcs reach both bottoms.
+    // (The other pair goes round the neck and may end at one extremum.)
+    if (ms.critical[s].sigma > 0) CHECK(up0 != up1);
+    if (ms.critical[s].sigma < 0) CHECK(dn0 != dn1);
+    CHECK(ms.critical[up0].kind == CriticalKind::Maximum);
+    CHECK(ms.critical[up1].kind == CriticalKind::Maximum);
+    CHECK(ms.critical[dn0].kind == CriticalKind::Minimum);
+    CHECK(ms.critical[dn1].kind == CriticalKind::Minimum);
+    // Every traced point lies on the skin, and heights are monotone along the line.
+    for (int k = 0; k < 4; ++k) {
+      const auto& line = ms.lines[ms.arcs[s][k]];
+      for (std::size_t i = 1; i + 1 < line.points.size(); ++i) {
+        CHECK(skin.distance_estimate(line.points[i]) < 1e-10);
+        const double dh = ms.height_direction.dot(line.points[i + 1] - line.points[i]);
+        CHECK(line.direction * dh > -1e-12);
+      }
+    }
+  }
+  CHECK(saddles == 2);
+  CHECK(ms.cancelled.empty());
+}
+
+TEST_CASE("arc contraction: a saddle next to a maximum is cancelled and arcs are rerouted") {
+  // Two heavily overlapping balls: the upper neck saddle sits 0.02 Å from the
+  // top of the smaller ball (tests/data/two_atoms.xyzr, probe 1.4).
+  auto w = [](double r) { return 2 * (r + 1.4) * (r + 1.4); };
+  skin::SkinSurface skin({{Vec3(0, 0, 0), w(1.6)}, {Vec3(2.4, 0.3, 0.2), w(1.7)}});
+  const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  CHECK(ms.cancelled.size() == 2);
+  const auto live = ms.live_count();
+  CHECK(live.minima == 1);
+  CHECK(live.saddles == 0);
+  CHECK(live.maxima == 1);
+  CHECK(live.euler() == 2);
+  for (const auto& pr : ms.cancelled) {
+    CHECK(!ms.live[pr[0]]);
+    CHECK(!ms.live[pr[1]]);
+    // The replacement of a cancelled extremum is a live one of the same kind.
+    const Index r = ms.replaced_by[pr[1]];
+    REQUIRE(r != kInvalidIndex);
+    CHECK(ms.live[r]);
+    CHECK(ms.critical[r].kind == ms.critical[pr[1]].kind);
+  }
 }
 
 }  // TEST_SUITE
