@@ -113,6 +113,7 @@ class Sweep {
   bool try_bridge(Index c);
   void bridge(Halfedge ab, Halfedge cd, Index c);
   void seal_all();
+  bool small_hole(Vertex v) const;
   void seal_loop(Halfedge h);
   Face add_triangle(Vertex a, Vertex b, Vertex c);
 
@@ -124,6 +125,19 @@ class Sweep {
     Vec3 dw;       ///< unit tangent direction to w
   };
   Corner corner(Vertex v) const;
+  /// True if a new triangle at front vertex x spanning counter-clockwise (in
+  /// T_x) from the direction of y_from to that of y_to lies inside x's hole
+  /// wedge, so that it cannot fold over the triangles already at x.
+  bool fits_at(Vertex x, Vertex y_from, Vertex y_to) const;
+  /// The same for a triangle whose other corners are at positions `from`,
+  /// `to` (y_from / y_to: their vertices, or invalid for points not created yet).
+  bool fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, Vertex y_to) const;
+  /// Sum of the tangent-plane angles at v of its triangles, plus the hole
+  /// angle if v is on the front, minus 360° (radians): ~0 unless the mesh folds.
+  double fold_excess(Vertex v) const;
+  /// Under SKINMESH_PARANOID (environment), checks fold_excess at the vertices
+  /// of the faces added since `first_face` and throws naming the operation.
+  void paranoid_check(std::size_t first_face, const char* op);
 
   const skin::SkinSurface& skin_;
   const morse::MorseSmaleComplex& ms_;
@@ -227,6 +241,55 @@ Sweep::Corner Sweep::corner(Vertex v) const {
   return k;
 }
 
+bool Sweep::fits_at(Vertex x, Vertex y_from, Vertex y_to) const {
+  return fits_at(x, mesh_.position(y_from), mesh_.position(y_to), y_from, y_to);
+}
+
+bool Sweep::fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, Vertex y_to) const {
+  if (!mesh_.is_boundary(x) || mesh_.is_isolated(x)) return mesh_.is_isolated(x);
+  const Corner k = corner(x);
+  const Vec3 px = mesh_.position(x), n = normal_[x];
+  const double tol = 1e-6;
+  const double a = y_from == k.w ? 0.0 : ccw_angle(k.dw, tangent_dir(px, n, from), n);
+  const double b = y_to == k.u ? k.angle : ccw_angle(k.dw, tangent_dir(px, n, to), n);
+  return a < b - tol && b <= k.angle + tol && k.angle > tol;
+}
+
+double Sweep::fold_excess(Vertex v) const {
+  const Vec3 pv = mesh_.position(v);
+  const Vec3 n = normal_[v];
+  double covered = 0;
+  for (Face f : mesh_.faces(v)) {
+    Vertex a, b;
+    for (Halfedge h : mesh_.halfedges(f))
+      if (mesh_.from_vertex(h) == v) a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
+    covered += ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
+  }
+  if (mesh_.is_boundary(v)) covered += corner(v).angle;
+  return covered - 2 * kPi;
+}
+
+void Sweep::paranoid_check(std::size_t first_face, const char* op) {
+  static const bool on = std::getenv("SKINMESH_PARANOID") != nullptr;
+  if (!on) return;
+  for (std::size_t fi = first_face; fi < mesh_.faces_size(); ++fi) {
+    const Face f(static_cast<Index>(fi));
+    if (mesh_.is_deleted(f)) continue;
+    for (Vertex v : mesh_.vertices(f)) {
+      const double ex = fold_excess(v);
+      if (std::abs(ex) > 5 * kDeg) {
+        std::ostringstream os;
+        os << "paranoid: after " << op << " (faces " << first_face << ".." << mesh_.faces_size()
+           << ") the mesh folds at vertex " << v.idx() << " (" << mesh_.position(v).transpose()
+           << "): excess " << ex / kDeg << "°";
+        if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL"))
+          geometry::write_mesh(dump, mesh_.to_indexed_mesh());
+        throw TopologyError(os.str());
+      }
+    }
+  }
+}
+
 // creation() at a minimum (Cheng & Shi §4.1 "Initial front", Figure 5)
 
 void Sweep::creation(Index c) {
@@ -283,8 +346,11 @@ void Sweep::creep(Vertex v) {
     const Vertex u2 = mesh_.from_vertex(mesh_.prev(k.in));
     const Vec3 &pw = mesh_.position(k.w), &pw2 = mesh_.position(w2);
     const Vec3 &pu = mesh_.position(k.u), &pu2 = mesh_.position(u2);
-    const bool bad_w = w2 != k.u && (!left_of(pw, pw2, p1) || (p1 - pw2).norm() < 0.5 * r);
-    const bool bad_u = u2 != k.w && (!left_of(pu2, pu, pm) || (pm - pu2).norm() < 0.5 * r);
+    // Triangle (v, w, p1) spans from p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
+    const bool bad_w = w2 != k.u && (!left_of(pw, pw2, p1) || (p1 - pw2).norm() < 0.5 * r ||
+                                     !fits_at(k.w, p1, pv, Vertex(), v));
+    const bool bad_u = u2 != k.w && (!left_of(pu2, pu, pm) || (pm - pu2).norm() < 0.5 * r ||
+                                     !fits_at(k.u, pv, pm, v, Vertex()));
     if (std::getenv("SKINMESH_TRACE"))
       std::fprintf(stderr, "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
                    k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
@@ -334,6 +400,8 @@ bool Sweep::wing(Vertex v, bool force) {
   if (state_[k.u] == VState::Held || state_[k.w] == VState::Held) return false;
   const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
   if (nt.dot(normal_[v]) <= 0) return false;
+  // Triangle (v, w, u): at w it spans from u to v, at u from v to w.
+  if (!fits_at(k.w, k.u, v) || !fits_at(k.u, v, k.w)) return false;
   add_triangle(v, k.w, k.u);
   state_[v] = VState::Interior;
   wing_worklist_.push_back(k.u);
@@ -401,6 +469,25 @@ bool Sweep::try_bridge(Index c) {
       const double dist =
           (0.5 * (mesh_.position(a) + mesh_.position(b)) - 0.5 * (mesh_.position(cc) + mesh_.position(d))).norm();
       if (dist >= best) continue;
+      // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
+      // enter the hole wedges at a, b, c, d (sweep-design-notes Q6.2).
+      {
+        const Vec3 ns = cp.sigma * e_;
+        const Vec3 t1 = ns.unitOrthogonal(), t2 = ns.cross(t1);
+        auto q = [&](Vertex x) {
+          const Vec3 d = mesh_.position(x) - cp.position;
+          return std::array<double, 2>{d.dot(t1), d.dot(t2)};
+        };
+        const std::array<double, 2> P[4] = {q(a), q(b), q(cc), q(d)};
+        bool convex = true;
+        for (int i = 0; i < 4 && convex; ++i)
+          convex = geometry::orient2d(P[i][0], P[i][1], P[(i + 1) % 4][0], P[(i + 1) % 4][1], P[(i + 2) % 4][0],
+                                      P[(i + 2) % 4][1]) == Sign::Positive;
+        if (!convex) continue;
+        // Counter-clockwise quad a b c d: at a the ladder spans from b to d, at b
+        // from c to a, at c from d to b, at d from a to c.
+        if (!fits_at(a, b, d) || !fits_at(b, cc, a) || !fits_at(cc, d, b) || !fits_at(d, a, cc)) continue;
+      }
       bool same = false;
       const bool leaves1 = path_leaves(b, cc, same);
       if (same) {
@@ -482,8 +569,27 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c) {
 
 // seal() the holes at maxima (§4.1 "Sealing holes")
 
+bool Sweep::small_hole(Vertex v) const {
+  const double reach = 2.5 * disc_radius(v);
+  const Halfedge start = mesh_.halfedge(v);
+  Halfedge h = start;
+  double angle_sum = 0;
+  for (int count = 1; count <= 7; ++count) {
+    const Vertex x = mesh_.to_vertex(h);
+    angle_sum += corner(x).angle;
+    // A loop of k vertices bounds a small hole (not the outside of a small
+    // disc, like a fresh bowl) iff its hole angles add up to (k - 2) 180°.
+    if (x == v) return angle_sum < count * kPi;
+    if ((mesh_.position(x) - mesh_.position(v)).norm() > reach) return false;
+    h = mesh_.next(h);
+  }
+  return false;
+}
+
 void Sweep::seal_all() {
-  for (;;) {
+  const std::size_t max_loops = mesh_.n_halfedges() + 1;
+  for (std::size_t iter = 0;; ++iter) {
+    if (iter > max_loops) throw TopologyError("seal: the holes do not close");
     Halfedge start;
     for (Vertex v : mesh_.vertices())
       if (!mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
@@ -584,12 +690,27 @@ SweepResult Sweep::run() {
       held_by_[v] = c;
       held_[c].push_back(v);
       ++stats_.held;
-      if (ms_.critical[c].kind == CriticalKind::Saddle) try_bridge(c);
+      const std::size_t f0 = mesh_.faces_size();
+      if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) paranoid_check(f0, "bridge");
+      const std::size_t f1 = mesh_.faces_size();
       drain_wings();
+      paranoid_check(f1, "wings after a hold");
+      continue;
+    }
+    const std::size_t f0 = mesh_.faces_size();
+    if (small_hole(v)) {
+      // A small hole (at most 6 front vertices within 2.5 r of v): the fronts
+      // around it have met; close it now, as seal() would (sweep-design-notes
+      // Q2.3), instead of creeping new vertices into it.
+      seal_loop(mesh_.halfedge(v));
+      paranoid_check(f0, "closing a small hole");
       continue;
     }
     creep(v);
+    paranoid_check(f0, "creep");
+    const std::size_t f1 = mesh_.faces_size();
     drain_wings();
+    paranoid_check(f1, "wings after a creep");
   }
 
   // Saddles that were never bridged mean the front did not reach them from two sides.
