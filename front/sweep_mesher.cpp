@@ -78,6 +78,7 @@ class Sweep {
     state_ = mesh_.add_vertex_property<VState>("v:state", VState::Interior);
     held_by_ = mesh_.add_vertex_property<Index>("v:held_by", kInvalidIndex);
     stamp_ = mesh_.add_vertex_property<std::uint32_t>("v:stamp", 0);
+    deferrals_ = mesh_.add_vertex_property<std::uint8_t>("v:deferrals", 0);
     const std::size_t nc = ms.critical.size();
     resolved_.assign(nc, 0);
     held_.resize(nc);
@@ -104,11 +105,15 @@ class Sweep {
   double disc_radius(Vertex v) const { return opt_.disc_factor * rho_[v]; }
   Vec3 project_tangent(Vertex v, const Vec3& dir, double r);
   Index hold_region(Vertex v) const;
+  /// Marks v held by critical point c; a saddle is bridged when it is ready.
+  void hold(Vertex v, Index c);
 
   // Algorithm 1's operations
   void creation(Index c);
   void creep(Vertex v);
   bool wing(Vertex v, bool force);
+  /// Why wing(v, force) would refuse, or nullptr if it can be done.
+  const char* wing_refusal(Vertex v, bool force) const;
   void drain_wings();
   bool try_bridge(Index c);
   void bridge(Halfedge ab, Halfedge cd, Index c);
@@ -150,6 +155,8 @@ class Sweep {
   geometry::VertexProperty<VState> state_;
   geometry::VertexProperty<Index> held_by_;
   geometry::VertexProperty<std::uint32_t> stamp_;
+  geometry::VertexProperty<std::uint8_t> deferrals_;
+  static constexpr std::uint8_t kMaxDeferrals = 3;
 
   struct QueueEntry {
     double h;
@@ -252,6 +259,9 @@ bool Sweep::fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, V
   const double tol = 1e-6;
   const double a = y_from == k.w ? 0.0 : ccw_angle(k.dw, tangent_dir(px, n, from), n);
   const double b = y_to == k.u ? k.angle : ccw_angle(k.dw, tangent_dir(px, n, to), n);
+  if (std::getenv("SKINMESH_TRACE"))
+    std::fprintf(stderr, "fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDeg,
+                 b / kDeg, k.angle / kDeg, y_from.idx(), y_to.idx(), k.w.idx(), k.u.idx());
   return a < b - tol && b <= k.angle + tol && k.angle > tol;
 }
 
@@ -317,18 +327,11 @@ void Sweep::creep(Vertex v) {
   // Copies: new vertices grow the property arrays and would invalidate references.
   const Vec3 n = normal_[v];
   const Vec3 pv = mesh_.position(v);
-  // 2D coordinates in the tangent plane T_v.
-  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-  auto xy = [&](const Vec3& x) { return std::array<double, 2>{(x - pv).dot(t1), (x - pv).dot(t2)}; };
-  auto left_of = [&](const Vec3& a, const Vec3& b, const Vec3& x) {
-    const auto pa = xy(a), pb = xy(b), px = xy(x);
-    return geometry::orient2d(pa[0], pa[1], pb[0], pb[1], px[0], px[1]) == Sign::Positive;
-  };
   Corner k;
   int m = 1;
-  // Figure 7: if the first (last) fan point would not lie on the hole side of
-  // the next front edge w -> w' (u' -> u), or would come close to w' (u'),
-  // wing w (u) first and look again.
+  // Figure 7: if the first (last) fan triangle would not fit in the hole
+  // wedge of w (u), measured in T_w (T_u), or its new point would come close
+  // to w's (u's) other neighbour, wing w (u) first and look again.
   for (int attempt = 0;; ++attempt) {
     k = corner(v);
     if (!std::isfinite(k.angle)) {
@@ -339,23 +342,46 @@ void Sweep::creep(Vertex v) {
     }
     if (k.angle < 90.0 * kDeg && wing(v, false)) return;
     m = std::max(1, static_cast<int>(std::ceil(k.angle / (60.0 * kDeg) - 1e-9)));
-    if (m == 1 || attempt >= 8) break;
-    const Vec3 p1 = pv + r * rotate(k.dw, n, k.angle / m);
-    const Vec3 pm = pv + r * rotate(k.dw, n, k.angle * (m - 1) / m);
+    if (attempt >= 8) break;
+    // For m = 1 the "fan" is the single triangle (v, w, u).
+    const Vec3 p1 = m == 1 ? mesh_.position(k.u) : Vec3(pv + r * rotate(k.dw, n, k.angle / m));
+    const Vec3 pm = m == 1 ? mesh_.position(k.w) : Vec3(pv + r * rotate(k.dw, n, k.angle * (m - 1) / m));
     const Vertex w2 = mesh_.to_vertex(mesh_.next(k.out));
     const Vertex u2 = mesh_.from_vertex(mesh_.prev(k.in));
-    const Vec3 &pw = mesh_.position(k.w), &pw2 = mesh_.position(w2);
-    const Vec3 &pu = mesh_.position(k.u), &pu2 = mesh_.position(u2);
+    const Vec3 pw2 = mesh_.position(w2), pu2 = mesh_.position(u2);
     // Triangle (v, w, p1) spans from p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
-    const bool bad_w = w2 != k.u && (!left_of(pw, pw2, p1) || (p1 - pw2).norm() < 0.5 * r ||
-                                     !fits_at(k.w, p1, pv, Vertex(), v));
-    const bool bad_u = u2 != k.w && (!left_of(pu2, pu, pm) || (pm - pu2).norm() < 0.5 * r ||
-                                     !fits_at(k.u, pv, pm, v, Vertex()));
+    const Vertex p1v = m == 1 ? k.u : Vertex(), pmv = m == 1 ? k.w : Vertex();
+    const bool bad_w = w2 != k.u && ((m > 1 && (p1 - pw2).norm() < 0.5 * r) || !fits_at(k.w, p1, pv, p1v, v));
+    const bool bad_u = u2 != k.w && ((m > 1 && (pm - pu2).norm() < 0.5 * r) || !fits_at(k.u, pv, pm, v, pmv));
     if (std::getenv("SKINMESH_TRACE"))
       std::fprintf(stderr, "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
                    k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
     if (bad_w && wing(k.w, true)) continue;
     if (bad_u && wing(k.u, true)) continue;
+    // A fan that would fold over a held neighbour: v joins the hold (it is at
+    // the rim of the hold region; the bridge or seal will take care of it).
+    const Vertex held_nb = bad_w && state_[k.w] == VState::Held   ? k.w
+                           : bad_u && state_[k.u] == VState::Held ? k.u
+                                                                   : Vertex();
+    if (held_nb.is_valid()) {
+      hold(v, held_by_[held_nb]);
+      return;
+    }
+    if ((bad_w || bad_u) && deferrals_[v] < kMaxDeferrals) {
+      // The fan would fold over a neighbour that cannot be winged now: let
+      // the front move on around v and try again a little later.
+      ++deferrals_[v];
+      ++stamp_[v];
+      queue_.push({height(v) + 0.25 * r, v.idx(), stamp_[v]});
+      ++stats_.deferred;
+      return;
+    }
+    if (bad_w || bad_u) {
+      std::ostringstream os;
+      os << "creep: the fan at vertex " << v.idx() << " (" << pv.transpose() << ") would fold over its front neighbour "
+         << (bad_w ? k.w.idx() : k.u.idx()) << " (Figure 7), which cannot be winged";
+      throw TopologyError(os.str());
+    }
     break;
   }
   // Fold check (sweep-design-notes Q4.1): the tangent angles of the triangles
@@ -392,22 +418,32 @@ void Sweep::creep(Vertex v) {
 // wing(): close a front angle below 90° (§4.1, Figure 7)
 
 bool Sweep::wing(Vertex v, bool force) {
-  if (state_[v] != VState::Front || !mesh_.is_boundary(v)) return false;
+  const char* why = wing_refusal(v, force);
+  if (force && why && std::getenv("SKINMESH_TRACE")) std::fprintf(stderr, "wing v%u refused: %s\n", v.idx(), why);
+  if (why) return false;
   const Corner k = corner(v);
-  if (k.angle >= (force ? 180.0 : 90.0) * kDeg) return false;
-  // A 3-gon is closed only by seal; the new edge u-w must not exist yet.
-  if (mesh_.next(k.out) == k.in || mesh_.find_halfedge(k.w, k.u).is_valid()) return false;
-  if (state_[k.u] == VState::Held || state_[k.w] == VState::Held) return false;
-  const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
-  if (nt.dot(normal_[v]) <= 0) return false;
-  // Triangle (v, w, u): at w it spans from u to v, at u from v to w.
-  if (!fits_at(k.w, k.u, v) || !fits_at(k.u, v, k.w)) return false;
   add_triangle(v, k.w, k.u);
   state_[v] = VState::Interior;
   wing_worklist_.push_back(k.u);
   wing_worklist_.push_back(k.w);
   ++stats_.wings;
   return true;
+}
+
+const char* Sweep::wing_refusal(Vertex v, bool force) const {
+  if (state_[v] != VState::Front || !mesh_.is_boundary(v)) return "not a free front vertex";
+  const Corner k = corner(v);
+  if (k.angle >= (force ? 180.0 : 90.0) * kDeg) return "front angle too large";
+  // A 3-gon is closed only by seal; the new edge u-w must not exist yet.
+  if (mesh_.next(k.out) == k.in) return "the front loop is a triangle";
+  if (mesh_.find_halfedge(k.w, k.u).is_valid()) return "the edge u-w exists";
+  if (state_[k.u] == VState::Held || state_[k.w] == VState::Held) return "a neighbour is held";
+  const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
+  if (nt.dot(normal_[v]) <= 0) return "the triangle would face inwards";
+  // Triangle (v, w, u): at w it spans from u to v, at u from v to w.
+  if (!fits_at(k.w, k.u, v)) return "it does not fit at w";
+  if (!fits_at(k.u, v, k.w)) return "it does not fit at u";
+  return nullptr;
 }
 
 void Sweep::drain_wings() {
@@ -666,6 +702,18 @@ void Sweep::seal_loop(Halfedge start) {
 
 // The sweep (Algorithm 1)
 
+void Sweep::hold(Vertex v, Index c) {
+  state_[v] = VState::Held;
+  held_by_[v] = c;
+  held_[c].push_back(v);
+  ++stats_.held;
+  const std::size_t f0 = mesh_.faces_size();
+  if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) paranoid_check(f0, "bridge");
+  const std::size_t f1 = mesh_.faces_size();
+  drain_wings();
+  paranoid_check(f1, "wings after a hold");
+}
+
 SweepResult Sweep::run() {
   // Initial front: a bowl at every live minimum.
   for (std::size_t c = 0; c < ms_.critical.size(); ++c)
@@ -686,15 +734,7 @@ SweepResult Sweep::run() {
     if (top.stamp != stamp_[v] || state_[v] != VState::Front || !mesh_.is_boundary(v)) continue;
     const Index c = hold_region(v);
     if (c != kInvalidIndex) {
-      state_[v] = VState::Held;
-      held_by_[v] = c;
-      held_[c].push_back(v);
-      ++stats_.held;
-      const std::size_t f0 = mesh_.faces_size();
-      if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) paranoid_check(f0, "bridge");
-      const std::size_t f1 = mesh_.faces_size();
-      drain_wings();
-      paranoid_check(f1, "wings after a hold");
+      hold(v, c);
       continue;
     }
     const std::size_t f0 = mesh_.faces_size();

@@ -37,6 +37,7 @@ struct SweepOptions {
 struct SweepStats {
   std::size_t creations = 0, creeps = 0, wings = 0, bridges = 0, seals = 0;
   std::size_t held = 0;           ///< departure vertices stopped in a protecting sphere
+  std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
   std::size_t flips = 0, contractions = 0, insertions = 0;
 };
