@@ -386,17 +386,10 @@ void Sweep::creep(Vertex v) {
   }
   // Fold check (sweep-design-notes Q4.1): the tangent angles of the triangles
   // at v plus the hole angle make a full turn.
-  double covered = 0;
-  for (Face f : mesh_.faces(v)) {
-    Vertex a, b;
-    for (Halfedge h : mesh_.halfedges(f))
-      if (mesh_.from_vertex(h) == v) a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
-    covered += ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
-  }
-  if (std::abs(covered + k.angle - 2 * kPi) > 5 * kDeg) {
+  if (const double excess = fold_excess(v); std::abs(excess) > 5 * kDeg) {
     std::ostringstream os;
-    os << "creep: the mesh folds at vertex " << v.idx() << " (" << pv.transpose() << "): triangles cover "
-       << covered / kDeg << "°, hole " << k.angle / kDeg << "°";
+    os << "creep: the mesh folds at vertex " << v.idx() << " (" << pv.transpose() << "): triangles and hole cover "
+       << (2 * kPi + excess) / kDeg << "°";
     throw TopologyError(os.str());
   }
   std::vector<Vertex> fan;

@@ -25,6 +25,7 @@
 
 #include "geometry/assert.h"
 #include "geometry/errors.h"
+#include "geometry/text_split.h"
 
 namespace skinmesh::geometry {
 
@@ -38,34 +39,9 @@ std::string lowercase(std::string_view s) {
   return out;
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
-
-std::vector<std::string_view> split_blanks(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_blank(s[i])) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !is_blank(s[i])) ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
-/// The lines of `text` without "\n" / "\r\n"; entry k is line k + 1.
-std::vector<std::string_view> split_lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.push_back(line);
-    start = end + 1;
-  }
-  return lines;
-}
+using geometry::is_blank;
+using geometry::split_blanks;
+using geometry::split_lines;
 
 /// All of `token` as a finite double, or nullopt.
 std::optional<double> to_double(std::string_view token) {

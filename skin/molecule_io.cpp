@@ -41,6 +41,7 @@
 #include <zlib.h>
 
 #include "geometry/errors.h"
+#include "geometry/text_split.h"
 #include "skin/element_radii.h"
 
 namespace skinmesh::skin {
@@ -61,41 +62,10 @@ std::string uppercase(std::string_view s) {
   return out;
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_blanks(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_blank(s[i])) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !is_blank(s[i])) ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
-/// The lines of `text` without their "\n" or "\r\n"; line k (0-based) is source
-/// line k + 1.
-std::vector<std::string_view> split_lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.push_back(line);
-    start = end + 1;
-  }
-  return lines;
-}
+using geometry::is_blank;
+using geometry::split_blanks;
+using geometry::split_lines;
+using geometry::trim;
 
 /// "path:line" (or "path" when the line is unknown), the prefix of every note.
 std::string where(const std::string& path, int line) {
