@@ -4,11 +4,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <map>
 
 #include "refine/restricted_delaunay.h"
 #include "refine/skin_mesh_check.h"
 #include "refine/size_conditions.h"
+#include "tests/geometry/test_meshes.h"
 
 using namespace skinmesh;
 
@@ -16,36 +16,8 @@ namespace {
 
 /// Icosphere of radius R about c with `levels` 1:4 subdivisions, CCW outward.
 geometry::IndexedMesh icosphere(const Vec3& c, double R, int levels) {
-  geometry::IndexedMesh m;
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  for (auto& p : v) p.normalize();
-  std::vector<std::array<Index, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                         {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<Index, Index>, Index> mid;
-    auto midpoint = [&](Index a, Index b) {
-      auto key = std::minmax(a, b);
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<Index>(v.size() - 1);
-    };
-    std::vector<std::array<Index, 3>> g;
-    for (auto& tri : f) {
-      const Index a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), cc = midpoint(tri[2], tri[0]);
-      g.push_back({tri[0], a, cc});
-      g.push_back({tri[1], b, a});
-      g.push_back({tri[2], cc, b});
-      g.push_back({a, b, cc});
-    }
-    f = g;
-  }
-  for (auto& p : v) m.positions.push_back(c + R * p);
-  m.triangles = f;
+  geometry::IndexedMesh m = test::sphere(levels);
+  for (Vec3& p : m.positions) p = c + R * p;
   return m;
 }
 
