@@ -39,6 +39,8 @@ struct SweepStats {
   std::size_t held = 0;           ///< departure vertices stopped in a protecting sphere
   std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
+  std::size_t contacts = 0;       ///< front parts joined by the safety net (a deviation, Q2.3)
+  std::size_t released = 0;       ///< saddles whose holds were released unbridged (Q6.4)
   std::size_t flips = 0, contractions = 0, insertions = 0;
 };
 
