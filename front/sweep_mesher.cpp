@@ -13,6 +13,8 @@
 #include <cmath>
 #include <numbers>
 #include <queue>
+
+#include <Eigen/Eigenvalues>
 #include <sstream>
 
 #include "geometry/assert.h"
@@ -129,6 +131,11 @@ class Sweep {
   void seal_all();
   bool small_hole(Vertex v) const;
   void seal_loop(Halfedge h);
+  /// Triangulates the hole bounded by `poly` (its vertices in boundary-loop
+  /// order) by dynamic programming over all its triangulations, maximising the
+  /// minimum angle among those whose triangles face outwards at their three
+  /// corners and create no existing edge; false if there is none.
+  bool fill_hole_dp(const std::vector<Vertex>& poly);
   Face add_triangle(Vertex a, Vertex b, Vertex c);
 
   // Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
@@ -461,7 +468,9 @@ const char* Sweep::wing_refusal(Vertex v, bool force) const {
   // A 3-gon is closed only by seal; the new edge u-w must not exist yet.
   if (mesh_.next(k.out) == k.in) return "the front loop is a triangle";
   if (mesh_.find_halfedge(k.w, k.u).is_valid()) return "the edge u-w exists";
-  if (state_[k.u] == VState::Held || state_[k.w] == VState::Held) return "a neighbour is held";
+  // An unforced wing leaves held neighbours alone (their front edges are what
+  // the bridge joins); a forced one (Figure 7) may touch them.
+  if (!force && (state_[k.u] == VState::Held || state_[k.w] == VState::Held)) return "a neighbour is held";
   const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
   if (nt.dot(normal_[v]) <= 0) return "the triangle would face inwards";
   // Triangle (v, w, u): at w it spans from u to v, at u from v to w.
@@ -567,13 +576,13 @@ bool Sweep::try_bridge(Index c) {
 bool Sweep::try_contact(Vertex v, const Corner& k) {
   const double r = disc_radius(v);
   const Vec3 pv = mesh_.position(v), n = normal_[v];
-  // Vertices within 3 hops along the front are the wing's business.
-  std::array<Vertex, 6> near_hops;
+  // Vertices within 2 hops along the front are the wing's business.
+  std::array<Vertex, 4> near_hops;
   {
     Halfedge f = k.out, b = k.in;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 2; ++i) {
       near_hops[i] = mesh_.to_vertex(f);
-      near_hops[3 + i] = mesh_.from_vertex(b);
+      near_hops[2 + i] = mesh_.from_vertex(b);
       f = mesh_.next(f), b = mesh_.prev(b);
     }
   }
@@ -589,6 +598,9 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
     if (!(a > margin && a < k.angle - margin)) return;
     const Corner kx = corner(x);
     const double ax = ccw_angle(kx.dw, tangent_dir(px, normal_[x], pv), normal_[x]);
+    if (trace_)
+      std::fprintf(stderr, "contact candidate v%u for v%u: a %.1f of %.1f, ax %.1f of %.1f\n", x.idx(), v.idx(), a / kDeg,
+                   k.angle / kDeg, ax / kDeg, kx.angle / kDeg);
     if (!(ax > margin && ax < kx.angle - margin)) return;
     const double d = (px - pv).norm();
     if (d < best_d) best_d = d, best = x;
@@ -757,25 +769,124 @@ void Sweep::seal_all() {
   }
 }
 
+bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
+  const std::size_t k = poly.size();
+  const double kNone = -1;
+  // q[i][j]: best minimum angle of a triangulation of the sub-polygon
+  // poly[i..j] closed by the diagonal (i, j); arg[i][j]: its apex.
+  std::vector<double> q(k * k, kNone);
+  std::vector<std::size_t> arg(k * k, k);
+  auto at = [k](std::size_t i, std::size_t j) { return i * k + j; };
+  auto diagonal_ok = [&](std::size_t i, std::size_t j) {
+    if (j == i + 1 || (i == 0 && j == k - 1)) return true;  // a hole edge
+    return !mesh_.find_halfedge(poly[i], poly[j]).is_valid();
+  };
+  auto tri_quality = [&](std::size_t i, std::size_t m, std::size_t j) {
+    const Vec3 &a = mesh_.position(poly[i]), &b = mesh_.position(poly[m]), &c = mesh_.position(poly[j]);
+    const Vec3 nt = (b - a).cross(c - a);
+    if (nt.dot(normal_[poly[i]]) <= 0 || nt.dot(normal_[poly[m]]) <= 0 || nt.dot(normal_[poly[j]]) <= 0) return kNone;
+    return min_angle(a, b, c);
+  };
+  for (std::size_t i = 0; i + 1 < k; ++i) q[at(i, i + 1)] = kPi;  // an edge: nothing to fill
+  for (std::size_t len = 2; len < k; ++len)
+    for (std::size_t i = 0; i + len < k; ++i) {
+      const std::size_t j = i + len;
+      if (!diagonal_ok(i, j)) continue;
+      for (std::size_t m = i + 1; m < j; ++m) {
+        const double sub = std::min(q[at(i, m)], q[at(m, j)]);
+        if (sub <= q[at(i, j)]) continue;
+        const double t = std::min(sub, tri_quality(i, m, j));
+        if (t > q[at(i, j)]) q[at(i, j)] = t, arg[at(i, j)] = m;
+      }
+    }
+  if (q[at(0, k - 1)] <= 0) return false;
+  std::vector<std::array<std::size_t, 2>> stack{{0, k - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j == i + 1) continue;
+    const std::size_t m = arg[at(i, j)];
+    add_triangle(poly[i], poly[m], poly[j]);
+    stack.push_back({i, m});
+    stack.push_back({m, j});
+  }
+  for (Vertex v : poly) state_[v] = VState::Interior;
+  ++stats_.seals;
+  return true;
+}
+
 void Sweep::seal_loop(Halfedge start) {
   std::vector<Halfedge> loop = mesh_.boundary_loop(start);
-  // Plane of projection: the average vertex normal of the hole.
-  Vec3 n = Vec3::Zero();
-  Vec3 centre = Vec3::Zero();
-  for (Halfedge h : loop) {
-    n += normal_[mesh_.to_vertex(h)];
-    centre += mesh_.position(mesh_.to_vertex(h));
-  }
-  centre /= double(loop.size());
-  if (n.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
-  n.normalize();
-  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   std::vector<Vertex> poly;
   for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
+  if (poly.size() <= 40 && fill_hole_dp(poly)) return;
+  // Plane of projection: the first of (the average vertex normal, the normal
+  // of the best-fit plane, each vertex normal) in which the hole is a simple,
+  // counter-clockwise polygon. A hole with a narrow waist can cross itself in
+  // the average plane.
+  Vec3 centre = Vec3::Zero(), nbar = Vec3::Zero();
+  for (Vertex v : poly) centre += mesh_.position(v), nbar += normal_[v];
+  centre /= double(poly.size());
+  if (nbar.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
+  nbar.normalize();
+  std::vector<Vec3> planes{nbar};
+  {
+    Mat3 cov = Mat3::Zero();
+    for (Vertex v : poly) {
+      const Vec3 d = mesh_.position(v) - centre;
+      cov += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Mat3> es(cov);
+    Vec3 pn = es.eigenvectors().col(0);
+    planes.push_back(pn.dot(nbar) < 0 ? Vec3(-pn) : pn);
+    for (Vertex v : poly) planes.push_back(normal_[v]);
+  }
+  Vec3 n, t1, t2;
   auto proj = [&](Vertex v) {
     const Vec3 d = mesh_.position(v) - centre;
     return std::array<double, 2>{d.dot(t1), d.dot(t2)};
   };
+  auto simple_ccw = [&]() {
+    const std::size_t k = poly.size();
+    std::vector<std::array<double, 2>> P(k);
+    double area2 = 0;
+    for (std::size_t i = 0; i < k; ++i) P[i] = proj(poly[i]);
+    for (std::size_t i = 0; i < k; ++i) area2 += P[i][0] * P[(i + 1) % k][1] - P[(i + 1) % k][0] * P[i][1];
+    if (!(area2 > 0)) return false;
+    auto o = [&](std::size_t a, std::size_t b, std::size_t c) {
+      return geometry::orient2d(P[a][0], P[a][1], P[b][0], P[b][1], P[c][0], P[c][1]);
+    };
+    for (std::size_t i = 0; i < k; ++i)
+      for (std::size_t j = i + 1; j < k; ++j) {
+        const std::size_t i1 = (i + 1) % k, j1 = (j + 1) % k;
+        if (j == i1 || i == j1) continue;  // adjacent edges
+        const Sign s1 = o(i, i1, j), s2 = o(i, i1, j1), s3 = o(j, j1, i), s4 = o(j, j1, i1);
+        if (s1 != s2 && s3 != s4) return false;  // the edges touch or cross
+      }
+    return true;
+  };
+  bool found = false;
+  for (const Vec3& cand : planes) {
+    if (cand.dot(nbar) <= 0.3) continue;
+    n = cand;
+    t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    if ((found = simple_ccw())) break;
+  }
+  if (!found) {
+    std::ostringstream os;
+    os << "seal: the hole of " << poly.size() << " vertices near (" << centre.transpose()
+       << ") is not a simple polygon in any plane tried";
+    throw TopologyError(os.str());
+  }
+  if (trace_) {
+    std::fprintf(stderr, "seal loop of %zu:", poly.size());
+    for (Vertex x : poly) {
+      const auto px = proj(x);
+      std::fprintf(stderr, " v%u[%.3f,%.3f|%.2f|ex %.1f|n.nbar %.3f]", x.idx(), px[0], px[1], corner(x).angle / kDeg,
+                   fold_excess(x) / kDeg, normal_[x].dot(n));
+    }
+    std::fprintf(stderr, "\n");
+  }
   // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
   // left turn with no other polygon vertex inside; take the best 3D angle.
   while (poly.size() > 3) {
@@ -798,6 +909,10 @@ void Sweep::seal_loop(Halfedge start) {
           empty = false;
       }
       if (!empty) continue;
+      // The ear must also face outwards at its three corners (a sliver across
+      // a narrow waist can turn over between the projection plane and T_x).
+      const Vec3 nt = (mesh_.position(w) - mesh_.position(v)).cross(mesh_.position(u) - mesh_.position(v));
+      if (nt.dot(normal_[u]) <= 0 || nt.dot(normal_[v]) <= 0 || nt.dot(normal_[w]) <= 0) continue;
       const double q = min_angle(mesh_.position(u), mesh_.position(v), mesh_.position(w));
       if (q > best) best = q, bi = i;
     }
@@ -811,6 +926,7 @@ void Sweep::seal_loop(Halfedge start) {
       throw TopologyError(os.str());
     }
     const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
+    if (trace_) std::fprintf(stderr, "  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
     add_triangle(v, w, u);
     state_[v] = VState::Interior;
     poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
