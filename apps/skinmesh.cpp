@@ -315,8 +315,11 @@ int run_mesh(const cli::Args& args) {
   js << ",\n  \"operations\": {\"creations\": " << res.stats.creations << ", \"creeps\": " << res.stats.creeps
      << ", \"wings\": " << res.stats.wings << ", \"bridges\": " << res.stats.bridges
      << ", \"seals\": " << res.stats.seals << ", \"held\": " << res.stats.held
+     << ", \"deferred\": " << res.stats.deferred << ", \"bridge_rows\": " << res.stats.bridge_rows
+     << ", \"contacts\": " << res.stats.contacts << ", \"released_saddles\": " << res.stats.released
      << ", \"flips\": " << res.stats.flips << ", \"contractions\": " << res.stats.contractions
-     << ", \"insertions\": " << res.stats.insertions << "}";
+     << ", \"insertions\": " << res.stats.insertions << ", \"refine_rounds\": " << res.stats.refine_rounds
+     << ", \"L_left\": " << res.stats.L_left << ", \"U_left\": " << res.stats.U_left << "}";
   js << ",\n  \"seconds\": {";
   for (std::size_t i = 0; i < seconds.size(); ++i)
     js << (i ? ", " : "") << "\"" << seconds[i].first << "\": " << seconds[i].second;

@@ -22,6 +22,7 @@
 #include "geometry/mesh_io.h"
 #include "geometry/point_grid.h"
 #include "geometry/predicates.h"
+#include "refine/local_refinement.h"
 
 namespace skinmesh::front {
 
@@ -1001,6 +1002,18 @@ SweepResult Sweep::run() {
     geometry::write_mesh(dump, m);
   }
   seal_all();
+
+  if (opt_.refine) {
+    refine::RefineOptions ro;
+    ro.size = opt_.size;
+    const refine::RefineStats rs = refine::refine_mesh(skin_, mesh_, ro);
+    stats_.flips = rs.flips;
+    stats_.contractions = rs.contractions;
+    stats_.insertions = rs.insertions;
+    stats_.refine_rounds = rs.rounds;
+    stats_.L_left = rs.L_left;
+    stats_.U_left = rs.U_left;
+  }
 
   SweepResult res;
   mesh_.garbage_collection();

@@ -41,7 +41,9 @@ struct SweepStats {
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
   std::size_t contacts = 0;       ///< front parts joined by the safety net (a deviation, Q2.3)
   std::size_t released = 0;       ///< saddles whose holds were released unbridged (Q6.4)
-  std::size_t flips = 0, contractions = 0, insertions = 0;
+  std::size_t flips = 0, contractions = 0, insertions = 0;  ///< local refinement (§4.3)
+  std::size_t refine_rounds = 0;
+  std::size_t L_left = 0, U_left = 0;  ///< [L] / [U] violations the refinement left
 };
 
 /// The mesh produced by the sweep with its per-vertex data.

@@ -1,0 +1,299 @@
+// refine/local_refinement.cpp: flips, contraction and insertion (Cheng & Shi
+// 2004 §4.3; sweep-design-notes §9).
+#include "refine/local_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "refine/restricted_delaunay.h"
+
+namespace skinmesh::refine {
+
+using geometry::Edge;
+using geometry::Face;
+using geometry::Halfedge;
+using geometry::SurfaceMesh;
+using geometry::Vertex;
+
+namespace {
+
+/// The smallest angle (radians) of triangle abc.
+double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
+}
+
+class Refiner {
+ public:
+  Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt)
+      : skin_(skin), mesh_(mesh), opt_(opt) {
+    normal_ = mesh_.vertex_property<Vec3>("v:normal", Vec3::Zero());
+    rho_ = mesh_.vertex_property<double>("v:rho", 0.0);
+    cell_ = mesh_.vertex_property<Index>("v:cell", kInvalidIndex);
+    for (Vertex v : mesh_.vertices())
+      if (!(rho_[v] > 0)) sample(v);
+  }
+
+  RefineStats run();
+
+ private:
+  void sample(Vertex v) {
+    const skin::SkinSample s = skin_.sample(mesh_.position(v), cell_[v]);
+    normal_[v] = s.gradient.normalized();
+    rho_[v] = s.rho;
+    cell_[v] = s.cell;
+  }
+  const Vec3& pos(Vertex v) const { return mesh_.position(v); }
+  /// True if triangle (a, b, c), counter-clockwise, faces along the skin
+  /// normal at each of its corners.
+  bool face_ok(Vertex a, Vertex b, Vertex c) const { return face_ok(pos(a), pos(b), pos(c), a, b, c); }
+  bool face_ok(const Vec3& pa, const Vec3& pb, const Vec3& pc, Vertex a, Vertex b, Vertex c) const {
+    const Vec3 nt = (pb - pa).cross(pc - pa);
+    return nt.dot(normal_[a]) > 0 && nt.dot(normal_[b]) > 0 && nt.dot(normal_[c]) > 0;
+  }
+  /// True if d lies strictly inside the surface Delaunay ball of abc (the
+  /// circumsphere of abc if the dual line misses the skin).
+  bool inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const;
+  /// True if the edge is not locally restricted Delaunay and flipping it
+  /// gives two triangles that face outwards and are locally Delaunay.
+  bool should_flip(Edge e) const;
+  void lawson();
+  void push_edges_around(Vertex v);
+  bool violates_L(Edge e) const {
+    const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
+    return !satisfies_L(pos(a), pos(b), rho_[a], rho_[b], opt_.size);
+  }
+  bool violates_U(Face f) const {
+    Vertex v[3];
+    int i = 0;
+    for (Vertex x : mesh_.vertices(f)) v[i++] = x;
+    return !satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0]], rho_[v[1]], rho_[v[2]], opt_.size);
+  }
+  bool contract(Edge e);
+  bool insert(Face f);
+
+  const skin::SkinSurface& skin_;
+  SurfaceMesh& mesh_;
+  const RefineOptions& opt_;
+  geometry::VertexProperty<Vec3> normal_;
+  geometry::VertexProperty<double> rho_;
+  geometry::VertexProperty<Index> cell_;
+  std::vector<Edge> stack_;
+  RefineStats stats_;
+};
+
+bool Refiner::inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const {
+  Vec3 m;
+  Index cell = cell_[a];
+  if (!surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell)) m = circumcentre(pos(a), pos(b), pos(c));
+  return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - 1e-9);
+}
+
+bool Refiner::should_flip(Edge e) const {
+  if (mesh_.is_deleted(e) || mesh_.is_boundary(e)) return false;
+  const Halfedge h0 = mesh_.halfedge(e, 0), h1 = mesh_.halfedge(e, 1);
+  const Vertex a = mesh_.from_vertex(h0), b = mesh_.to_vertex(h0);
+  const Vertex c = mesh_.to_vertex(mesh_.next(h0)), d = mesh_.to_vertex(mesh_.next(h1));
+  // Faces (a, b, c) and (b, a, d).
+  if (!inside_ball(a, b, c, d) && !inside_ball(b, a, d, c)) return false;
+  if (!mesh_.is_flip_ok(e) || !face_ok(a, d, c) || !face_ok(b, c, d)) return false;
+  // Flip only towards a locally Delaunay pair (no flip cycles).
+  return !inside_ball(a, d, c, b) && !inside_ball(b, c, d, a);
+}
+
+void Refiner::lawson() {
+  const std::size_t cap = static_cast<std::size_t>(opt_.max_flips_factor * double(mesh_.n_edges())) + 100;
+  std::size_t flips = 0;
+  while (!stack_.empty()) {
+    const Edge e = stack_.back();
+    stack_.pop_back();
+    if (!should_flip(e)) continue;
+    if (++flips > cap) {
+      stack_.clear();
+      break;
+    }
+    mesh_.flip(e);
+    ++stats_.flips;
+    for (unsigned i = 0; i < 2; ++i) {
+      const Halfedge h = mesh_.halfedge(e, i);
+      stack_.push_back(mesh_.edge(mesh_.next(h)));
+      stack_.push_back(mesh_.edge(mesh_.prev(h)));
+    }
+  }
+}
+
+void Refiner::push_edges_around(Vertex v) {
+  for (Halfedge h : mesh_.halfedges(v)) {
+    stack_.push_back(mesh_.edge(h));
+    if (!mesh_.is_boundary(h)) stack_.push_back(mesh_.edge(mesh_.next(h)));
+  }
+}
+
+bool Refiner::contract(Edge e) {
+  // Keep the endpoint whose new star has the better minimum angle, among the
+  // collapses that pass the link condition and turn no triangle over (Q9.3).
+  double best = -1;
+  Halfedge pick;
+  for (unsigned i = 0; i < 2; ++i) {
+    const Halfedge h = mesh_.halfedge(e, i);
+    if (!mesh_.is_collapse_ok(h)) continue;
+    const Vertex v0 = mesh_.from_vertex(h), v1 = mesh_.to_vertex(h);
+    double q = 4;
+    bool ok = true;
+    for (Halfedge g : mesh_.halfedges(v0)) {
+      if (mesh_.is_boundary(g)) continue;
+      const Vertex x = mesh_.to_vertex(g), y = mesh_.to_vertex(mesh_.next(g));
+      if (x == v1 || y == v1) continue;  // the faces of e disappear
+      if (!face_ok(pos(v1), pos(x), pos(y), v1, x, y)) {
+        ok = false;
+        break;
+      }
+      q = std::min(q, min_angle(pos(v1), pos(x), pos(y)));
+    }
+    if (ok && q > best) best = q, pick = h;
+  }
+  if (!pick.is_valid()) {
+    ++stats_.refused_contractions;
+    return false;
+  }
+  const Vertex keep = mesh_.to_vertex(pick);
+  mesh_.collapse(pick);
+  ++stats_.contractions;
+  push_edges_around(keep);
+  lawson();
+  return true;
+}
+
+bool Refiner::insert(Face f) {
+  Vertex v[3];
+  {
+    int i = 0;
+    for (Vertex x : mesh_.vertices(f)) v[i++] = x;
+  }
+  Vec3 m;
+  Index cell = cell_[v[0]];
+  if (!surface_delaunay_centre(skin_, pos(v[0]), pos(v[1]), pos(v[2]), m, cell)) {
+    ++stats_.refused_insertions;
+    return false;
+  }
+  const double radius = (m - pos(v[0])).norm();
+  // Walk from f to the triangle whose prism contains m (barycentric
+  // coordinates in the triangle's plane).
+  Face t = f;
+  std::array<double, 3> lam{};
+  std::array<Halfedge, 3> hs{};  // hs[i]: the half-edge opposite corner i
+  std::array<Vertex, 3> x{};
+  bool found = false;
+  for (int step = 0; step < 64 && !found; ++step) {
+    int i = 0;
+    for (Halfedge h : mesh_.halfedges(t)) {
+      x[i] = mesh_.from_vertex(h);
+      hs[(i + 2) % 3] = h;  // h = x[i] -> x[i+1] is opposite corner i+2
+      ++i;
+    }
+    const Vec3 nf = (pos(x[1]) - pos(x[0])).cross(pos(x[2]) - pos(x[0]));
+    const double n2 = nf.squaredNorm();
+    if (n2 == 0) break;
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p1 = pos(x[(k + 1) % 3]);
+      const Vec3& p2 = pos(x[(k + 2) % 3]);
+      lam[k] = (p2 - p1).cross(m - p1).dot(nf) / n2;
+      if (lam[k] < lam[worst]) worst = k;
+    }
+    if (lam[worst] >= 0) {
+      found = true;
+      break;
+    }
+    const Halfedge across = mesh_.opposite(hs[worst]);
+    if (mesh_.is_boundary(across)) break;
+    t = mesh_.face(across);
+  }
+  if (!found) {
+    ++stats_.refused_insertions;
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+    if ((pos(x[k]) - m).norm() < 0.25 * radius) {  // the ball is far from empty
+      ++stats_.refused_insertions;
+      return false;
+    }
+  // The new vertex's normal, for the orientation tests.
+  const skin::SkinSample s = skin_.sample(m, cell);
+  const Vec3 nm = s.gradient.normalized();
+  auto ok_with_m = [&](Vertex a, Vertex b) {  // triangle (a, b, m)
+    const Vec3 nt = (pos(b) - pos(a)).cross(m - pos(a));
+    return nt.dot(normal_[a]) > 0 && nt.dot(normal_[b]) > 0 && nt.dot(nm) > 0;
+  };
+  int small = 0;
+  for (int k = 1; k < 3; ++k)
+    if (lam[k] < lam[small]) small = k;
+  Vertex nv;
+  if (lam[small] < 0.15) {
+    // m is near the edge opposite corner `small`: split that edge.
+    const Halfedge h = hs[small];
+    const Halfedge o = mesh_.opposite(h);
+    if (mesh_.is_boundary(o)) {
+      ++stats_.refused_insertions;
+      return false;
+    }
+    const Vertex p = mesh_.from_vertex(h), q = mesh_.to_vertex(h);
+    const Vertex apex_t = x[small], apex_o = mesh_.to_vertex(mesh_.next(o));
+    // Faces after the split: (p, m, apex_t)... written as (a, b, m).
+    if (!ok_with_m(apex_t, p) || !ok_with_m(q, apex_t) || !ok_with_m(p, apex_o) || !ok_with_m(apex_o, q)) {
+      ++stats_.refused_insertions;
+      return false;
+    }
+    nv = mesh_.split_edge(mesh_.edge(h), m);
+  } else {
+    if (!ok_with_m(x[0], x[1]) || !ok_with_m(x[1], x[2]) || !ok_with_m(x[2], x[0])) {
+      ++stats_.refused_insertions;
+      return false;
+    }
+    nv = mesh_.split_face(t, m);
+  }
+  normal_[nv] = nm;
+  rho_[nv] = s.rho;
+  cell_[nv] = s.cell;
+  ++stats_.insertions;
+  push_edges_around(nv);
+  lawson();
+  return true;
+}
+
+RefineStats Refiner::run() {
+  for (Edge e : mesh_.edges()) stack_.push_back(e);
+  lawson();
+  for (int round = 0; round < opt_.max_rounds; ++round) {
+    ++stats_.rounds;
+    bool changed = false;
+    std::vector<Edge> short_edges;
+    for (Edge e : mesh_.edges())
+      if (violates_L(e)) short_edges.push_back(e);
+    for (Edge e : short_edges)
+      if (!mesh_.is_deleted(e) && violates_L(e) && contract(e)) changed = true;
+    std::vector<Face> big;
+    for (Face f : mesh_.faces())
+      if (violates_U(f)) big.push_back(f);
+    for (Face f : big)
+      if (!mesh_.is_deleted(f) && violates_U(f) && insert(f)) changed = true;
+    if (!changed) break;
+  }
+  for (Edge e : mesh_.edges()) stats_.L_left += violates_L(e);
+  for (Face f : mesh_.faces()) stats_.U_left += violates_U(f);
+  return stats_;
+}
+
+}  // namespace
+
+RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt) {
+  Refiner r(skin, mesh, opt);
+  return r.run();
+}
+
+}  // namespace skinmesh::refine

@@ -1,0 +1,56 @@
+// refine/local_refinement.h: the local refinement of Cheng & Shi 2004 §4.3 —
+// edge flips towards the restricted Delaunay triangulation, edge contraction
+// for [L], vertex insertion at surface Delaunay centres for [U] — on a mesh
+// whose vertices lie on the skin.
+// Notes: papers/refine/local_refinement.md
+#pragma once
+
+#include <cstddef>
+
+#include "geometry/surface_mesh.h"
+#include "refine/size_conditions.h"
+#include "skin/skin_surface.h"
+
+namespace skinmesh::refine {
+
+/// Options of the local refinement.
+struct RefineOptions {
+  /// C and Q of [L] and [U] (Cheng & Shi §2.2).
+  SizeConstants size;
+  /// At most this many rounds of (contraction pass, insertion pass).
+  int max_rounds = 60;
+  /// Flips per Lawson pass are capped at this factor times the number of edges
+  /// (termination of flips with surface Delaunay balls is not proved,
+  /// sweep-design-notes Q9.2).
+  double max_flips_factor = 20;
+};
+
+/// What the refinement did and what it left.
+struct RefineStats {
+  std::size_t flips = 0, contractions = 0, insertions = 0;
+  std::size_t rounds = 0;
+  /// Operations wanted but refused because they would turn a triangle over
+  /// (against the skin normal) or break the link condition.
+  std::size_t refused_contractions = 0, refused_insertions = 0;
+  /// Violations left when the refinement stopped (0 and 0 when it converged).
+  std::size_t L_left = 0, U_left = 0;
+};
+
+/// Refines a closed triangle mesh of the skin in place so that every edge
+/// satisfies [L], every triangle [U] and (as far as flips reach) every edge is
+/// locally restricted Delaunay: Lawson flips with the surface Delaunay ball
+/// test (sweep-design-notes Q9.2), then rounds of contraction of edges that
+/// violate [L] (keeping the endpoint whose new star has the better minimum
+/// angle, Q9.3) and insertion of the surface Delaunay centre of triangles that
+/// violate [U] (Q9.4), each followed by local flips. [L] and [U] together
+/// bound every angle below by arcsin(1/Q²) = 21.55°.
+///
+/// `mesh` must be closed, oriented outwards, with every vertex on the skin;
+/// it uses (and creates if absent, sampling the skin) the vertex properties
+/// "v:normal" (unit outward normal), "v:rho" (Å) and "v:cell" (mixed cell).
+/// No operation turns a triangle against the normals of its corners.
+/// Elements are deleted, not compacted: call garbage_collection() afterwards.
+RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
+                        const RefineOptions& opt = {});
+
+}  // namespace skinmesh::refine
