@@ -131,7 +131,13 @@ class Sweep {
   bool release_saddles();
   void seal_all();
   bool small_hole(Vertex v) const;
-  void seal_loop(Halfedge h);
+  /// Closes the hole of boundary loop h (DP fill, else ear clipping); a hole
+  /// that is tangled in every projection is first enlarged by deleting the
+  /// faces around it (at most `depth_left` times).
+  void seal_loop(Halfedge h, int depth_left = 2);
+  /// Deletes the faces incident to the vertices of `poly` and returns a
+  /// boundary half-edge of the enlarged hole (invalid if it pinched).
+  Halfedge enlarge_hole(const std::vector<Vertex>& poly);
   /// Triangulates the hole bounded by `poly` (its vertices in boundary-loop
   /// order) by dynamic programming over all its triangulations, maximising the
   /// minimum angle among those whose triangles face outwards at their three
@@ -153,6 +159,9 @@ class Sweep {
   /// ladder row (a contact) and true is returned; if x is held, v joins the
   /// hold instead.
   bool try_contact(Vertex v, const Corner& k);
+  /// Joins v's front to front vertex x by one ladder row, if one of the two
+  /// quads (v->w with x_u->x, u->v with x->x_w) is convex and fits.
+  bool contact_with(Vertex v, const Corner& k, Vertex x);
   /// True if a new triangle at front vertex x spanning counter-clockwise (in
   /// T_x) from the direction of y_from to that of y_to lies inside x's hole
   /// wedge, so that it cannot fold over the triangles already at x.
@@ -179,7 +188,15 @@ class Sweep {
   geometry::VertexProperty<Index> held_by_;
   geometry::VertexProperty<std::uint32_t> stamp_;
   geometry::VertexProperty<std::uint8_t> deferrals_;
-  static constexpr std::uint8_t kMaxDeferrals = 3;
+  static constexpr std::uint8_t kMaxDeferrals = 8;
+  /// Re-queues v a little higher (0.25 r more per deferral) so that the front
+  /// moves on around it first.
+  void defer(Vertex v, double r) {
+    ++deferrals_[v];
+    ++stamp_[v];
+    queue_.push({height(v) + 0.25 * r * deferrals_[v], v.idx(), stamp_[v]});
+    ++stats_.deferred;
+  }
 
   struct QueueEntry {
     double h;
@@ -371,44 +388,69 @@ void Sweep::creep(Vertex v) {
     if (attempt == 0 && try_contact(v, k)) return;
     m = std::max(1, static_cast<int>(std::ceil(k.angle / (60.0 * kDeg) - 1e-9)));
     if (attempt >= 8) break;
-    // For m = 1 the "fan" is the single triangle (v, w, u).
-    const Vec3 p1 = m == 1 ? mesh_.position(k.u) : Vec3(pv + r * rotate(k.dw, n, k.angle / m));
-    const Vec3 pm = m == 1 ? mesh_.position(k.w) : Vec3(pv + r * rotate(k.dw, n, k.angle * (m - 1) / m));
     const Vertex w2 = mesh_.to_vertex(mesh_.next(k.out));
     const Vertex u2 = mesh_.from_vertex(mesh_.prev(k.in));
     const Vec3 pw2 = mesh_.position(w2), pu2 = mesh_.position(u2);
-    // Triangle (v, w, p1) spans from p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
-    const Vertex p1v = m == 1 ? k.u : Vertex(), pmv = m == 1 ? k.w : Vertex();
-    const bool bad_w = w2 != k.u && ((m > 1 && (p1 - pw2).norm() < 0.5 * r) || !fits_at(k.w, p1, pv, p1v, v));
-    const bool bad_u = u2 != k.w && ((m > 1 && (pm - pu2).norm() < 0.5 * r) || !fits_at(k.u, pv, pm, v, pmv));
+    // Figure 7 test of a fan of mm triangles at both ends. For mm = 1 the
+    // "fan" is the single triangle (v, w, u). Triangle (v, w, p1) spans from
+    // p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
+    auto test_fan = [&](int mm, bool& bw, bool& bu) {
+      const Vec3 p1 = mm == 1 ? mesh_.position(k.u) : Vec3(pv + r * rotate(k.dw, n, k.angle / mm));
+      const Vec3 pm = mm == 1 ? mesh_.position(k.w) : Vec3(pv + r * rotate(k.dw, n, k.angle * (mm - 1) / mm));
+      const Vertex p1v = mm == 1 ? k.u : Vertex(), pmv = mm == 1 ? k.w : Vertex();
+      bw = w2 != k.u && ((mm > 1 && (p1 - pw2).norm() < 0.5 * r) || !fits_at(k.w, p1, pv, p1v, v));
+      bu = u2 != k.w && ((mm > 1 && (pm - pu2).norm() < 0.5 * r) || !fits_at(k.u, pv, pm, v, pmv));
+    };
+    bool bad_w = false, bad_u = false;
+    test_fan(m, bad_w, bad_u);
     if (std::getenv("SKINMESH_TRACE"))
       std::fprintf(stderr, "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
                    k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
     if (bad_w && wing(k.w, true)) continue;
     if (bad_u && wing(k.u, true)) continue;
+    // The neighbour's own neighbour may close a narrow spike first.
+    if (bad_w && w2 != k.u && wing(w2, true)) continue;
+    if (bad_u && u2 != k.w && wing(u2, true)) continue;
     // A fan that would fold over a held neighbour: v joins the hold (it is at
     // the rim of the hold region; the bridge or seal will take care of it).
     const Vertex held_nb = bad_w && state_[k.w] == VState::Held   ? k.w
                            : bad_u && state_[k.u] == VState::Held ? k.u
                                                                    : Vertex();
-    if (held_nb.is_valid()) {
+    if (held_nb.is_valid() && held_by_[held_nb] != kInvalidIndex) {
       hold(v, held_by_[held_nb]);
       return;
+    }
+    if ((bad_w || bad_u) && deferrals_[v] >= kMaxDeferrals) {
+      // Last resort before giving up: a fan with more or fewer triangles
+      // whose end triangles fit.
+      for (int mm : {m + 1, m + 2, m - 1}) {
+        if (mm < 1 || (mm == 1 && k.angle >= kPi)) continue;
+        bool bw = false, bu = false;
+        test_fan(mm, bw, bu);
+        if (!bw && !bu) {
+          m = mm, bad_w = bad_u = false;
+          break;
+        }
+      }
+      if (!bad_w && !bad_u) break;
     }
     if ((bad_w || bad_u) && deferrals_[v] < kMaxDeferrals) {
       // The fan would fold over a neighbour that cannot be winged now: let
       // the front move on around v and try again a little later.
-      ++deferrals_[v];
-      ++stamp_[v];
-      queue_.push({height(v) + 0.25 * r, v.idx(), stamp_[v]});
-      ++stats_.deferred;
+      defer(v, r);
       return;
     }
     if (bad_w || bad_u) {
-      std::ostringstream os;
-      os << "creep: the fan at vertex " << v.idx() << " (" << pv.transpose() << ") would fold over its front neighbour "
-         << (bad_w ? k.w.idx() : k.u.idx()) << " (Figure 7), which cannot be winged";
-      throw TopologyError(os.str());
+      // Stuck: no fan fits here even after the front moved on. v stays on the
+      // front without departing again; the hole around it is filled when the
+      // fronts meet (small hole) or at the seal, and the final checks decide.
+      if (trace_)
+        std::fprintf(stderr, "creep: v%u is stuck: its fan would fold over v%u (Figure 7)\n", v.idx(),
+                     (bad_w ? k.w : k.u).idx());
+      state_[v] = VState::Held;
+      held_by_[v] = kInvalidIndex;
+      ++stats_.stuck;
+      return;
     }
     break;
   }
@@ -420,15 +462,33 @@ void Sweep::creep(Vertex v) {
        << (2 * kPi + excess) / kDeg << "°";
     throw TopologyError(os.str());
   }
-  if (std::getenv("SKINMESH_TRACE_COLLISIONS")) {
-    for (int i = 1; i < m; ++i) {
+  // The safety net for the fan (sweep-design-notes Q4.3 b): a new point
+  // within r/2 of a front vertex x other than u, v, w would come too close to
+  // another part of the front. Join v to x instead, hold v if x is held, or
+  // let the front move on and come back.
+  {
+    Vertex hit;
+    for (int i = 1; i < m && !hit.is_valid(); ++i) {
       const Vec3 q = pv + r * rotate(k.dw, n, i * k.angle / m);
       vertex_grid_->for_each_near(q, 0.5 * r, [&](Index xi, const Vec3&) {
         const Vertex x(xi);
-        if (x == v || x == k.u || x == k.w || normal_[x].dot(n) <= 0.5) return;
-        std::fprintf(stderr, "collision step %ld: v%u (%g %g %g) fan point %d near v%u state %d dist %.3f r %.3f\n", step_,
-                     v.idx(), pv.x(), pv.y(), pv.z(), i, x.idx(), int(state_[x]), (q - mesh_.position(x)).norm(), r);
+        if (hit.is_valid() || x == v || x == k.u || x == k.w || mesh_.is_deleted(x)) return;
+        if (mesh_.is_isolated(x) || normal_[x].dot(n) <= 0.5) return;
+        hit = x;  // a front vertex, or an interior one: the fan would cover meshed surface
       });
+    }
+    if (hit.is_valid()) {
+      ++stats_.collisions;
+      if (trace_) std::fprintf(stderr, "collision: fan of v%u reaches v%u\n", v.idx(), hit.idx());
+      if (state_[hit] == VState::Held && held_by_[hit] != kInvalidIndex) {
+        hold(v, held_by_[hit]);
+        return;
+      }
+      if (mesh_.is_boundary(hit) && contact_with(v, k, hit)) return;
+      if (deferrals_[v] < kMaxDeferrals) {
+        defer(v, r);
+        return;
+      }
     }
   }
   std::vector<Vertex> fan;
@@ -592,7 +652,9 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
   double best_d = std::numeric_limits<double>::infinity();
   vertex_grid_->for_each_near(pv, 1.5 * r, [&](Index xi, const Vec3& px) {
     const Vertex x(xi);
-    if (x == v || state_[x] == VState::Interior || mesh_.is_isolated(x) || !mesh_.is_boundary(x)) return;
+    if (x == v || state_[x] == VState::Interior || mesh_.is_deleted(x) || mesh_.is_isolated(x) ||
+        !mesh_.is_boundary(x))
+      return;
     if (std::find(near_hops.begin(), near_hops.end(), x) != near_hops.end()) return;
     if (normal_[x].dot(n) <= 0.5) return;
     const double a = ccw_angle(k.dw, tangent_dir(pv, n, px), n);
@@ -607,10 +669,15 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
     if (d < best_d) best_d = d, best = x;
   });
   if (!best.is_valid()) return false;
-  if (state_[best] == VState::Held) {
+  if (state_[best] == VState::Held && held_by_[best] != kInvalidIndex) {
     hold(v, held_by_[best]);
     return true;
   }
+  return contact_with(v, k, best);
+}
+
+bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
+  const Vec3 pv = mesh_.position(v), n = normal_[v];
   // Two ways to join: v->w with x_u->x (quad v w x_u x), or u->v with x->x_w
   // (quad u v x x_w). Take the convex one that fits at its four corners, with
   // the better minimum angle.
@@ -644,7 +711,8 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
     if (qual > best_q) best_q = qual, pick = o;
   }
   if (pick < 0) return false;
-  if (trace_) std::fprintf(stderr, "contact v%u with v%u (dist %.3f r %.3f)\n", v.idx(), best.idx(), best_d, r);
+  if (trace_)
+    std::fprintf(stderr, "contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (mesh_.position(best) - pv).norm());
   bridge(cand[pick][0], cand[pick][1], kInvalidIndex, 1);
   ++stats_.contacts;
   return true;
@@ -761,7 +829,7 @@ void Sweep::seal_all() {
     if (iter > max_loops) throw TopologyError("seal: the holes do not close");
     Halfedge start;
     for (Vertex v : mesh_.vertices())
-      if (!mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
+      if (!mesh_.is_deleted(v) && !mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
         start = mesh_.halfedge(v);
         break;
       }
@@ -786,6 +854,11 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
     const Vec3 &a = mesh_.position(poly[i]), &b = mesh_.position(poly[m]), &c = mesh_.position(poly[j]);
     const Vec3 nt = (b - a).cross(c - a);
     if (nt.dot(normal_[poly[i]]) <= 0 || nt.dot(normal_[poly[m]]) <= 0 || nt.dot(normal_[poly[j]]) <= 0) return kNone;
+    // Each corner's span must lie in that vertex's hole wedge (no overlap
+    // with the triangles already there).
+    if (!fits_at(poly[i], poly[m], poly[j]) || !fits_at(poly[m], poly[j], poly[i]) ||
+        !fits_at(poly[j], poly[i], poly[m]))
+      return kNone;
     return min_angle(a, b, c);
   };
   for (std::size_t i = 0; i + 1 < k; ++i) q[at(i, i + 1)] = kPi;  // an edge: nothing to fill
@@ -816,7 +889,55 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
   return true;
 }
 
-void Sweep::seal_loop(Halfedge start) {
+Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
+  std::vector<Face> faces;
+  for (Vertex v : poly)
+    for (Face f : mesh_.faces(v))
+      if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+  std::vector<Vertex> corners;
+  for (Face f : faces)
+    for (Vertex x : mesh_.vertices(f)) corners.push_back(x);
+  for (Face f : faces) mesh_.delete_face(f);
+  ++stats_.enlarged_holes;
+  // The new rim: the surviving corners of the deleted faces.
+  Halfedge start;
+  std::vector<Vertex> rim;
+  for (Vertex x : corners)
+    if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
+  // A pinched vertex (two boundary gaps) cannot be handled by the front:
+  // delete its remaining faces too, a few times at most.
+  for (int round = 0; round < 4; ++round) {
+    std::vector<Vertex> pinched;
+    for (Vertex x : rim) {
+      if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
+      int gaps = 0;
+      for (Halfedge h : mesh_.halfedges(x)) gaps += mesh_.is_boundary(h);
+      if (gaps > 1) pinched.push_back(x);
+    }
+    if (pinched.empty()) break;
+    std::vector<Face> more;
+    for (Vertex x : pinched)
+      for (Face f : mesh_.faces(x))
+        if (std::find(more.begin(), more.end(), f) == more.end()) more.push_back(f);
+    std::vector<Vertex> more_corners;
+    for (Face f : more)
+      for (Vertex x : mesh_.vertices(f)) more_corners.push_back(x);
+    for (Face f : more) mesh_.delete_face(f);
+    for (Vertex x : more_corners)
+      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
+  }
+  for (Vertex x : rim) {
+    if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
+    int gaps = 0;
+    for (Halfedge h : mesh_.halfedges(x)) gaps += mesh_.is_boundary(h);
+    if (gaps != 1) return Halfedge();
+    state_[x] = VState::Front;
+    start = mesh_.halfedge(x);
+  }
+  return start;
+}
+
+void Sweep::seal_loop(Halfedge start, int depth_left) {
   std::vector<Halfedge> loop = mesh_.boundary_loop(start);
   std::vector<Vertex> poly;
   for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
@@ -877,6 +998,15 @@ void Sweep::seal_loop(Halfedge start) {
     std::ostringstream os;
     os << "seal: the hole of " << poly.size() << " vertices near (" << centre.transpose()
        << ") is not a simple polygon in any plane tried";
+    if (depth_left > 0) {
+      if (trace_) std::fprintf(stderr, "%s: enlarging it\n", os.str().c_str());
+      const Halfedge h = enlarge_hole(poly);
+      if (h.is_valid()) {
+        seal_loop(h, depth_left - 1);
+        return;
+      }
+      os << "; enlarging it pinched the front";
+    }
     throw TopologyError(os.str());
   }
   if (trace_) {
@@ -890,6 +1020,7 @@ void Sweep::seal_loop(Halfedge start) {
   }
   // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
   // left turn with no other polygon vertex inside; take the best 3D angle.
+  bool strict = true;  // ears must fit the hole wedges; relaxed when no ear does
   while (poly.size() > 3) {
     const std::size_t k = poly.size();
     double best = -1;
@@ -914,8 +1045,13 @@ void Sweep::seal_loop(Halfedge start) {
       // a narrow waist can turn over between the projection plane and T_x).
       const Vec3 nt = (mesh_.position(w) - mesh_.position(v)).cross(mesh_.position(u) - mesh_.position(v));
       if (nt.dot(normal_[u]) <= 0 || nt.dot(normal_[v]) <= 0 || nt.dot(normal_[w]) <= 0) continue;
+      if (strict && (!fits_at(u, v, w) || !fits_at(v, w, u) || !fits_at(w, u, v))) continue;
       const double q = min_angle(mesh_.position(u), mesh_.position(v), mesh_.position(w));
       if (q > best) best = q, bi = i;
+    }
+    if (bi == k && strict) {
+      strict = false;
+      continue;
     }
     if (bi == k) {
       std::ostringstream os;
@@ -970,7 +1106,9 @@ SweepResult Sweep::run() {
     queue_.pop();
     ++step_;
     const Vertex v(top.v);
-    if (top.stamp != stamp_[v] || state_[v] != VState::Front || !mesh_.is_boundary(v)) continue;
+    if (top.stamp != stamp_[v] || state_[v] != VState::Front || mesh_.is_deleted(v) || mesh_.is_isolated(v) ||
+        !mesh_.is_boundary(v))
+      continue;
     const Index c = hold_region(v);
     if (c != kInvalidIndex) {
       hold(v, c);

@@ -40,6 +40,9 @@ struct SweepStats {
   std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
   std::size_t contacts = 0;       ///< front parts joined by the safety net (a deviation, Q2.3)
+  std::size_t stuck = 0;          ///< departure vertices left for the seal (no fan fits, Figure 7)
+  std::size_t enlarged_holes = 0;  ///< tangled holes re-opened by deleting the faces around them
+  std::size_t collisions = 0;     ///< fans that would have come within r/2 of another front part
   std::size_t released = 0;       ///< saddles whose holds were released unbridged (Q6.4)
   std::size_t flips = 0, contractions = 0, insertions = 0;  ///< local refinement (§4.3)
   std::size_t refine_rounds = 0;

@@ -133,6 +133,9 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     return (ms.critical[a].position - ms.critical[b].position).norm() <
            opt.cancel_factor * (ms.critical[a].rho + ms.critical[b].rho);
   };
+  // Pairs closer than this fraction of rho_s + rho_x are cancelled even
+  // without a traced arc between them (a step of a traced line is 0.04 rho).
+  constexpr double kCoincident = 0.01;
   for (bool changed = true; changed;) {
     changed = false;
     struct Cand {
@@ -148,12 +151,32 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
         cands.push_back({(ms.critical[s].position - ms.critical[x].position).norm(), s, x});
       }
     }
+    // Coincident pairs: a saddle and an extremum closer than a small fraction
+    // of rho are one degenerate (birth-death) critical point for the sweep,
+    // whatever the traced lines say: the first step of a line from the
+    // saddle jumps over the extremum, so no arc joins them.
+    for (Index s = 0; s < n; ++s) {
+      if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
+      for (Index x = 0; x < n; ++x) {
+        if (x == s || !ms.live[x] || ms.critical[x].kind == CriticalKind::Saddle) continue;
+        const double d = (ms.critical[s].position - ms.critical[x].position).norm();
+        if (d < kCoincident * (ms.critical[s].rho + ms.critical[x].rho)) cands.push_back({d, s, x});
+      }
+    }
     std::sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.d < b.d; });
     for (const Cand& cd : cands) {
       if (!ms.live[cd.s] || !ms.live[cd.x]) continue;
       const int base = ms.critical[cd.x].kind == CriticalKind::Maximum ? 0 : 2;
       const Index e0 = ms.arc_end(cd.s, base), e1 = ms.arc_end(cd.s, base + 1);
       if (e0 == kInvalidIndex || e1 == kInvalidIndex) continue;
+      const bool coincident = cd.d < kCoincident * (ms.critical[cd.s].rho + ms.critical[cd.x].rho);
+      if (coincident && e0 != cd.x && e1 != cd.x) {
+        ms.live[cd.s] = ms.live[cd.x] = 0;
+        ms.replaced_by[cd.x] = e0;
+        ms.cancelled.push_back({cd.s, cd.x});
+        changed = true;
+        continue;
+      }
       if (e0 == e1) continue;           // double arc: cancelling would change the topology
       if (e0 != cd.x && e1 != cd.x) continue;  // stale after an earlier contraction
       ms.live[cd.s] = ms.live[cd.x] = 0;

@@ -2,7 +2,9 @@
 // sweep-design-notes §11 (one atom, two atoms, a neck with live saddles, the
 // three-ball torus, the tetrahedral void, the paper's Figure 4 cube corners):
 // the result must be closed, manifold, outward-oriented, free of
-// self-intersections, on the skin, and of the expected topology.
+// self-intersections, on the skin, and of the expected topology; with the
+// local refinement (the default) also free of [L], [U] and restricted-Delaunay
+// violations, with every angle above 21.5°, for several height directions.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -16,29 +18,29 @@ using namespace skinmesh;
 
 namespace {
 
-refine::SkinCheckReport sweep_and_check(const std::vector<geometry::WeightedPoint>& pts, front::SweepStats* stats) {
+refine::SkinCheckReport sweep_and_check(const std::vector<geometry::WeightedPoint>& pts, front::SweepStats* stats,
+                                        bool refine = true, Vec3 direction = morse::default_height_direction()) {
   skin::SkinSurface skin(pts);
-  const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
-  const auto res = front::sweep_mesh(skin, ms);
+  const auto ms = morse::build_morse_smale_complex(skin, direction.normalized());
+  front::SweepOptions so;
+  so.refine = refine;
+  const auto res = front::sweep_mesh(skin, ms, so);
   if (stats) *stats = res.stats;
   refine::SkinCheckOptions opt;
-  opt.check_restricted_delaunay = false;  // refinement is not part of the sweep yet
+  opt.check_restricted_delaunay = refine;
   return refine::check_skin_mesh(skin, res.mesh, opt);
 }
 
 double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
 
-}  // namespace
-
-TEST_SUITE("front") {
-
-TEST_CASE("sweep: closed, oriented, embedded meshes of the expected topology") {
-  struct Case {
+struct Case {
     const char* name;
-    std::vector<geometry::WeightedPoint> pts;
-    int expected_chi;
-    bool expect_bridges;
-  };
+  std::vector<geometry::WeightedPoint> pts;
+  int expected_chi;
+  bool expect_bridges;
+};
+
+std::vector<Case> cases() {
   std::vector<Case> cases = {
       {"one atom", {{Vec3(0, 0, 0), w_of(1.6, 1.4)}}, 2, false},
       {"two overlapping atoms", {{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}}, 2, false},
@@ -47,10 +49,18 @@ TEST_CASE("sweep: closed, oriented, embedded meshes of the expected topology") {
       {"tetrahedral void (sphere + cavity)", test::tetrahedron_void(), 4, true},
       {"cube corners (Figure 4, genus 5)", test::cube_corners(1.4), -8, true},
   };
-  for (const Case& c : cases) {
+  return cases;
+}
+
+}  // namespace
+
+TEST_SUITE("front") {
+
+TEST_CASE("sweep without refinement: closed, oriented, embedded meshes of the expected topology") {
+  for (const Case& c : cases()) {
     INFO(c.name);
     front::SweepStats st;
-    const auto rep = sweep_and_check(c.pts, &st);
+    const auto rep = sweep_and_check(c.pts, &st, /*refine=*/false);
     INFO(rep.to_json());
     CHECK(rep.mesh.closed);
     CHECK(rep.mesh.edge_manifold);
@@ -66,7 +76,34 @@ TEST_CASE("sweep: closed, oriented, embedded meshes of the expected topology") {
     if (c.expect_bridges) CHECK(st.bridges > 0);
     CHECK(st.creations > 0);
     CHECK(st.seals > 0);
+    CHECK(st.flips == 0);
   }
+}
+
+TEST_CASE("sweep + refinement: every check passes, for several height directions") {
+  const Vec3 directions[] = {morse::default_height_direction(), Vec3(1, 0, 0), Vec3(0.3, 0.5, 0.8),
+                             Vec3(-0.7, 0.1, 0.7)};
+  for (const Case& c : cases())
+    for (const Vec3& d : directions) {
+      INFO(c.name);
+      INFO("direction " << d.transpose());
+      front::SweepStats st;
+      const auto rep = sweep_and_check(c.pts, &st, /*refine=*/true, d);
+      INFO(rep.to_json());
+      CHECK(rep.mesh.closed);
+      CHECK(rep.mesh.oriented);
+      CHECK(rep.mesh.num_self_intersections == 0);
+      CHECK(rep.num_inward_triangles == 0);
+      CHECK(rep.max_vertex_distance <= 1e-9);
+      CHECK(rep.topology_matches);
+      CHECK(rep.num_L_violations == 0);
+      CHECK(rep.num_U_violations == 0);
+      CHECK(rep.num_rdt_violations == 0);
+      CHECK(rep.mesh.min_angle_deg >= 21.5);
+      CHECK(rep.ok());
+      CHECK(st.L_left == 0);
+      CHECK(st.U_left == 0);
+    }
 }
 
 }  // TEST_SUITE

@@ -1,0 +1,99 @@
+// tests/refine/local_refinement_test.cpp: the local refinement of §4.3 on
+// meshes of a one-atom skin (a sphere) that start far from [L], [U] and the
+// restricted Delaunay property: afterwards every check of the verifier holds
+// (closed, outward, embedded, vertices on the skin, angles above 21.5°, no
+// [L] / [U] / restricted-Delaunay violation) and the topology is unchanged.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "refine/local_refinement.h"
+#include "refine/skin_mesh_check.h"
+#include "tests/geometry/test_meshes.h"
+
+using namespace skinmesh;
+
+namespace {
+
+// One atom: the skin is the sphere of radius sqrt(w / 2) = 2 about the origin.
+const double kRadius = 2.0;
+skin::SkinSurface one_atom() { return skin::SkinSurface({{Vec3(0, 0, 0), 2 * kRadius * kRadius}}); }
+
+refine::SkinCheckReport refine_and_check(const skin::SkinSurface& skin, const geometry::IndexedMesh& start,
+                                         refine::RefineStats* stats) {
+  geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(start);
+  const refine::RefineStats st = refine::refine_mesh(skin, mesh);
+  if (stats) *stats = st;
+  mesh.garbage_collection();
+  return refine::check_skin_mesh(skin, mesh.to_indexed_mesh());
+}
+
+void check_all(const refine::SkinCheckReport& rep) {
+  INFO(rep.to_json());
+  CHECK(rep.mesh.closed);
+  CHECK(rep.mesh.edge_manifold);
+  CHECK(rep.mesh.vertex_manifold);
+  CHECK(rep.mesh.oriented);
+  CHECK(rep.num_inward_triangles == 0);
+  CHECK(rep.mesh.num_self_intersections == 0);
+  CHECK(rep.max_vertex_distance <= 1e-9);
+  CHECK(rep.num_L_violations == 0);
+  CHECK(rep.num_U_violations == 0);
+  CHECK(rep.num_rdt_violations == 0);
+  CHECK(rep.mesh.min_angle_deg >= 21.5);
+  CHECK(rep.topology_matches);
+  CHECK(rep.ok());
+}
+
+}  // namespace
+
+TEST_SUITE("refine") {
+
+TEST_CASE("refinement: a coarse icosphere (all triangles violate [U]) is refined to [L], [U], RDT") {
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh m = test::sphere(1);  // 80 triangles, edges ~0.6 R >> 2 C Q rho
+  for (Vec3& p : m.positions) p *= kRadius;
+  refine::RefineStats st;
+  const auto rep = refine_and_check(skin, m, &st);
+  check_all(rep);
+  CHECK(st.insertions > 0);
+  CHECK(st.L_left == 0);
+  CHECK(st.U_left == 0);
+  CHECK(rep.mesh.num_triangles > 80);
+}
+
+TEST_CASE("refinement: a fine icosphere (edges violate [L]) is coarsened by contraction") {
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh m = test::sphere(5);  // 20480 triangles, edges ~0.03 R << 2 (C/Q) rho
+  for (Vec3& p : m.positions) p *= kRadius;
+  refine::RefineStats st;
+  const auto rep = refine_and_check(skin, m, &st);
+  check_all(rep);
+  CHECK(st.contractions > 0);
+  CHECK(rep.mesh.num_triangles < 20480);
+}
+
+TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edges") {
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh m = test::sphere(3);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
+  // Move each vertex along the sphere by up to a third of an edge: many
+  // triangles become thin and many edges stop being Delaunay.
+  for (Vec3& p : m.positions) {
+    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
+    p = (p + 0.06 * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
+  }
+  {
+    const auto before = refine::check_skin_mesh(skin, m);
+    REQUIRE(before.mesh.min_angle_deg < 21.5);  // the test starts from a bad mesh
+    REQUIRE(before.num_rdt_violations > 0);
+  }
+  refine::RefineStats st;
+  const auto rep = refine_and_check(skin, m, &st);
+  check_all(rep);
+  CHECK(st.flips > 0);
+}
+
+}  // TEST_SUITE
