@@ -3,11 +3,10 @@
 // and of the dynamic skin algorithm), on the stand-ins for its molecules listed
 // in data/README.md. STYLE.md §3 "Benchmarks".
 //
-// *** PLACEHOLDER: NOTHING IS REGISTERED YET. ***
-// The sweep mesher (front/) does not exist yet. BM_SweepMesher below is written
-// against any callable `mesh(points) -> geometry::IndexedMesh`, so plugging
-// front::mesh_skin in is a matter of adding the registrations at the end of
-// this file. A benchmark that times nothing is deliberately not registered.
+// BM_SweepMesher/<molecule> times the whole pipeline from weighted points to
+// the refined mesh (skin, critical points and Morse–Smale complex, sweep,
+// local refinement), single thread; the verification runs once, outside the
+// timed loop. The dynamic-skin baseline is not implemented (README).
 #include <string>
 #include <vector>
 
@@ -15,7 +14,10 @@
 
 #include "bench/bench_common.h"
 #include "geometry/indexed_mesh.h"
+#include "front/sweep_mesher.h"
 #include "geometry/weighted_point.h"
+#include "morse/critical_points.h"
+#include "morse/morse_smale_complex.h"
 #include "refine/skin_mesh_check.h"
 #include "skin/skin_surface.h"
 
@@ -53,26 +55,23 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
   set_rate(state, "triangles_per_s", triangles);
 }
 
-// ---- Table 1 registrations: add when front/ provides the sweep mesher. ----
-// With a free function (or a namespace-scope lambda) adapting its signature,
-// e.g.
-//
-//   geometry::IndexedMesh sweep_mesh(const std::vector<geometry::WeightedPoint>& p) {
-//     return front::mesh_skin(p, front::MeshingOptions{});
-//   }
-//
-// register one benchmark per Table 1 stand-in (data/README.md), named
-// BM_SweepMesher/<molecule>:
-//
-//   BENCHMARK_CAPTURE(BM_SweepMesher, ligand_1hpv_amprenavir, sweep_mesh,
-//                     "ligand_1hpv_amprenavir.pdb")->Unit(benchmark::kMillisecond);
-//   BENCHMARK_CAPTURE(BM_SweepMesher, gramicidinA_1grm_model1, sweep_mesh,
-//                     "gramicidinA_1grm_model1.pdb")->Unit(benchmark::kMillisecond);
-//   BENCHMARK_CAPTURE(BM_SweepMesher, adna_3dna_fiber_30bp, sweep_mesh,
-//                     "adna_3dna_fiber_30bp.pdb")->Unit(benchmark::kMillisecond);
-//
-// (crambin_1crn and src_kinase_2src are not in the paper's table but make the
-// size ladder continuous.) The dynamic-skin baseline can reuse the same
-// template as BM_DynamicSkin/<molecule>.
+/// The pipeline the command line runs (skinmesh mesh, default options),
+/// from weighted points to the refined mesh.
+geometry::IndexedMesh sweep_mesher(const std::vector<geometry::WeightedPoint>& points) {
+  const skin::SkinSurface skin(points);
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  return front::sweep_mesh(skin, ms).mesh;
+}
+
+// Table 1 stand-ins (data/README.md), then crambin and the rest of the size ladder.
+BENCHMARK_CAPTURE(BM_SweepMesher, ligand_1hpv_amprenavir, sweep_mesher, "ligand_1hpv_amprenavir.pdb")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SweepMesher, gramicidinA_1grm_model1, sweep_mesher, "gramicidinA_1grm_model1.pdb")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SweepMesher, adna_3dna_fiber_30bp, sweep_mesher, "adna_3dna_fiber_30bp.pdb")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SweepMesher, crambin_1crn, sweep_mesher, "crambin_1crn.pdb")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SweepMesher, hivprotease_xk263_1hvr, sweep_mesher, "hivprotease_xk263_1hvr.pdb")
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace skinmesh::bench
