@@ -28,14 +28,16 @@ class UsageError : public std::runtime_error {
 /// Options that take a value; every other option is a flag.
 inline const std::set<std::string>& value_options() {
   static const std::set<std::string> s = {"--probe", "--format", "--direction", "-o",       "--stats",
-                                          "--C",     "--Q",      "--min-angle", "--dump-at"};
+                                          "--C",     "--Q",      "--min-angle", "--dump-at",
+                                          "--max-steps", "--dump-partial"};
   return s;
 }
 /// Flags (options without a value).
 inline const std::set<std::string>& flag_options() {
   static const std::set<std::string> s = {"--keep-water", "--no-hydrogens", "--quiet", "--json",
                                           "--help",       "-h",             "--no-check", "--force",
-                                          "--no-self-intersections",        "--no-rdt"};
+                                          "--no-self-intersections",        "--no-rdt",
+                                          "--paranoid",   "--trace"};
   return s;
 }
 

@@ -99,6 +99,12 @@ Options:
   --C C --Q Q        size constants (default 0.08, 1.65)
   --no-check         do not verify the mesh before writing it
   --force            write the mesh even if it fails its checks (the report says what failed)
+
+Debugging the sweep (papers/front/sweep_mesher.md):
+  --paranoid         check for folds after every operation of the sweep
+  --trace            print every decision of the sweep on stderr
+  --max-steps N      stop the sweep after N departures
+  --dump-partial F   write the partial mesh to F before the seal or when stopped
 )";
 
 // Shared Pipeline Pieces
@@ -283,6 +289,10 @@ int run_mesh(const cli::Args& args) {
   front::SweepOptions sopt;
   sopt.size.C = args.number("--C", sopt.size.C);
   sopt.size.Q = args.number("--Q", sopt.size.Q);
+  sopt.paranoid = args.flag("--paranoid");
+  if (args.flag("--trace")) sopt.trace = [](const std::string& line) { std::cerr << line << "\n"; };
+  sopt.max_steps = static_cast<long>(args.number("--max-steps", -1));
+  if (auto d = args.value("--dump-partial")) sopt.dump_path = *d;
   const front::SweepResult res = front::sweep_mesh(skin, ms, sopt);
   lap("sweep");
 

@@ -212,7 +212,16 @@ class Sweep {
   std::unique_ptr<geometry::PointGrid> vertex_grid_;  ///< every vertex, for the collision safety net
   double max_hold_radius_ = 0;
   long step_ = 0;
-  const bool trace_ = std::getenv("SKINMESH_TRACE") != nullptr;
+  const bool trace_ = static_cast<bool>(opt_.trace);
+  /// printf-style line to opt_.trace.
+  template <class... Args>
+  void tracef(const char* fmt, Args... args) const {
+    char buf[512];
+    std::snprintf(buf, sizeof buf, fmt, args...);
+    std::string line(buf);
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    opt_.trace(line);
+  }
   std::size_t vertex_budget_ = 0;
   SweepStats stats_;
 };
@@ -303,8 +312,8 @@ bool Sweep::fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, V
   const double tol = 1e-6;
   const double a = y_from == k.w ? 0.0 : ccw_angle(k.dw, tangent_dir(px, n, from), n);
   const double b = y_to == k.u ? k.angle : ccw_angle(k.dw, tangent_dir(px, n, to), n);
-  if (std::getenv("SKINMESH_TRACE"))
-    std::fprintf(stderr, "fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDeg,
+  if (trace_)
+    tracef( "fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDeg,
                  b / kDeg, k.angle / kDeg, y_from.idx(), y_to.idx(), k.w.idx(), k.u.idx());
   return a < b - tol && b <= k.angle + tol && k.angle > tol;
 }
@@ -324,8 +333,7 @@ double Sweep::fold_excess(Vertex v) const {
 }
 
 void Sweep::paranoid_check(std::size_t first_face, const char* op) {
-  static const bool on = std::getenv("SKINMESH_PARANOID") != nullptr;
-  if (!on) return;
+  if (!opt_.paranoid) return;
   for (std::size_t fi = first_face; fi < mesh_.faces_size(); ++fi) {
     const Face f(static_cast<Index>(fi));
     if (mesh_.is_deleted(f)) continue;
@@ -336,8 +344,7 @@ void Sweep::paranoid_check(std::size_t first_face, const char* op) {
         os << "paranoid: after " << op << " (faces " << first_face << ".." << mesh_.faces_size()
            << ") the mesh folds at vertex " << v.idx() << " (" << mesh_.position(v).transpose()
            << "): excess " << ex / kDeg << "°";
-        if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL"))
-          geometry::write_mesh(dump, mesh_.to_indexed_mesh());
+        if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
         throw TopologyError(os.str());
       }
     }
@@ -403,8 +410,8 @@ void Sweep::creep(Vertex v) {
     };
     bool bad_w = false, bad_u = false;
     test_fan(m, bad_w, bad_u);
-    if (std::getenv("SKINMESH_TRACE"))
-      std::fprintf(stderr, "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
+    if (trace_)
+      tracef( "creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
                    k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
     if (bad_w && wing(k.w, true)) continue;
     if (bad_u && wing(k.u, true)) continue;
@@ -445,7 +452,7 @@ void Sweep::creep(Vertex v) {
       // front without departing again; the hole around it is filled when the
       // fronts meet (small hole) or at the seal, and the final checks decide.
       if (trace_)
-        std::fprintf(stderr, "creep: v%u is stuck: its fan would fold over v%u (Figure 7)\n", v.idx(),
+        tracef("creep: v%u is stuck: its fan would fold over v%u (Figure 7)\n", v.idx(),
                      (bad_w ? k.w : k.u).idx());
       state_[v] = VState::Held;
       held_by_[v] = kInvalidIndex;
@@ -479,7 +486,7 @@ void Sweep::creep(Vertex v) {
     }
     if (hit.is_valid()) {
       ++stats_.collisions;
-      if (trace_) std::fprintf(stderr, "collision: fan of v%u reaches v%u\n", v.idx(), hit.idx());
+      if (trace_) tracef("collision: fan of v%u reaches v%u\n", v.idx(), hit.idx());
       if (state_[hit] == VState::Held && held_by_[hit] != kInvalidIndex) {
         hold(v, held_by_[hit]);
         return;
@@ -511,7 +518,7 @@ void Sweep::creep(Vertex v) {
 
 bool Sweep::wing(Vertex v, bool force) {
   const char* why = wing_refusal(v, force);
-  if (force && why && std::getenv("SKINMESH_TRACE")) std::fprintf(stderr, "wing v%u refused: %s\n", v.idx(), why);
+  if (force && why && trace_) tracef("wing v%u refused: %s\n", v.idx(), why);
   if (why) return false;
   const Corner k = corner(v);
   add_triangle(v, k.w, k.u);
@@ -662,7 +669,7 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
     const Corner kx = corner(x);
     const double ax = ccw_angle(kx.dw, tangent_dir(px, normal_[x], pv), normal_[x]);
     if (trace_)
-      std::fprintf(stderr, "contact candidate v%u for v%u: a %.1f of %.1f, ax %.1f of %.1f\n", x.idx(), v.idx(), a / kDeg,
+      tracef("contact candidate v%u for v%u: a %.1f of %.1f, ax %.1f of %.1f\n", x.idx(), v.idx(), a / kDeg,
                    k.angle / kDeg, ax / kDeg, kx.angle / kDeg);
     if (!(ax > margin && ax < kx.angle - margin)) return;
     const double d = (px - pv).norm();
@@ -712,7 +719,7 @@ bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
   }
   if (pick < 0) return false;
   if (trace_)
-    std::fprintf(stderr, "contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (mesh_.position(best) - pv).norm());
+    tracef("contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (mesh_.position(best) - pv).norm());
   bridge(cand[pick][0], cand[pick][1], kInvalidIndex, 1);
   ++stats_.contacts;
   return true;
@@ -742,7 +749,7 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
   // right rail b -> c, intermediate points pulled back onto the skin.
   const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(cv), pd = mesh_.position(d);
   if (trace_)
-    std::fprintf(stderr, "bridge saddle %d: a v%u b v%u c v%u d v%u rows %d\n", int(c), a.idx(), b.idx(), cv.idx(),
+    tracef("bridge saddle %d: a v%u b v%u c v%u d v%u rows %d\n", int(c), a.idx(), b.idx(), cv.idx(),
                  d.idx(), rows);
   std::vector<Vertex> L{a}, R{b};
   for (int j = 1; j < rows; ++j) {
@@ -999,7 +1006,7 @@ void Sweep::seal_loop(Halfedge start, int depth_left) {
     os << "seal: the hole of " << poly.size() << " vertices near (" << centre.transpose()
        << ") is not a simple polygon in any plane tried";
     if (depth_left > 0) {
-      if (trace_) std::fprintf(stderr, "%s: enlarging it\n", os.str().c_str());
+      if (trace_) tracef("%s: enlarging it\n", os.str().c_str());
       const Halfedge h = enlarge_hole(poly);
       if (h.is_valid()) {
         seal_loop(h, depth_left - 1);
@@ -1010,13 +1017,13 @@ void Sweep::seal_loop(Halfedge start, int depth_left) {
     throw TopologyError(os.str());
   }
   if (trace_) {
-    std::fprintf(stderr, "seal loop of %zu:", poly.size());
+    std::ostringstream os;
+    os << "seal loop of " << poly.size() << ":";
     for (Vertex x : poly) {
       const auto px = proj(x);
-      std::fprintf(stderr, " v%u[%.3f,%.3f|%.2f|ex %.1f|n.nbar %.3f]", x.idx(), px[0], px[1], corner(x).angle / kDeg,
-                   fold_excess(x) / kDeg, normal_[x].dot(n));
+      os << " v" << x.idx() << "[" << px[0] << "," << px[1] << "|hole " << corner(x).angle / kDeg << "]";
     }
-    std::fprintf(stderr, "\n");
+    opt_.trace(os.str());
   }
   // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
   // left turn with no other polygon vertex inside; take the best 3D angle.
@@ -1063,7 +1070,7 @@ void Sweep::seal_loop(Halfedge start, int depth_left) {
       throw TopologyError(os.str());
     }
     const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
-    if (trace_) std::fprintf(stderr, "  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
+    if (trace_) tracef("  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
     add_triangle(v, w, u);
     state_[v] = VState::Interior;
     poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
@@ -1093,14 +1100,13 @@ SweepResult Sweep::run() {
     if (ms_.live[c] && ms_.critical[c].kind == CriticalKind::Minimum) creation(static_cast<Index>(c));
 
   // Creeping triangles.
-  const char* max_steps_env = std::getenv("SKINMESH_MAX_STEPS");
-  const long max_steps = max_steps_env ? std::atol(max_steps_env) : -1;
+  const long max_steps = opt_.max_steps;
   long steps = 0;
   for (;;) {
   while (!queue_.empty()) {
     if (max_steps >= 0 && steps++ >= max_steps) {
-      if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL")) geometry::write_mesh(dump, mesh_.to_indexed_mesh());
-      throw TopologyError("stopped after SKINMESH_MAX_STEPS steps");
+      if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
+      throw TopologyError("stopped after max_steps departures");
     }
     const QueueEntry top = queue_.top();
     queue_.pop();
@@ -1135,10 +1141,7 @@ SweepResult Sweep::run() {
   if (!release_saddles()) break;
   }
 
-  if (const char* dump = std::getenv("SKINMESH_DUMP_BEFORE_SEAL")) {
-    geometry::IndexedMesh m = mesh_.to_indexed_mesh();
-    geometry::write_mesh(dump, m);
-  }
+  if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
   seal_all();
 
   if (opt_.refine) {

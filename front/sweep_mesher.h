@@ -31,6 +31,20 @@ struct SweepOptions {
   bool refine = true;
   /// Called now and then with a stage name and the fraction done (0..1).
   std::function<void(const std::string& stage, double fraction)> progress;
+
+  // Debugging aids (papers/front/sweep_mesher.md, "Debugging aids").
+  /// After every operation, check that the tangent angles around the vertices
+  /// of the new triangles make 360° (no fold); throw TopologyError naming the
+  /// operation otherwise.
+  bool paranoid = false;
+  /// Called with one line per decision of the sweep (creep, wing refusals,
+  /// contacts, bridges, seals); empty: no trace.
+  std::function<void(const std::string& line)> trace;
+  /// Stop with TopologyError after this many departures (negative: no limit).
+  long max_steps = -1;
+  /// If not empty, the partial mesh is written here before the seal, when a
+  /// paranoid check fails, and when max_steps stops the sweep.
+  std::string dump_path;
 };
 
 /// Counters of the sweep (Algorithm 1's operations and the refinement).
