@@ -19,6 +19,7 @@
 
 #include "geometry/assert.h"
 #include "geometry/errors.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/mesh_io.h"
 #include "geometry/point_grid.h"
 #include "geometry/predicates.h"
@@ -30,6 +31,7 @@ using geometry::Face;
 using geometry::Halfedge;
 using geometry::SurfaceMesh;
 using geometry::Vertex;
+using geometry::min_angle;
 using morse::CriticalKind;
 
 namespace {
@@ -58,15 +60,6 @@ double ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
 /// Rotates tangent vector a about unit axis n by angle t.
 Vec3 rotate(const Vec3& a, const Vec3& n, double t) {
   return std::cos(t) * a + std::sin(t) * n.cross(a) + (1 - std::cos(t)) * n.dot(a) * n;
-}
-
-/// The smallest angle (radians) of triangle abc.
-double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
 }
 
 // Sweep Definition
@@ -111,6 +104,9 @@ class Sweep {
   double disc_radius(Vertex v) const { return opt_.disc_factor * rho_[v]; }
   Vec3 project_tangent(Vertex v, const Vec3& dir, double r);
   Index hold_region(Vertex v) const;
+  /// The critical point holding x, or kInvalidIndex (x free, interior, or
+  /// stuck: held by no critical point).
+  Index holder_of(Vertex x) const { return state_[x] == VState::Held ? held_by_[x] : kInvalidIndex; }
   /// Marks v held by critical point c; a saddle is bridged when it is ready.
   void hold(Vertex v, Index c);
 
@@ -162,6 +158,11 @@ class Sweep {
   /// Joins v's front to front vertex x by one ladder row, if one of the two
   /// quads (v->w with x_u->x, u->v with x->x_w) is convex and fits.
   bool contact_with(Vertex v, const Corner& k, Vertex x);
+  /// True if the quad a b c d (two front edges a->b, c->d joined by a
+  /// bridge row) is convex and counter-clockwise in the plane through
+  /// `origin` with normal `normal`, and its triangles fit the hole wedges at
+  /// its four corners (sweep-design-notes Q6.2).
+  bool quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin, const Vec3& normal) const;
   /// True if a new triangle at front vertex x spanning counter-clockwise (in
   /// T_x) from the direction of y_from to that of y_to lies inside x's hole
   /// wedge, so that it cannot fold over the triangles already at x.
@@ -420,11 +421,11 @@ void Sweep::creep(Vertex v) {
     if (bad_u && u2 != k.w && wing(u2, true)) continue;
     // A fan that would fold over a held neighbour: v joins the hold (it is at
     // the rim of the hold region; the bridge or seal will take care of it).
-    const Vertex held_nb = bad_w && state_[k.w] == VState::Held   ? k.w
-                           : bad_u && state_[k.u] == VState::Held ? k.u
-                                                                   : Vertex();
-    if (held_nb.is_valid() && held_by_[held_nb] != kInvalidIndex) {
-      hold(v, held_by_[held_nb]);
+    const Index holder = bad_w && holder_of(k.w) != kInvalidIndex ? holder_of(k.w)
+                         : bad_u                                  ? holder_of(k.u)
+                                                                  : kInvalidIndex;
+    if (holder != kInvalidIndex) {
+      hold(v, holder);
       return;
     }
     if ((bad_w || bad_u) && deferrals_[v] >= kMaxDeferrals) {
@@ -487,8 +488,8 @@ void Sweep::creep(Vertex v) {
     if (hit.is_valid()) {
       ++stats_.collisions;
       if (trace_) tracef("collision: fan of v%u reaches v%u\n", v.idx(), hit.idx());
-      if (state_[hit] == VState::Held && held_by_[hit] != kInvalidIndex) {
-        hold(v, held_by_[hit]);
+      if (holder_of(hit) != kInvalidIndex) {
+        hold(v, holder_of(hit));
         return;
       }
       if (mesh_.is_boundary(hit) && contact_with(v, k, hit)) return;
@@ -608,23 +609,7 @@ bool Sweep::try_bridge(Index c) {
       if (dist >= best) continue;
       // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
       // enter the hole wedges at a, b, c, d (sweep-design-notes Q6.2).
-      {
-        const Vec3 ns = cp.sigma * e_;
-        const Vec3 t1 = ns.unitOrthogonal(), t2 = ns.cross(t1);
-        auto q = [&](Vertex x) {
-          const Vec3 d = mesh_.position(x) - cp.position;
-          return std::array<double, 2>{d.dot(t1), d.dot(t2)};
-        };
-        const std::array<double, 2> P[4] = {q(a), q(b), q(cc), q(d)};
-        bool convex = true;
-        for (int i = 0; i < 4 && convex; ++i)
-          convex = geometry::orient2d(P[i][0], P[i][1], P[(i + 1) % 4][0], P[(i + 1) % 4][1], P[(i + 2) % 4][0],
-                                      P[(i + 2) % 4][1]) == Sign::Positive;
-        if (!convex) continue;
-        // Counter-clockwise quad a b c d: at a the ladder spans from b to d, at b
-        // from c to a, at c from d to b, at d from a to c.
-        if (!fits_at(a, b, d) || !fits_at(b, cc, a) || !fits_at(cc, d, b) || !fits_at(d, a, cc)) continue;
-      }
+      if (!quad_fits(a, b, cc, d, cp.position, cp.sigma * e_)) continue;
       bool same = false;
       const bool leaves1 = path_leaves(b, cc, same);
       if (same) {
@@ -676,11 +661,28 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
     if (d < best_d) best_d = d, best = x;
   });
   if (!best.is_valid()) return false;
-  if (state_[best] == VState::Held && held_by_[best] != kInvalidIndex) {
-    hold(v, held_by_[best]);
+  if (holder_of(best) != kInvalidIndex) {
+    hold(v, holder_of(best));
     return true;
   }
   return contact_with(v, k, best);
+}
+
+bool Sweep::quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin, const Vec3& normal) const {
+  const Vec3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+  std::array<std::array<double, 2>, 4> P;
+  const Vertex q[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 dd = mesh_.position(q[i]) - origin;
+    P[i] = {dd.dot(t1), dd.dot(t2)};
+  }
+  for (int i = 0; i < 4; ++i)
+    if (geometry::orient2d(P[i][0], P[i][1], P[(i + 1) % 4][0], P[(i + 1) % 4][1], P[(i + 2) % 4][0],
+                           P[(i + 2) % 4][1]) != Sign::Positive)
+      return false;
+  // Counter-clockwise quad a b c d: at a the new triangles span from b to d,
+  // at b from c to a, at c from d to b, at d from a to c.
+  return fits_at(a, b, d) && fits_at(b, c, a) && fits_at(c, d, b) && fits_at(d, a, c);
 }
 
 bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
@@ -690,7 +692,6 @@ bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
   // the better minimum angle.
   const Halfedge xo = mesh_.halfedge(best);
   const Halfedge cand[2][2] = {{k.out, mesh_.prev(xo)}, {k.in, xo}};
-  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   double best_q = -1;
   int pick = -1;
   for (int o = 0; o < 2; ++o) {
@@ -700,18 +701,7 @@ bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
     if (mesh_.find_halfedge(b, c).is_valid() || mesh_.find_halfedge(d, a).is_valid() ||
         mesh_.find_halfedge(a, c).is_valid() || mesh_.find_halfedge(b, d).is_valid())
       continue;
-    std::array<std::array<double, 2>, 4> P;
-    const Vertex q[4] = {a, b, c, d};
-    for (int i = 0; i < 4; ++i) {
-      const Vec3 dd = mesh_.position(q[i]) - pv;
-      P[i] = {dd.dot(t1), dd.dot(t2)};
-    }
-    bool convex = true;
-    for (int i = 0; i < 4 && convex; ++i)
-      convex = geometry::orient2d(P[i][0], P[i][1], P[(i + 1) % 4][0], P[(i + 1) % 4][1], P[(i + 2) % 4][0],
-                                  P[(i + 2) % 4][1]) == Sign::Positive;
-    if (!convex) continue;
-    if (!fits_at(a, b, d) || !fits_at(b, c, a) || !fits_at(c, d, b) || !fits_at(d, a, c)) continue;
+    if (!quad_fits(a, b, c, d, pv, n)) continue;
     const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(c), pd = mesh_.position(d);
     const double qual = std::max(std::min(min_angle(pa, pb, pc), min_angle(pc, pd, pa)),
                                  std::min(min_angle(pa, pb, pd), min_angle(pb, pc, pd)));
@@ -897,47 +887,41 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
 }
 
 Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
-  std::vector<Face> faces;
-  for (Vertex v : poly)
-    for (Face f : mesh_.faces(v))
-      if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
-  std::vector<Vertex> corners;
-  for (Face f : faces)
-    for (Vertex x : mesh_.vertices(f)) corners.push_back(x);
-  for (Face f : faces) mesh_.delete_face(f);
+  std::vector<Vertex> rim;  // surviving corners of the deleted faces
+  // Deletes every face around the vertices `around`; their corners that keep
+  // a face join the rim.
+  auto delete_faces_around = [&](const std::vector<Vertex>& around) {
+    std::vector<Face> faces;
+    for (Vertex v : around)
+      for (Face f : mesh_.faces(v))
+        if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+    std::vector<Vertex> corners;
+    for (Face f : faces)
+      for (Vertex x : mesh_.vertices(f)) corners.push_back(x);
+    for (Face f : faces) mesh_.delete_face(f);
+    for (Vertex x : corners)
+      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
+  };
+  auto gaps = [&](Vertex x) {
+    int n = 0;
+    for (Halfedge h : mesh_.halfedges(x)) n += mesh_.is_boundary(h);
+    return n;
+  };
+  delete_faces_around(poly);
   ++stats_.enlarged_holes;
-  // The new rim: the surviving corners of the deleted faces.
-  Halfedge start;
-  std::vector<Vertex> rim;
-  for (Vertex x : corners)
-    if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
   // A pinched vertex (two boundary gaps) cannot be handled by the front:
   // delete its remaining faces too, a few times at most.
   for (int round = 0; round < 4; ++round) {
     std::vector<Vertex> pinched;
-    for (Vertex x : rim) {
-      if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
-      int gaps = 0;
-      for (Halfedge h : mesh_.halfedges(x)) gaps += mesh_.is_boundary(h);
-      if (gaps > 1) pinched.push_back(x);
-    }
+    for (Vertex x : rim)
+      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x) && gaps(x) > 1) pinched.push_back(x);
     if (pinched.empty()) break;
-    std::vector<Face> more;
-    for (Vertex x : pinched)
-      for (Face f : mesh_.faces(x))
-        if (std::find(more.begin(), more.end(), f) == more.end()) more.push_back(f);
-    std::vector<Vertex> more_corners;
-    for (Face f : more)
-      for (Vertex x : mesh_.vertices(f)) more_corners.push_back(x);
-    for (Face f : more) mesh_.delete_face(f);
-    for (Vertex x : more_corners)
-      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
+    delete_faces_around(pinched);
   }
+  Halfedge start;
   for (Vertex x : rim) {
     if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
-    int gaps = 0;
-    for (Halfedge h : mesh_.halfedges(x)) gaps += mesh_.is_boundary(h);
-    if (gaps != 1) return Halfedge();
+    if (gaps(x) != 1) return Halfedge();
     state_[x] = VState::Front;
     start = mesh_.halfedge(x);
   }

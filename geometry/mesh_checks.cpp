@@ -51,12 +51,6 @@ class UnionFind {
 
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
-// Angle (radians) at a between b - a and c - a; 0 if an edge has zero length.
-double corner_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 u = b - a, w = c - a;
-  return std::atan2(u.cross(w).norm(), u.dot(w));
-}
-
 // Sort (key, value) pairs by key with an LSD radix sort on the low `bits` bits
 // of the keys (stable; 11-bit digits). O(n bits / 11).
 void radix_sort(std::vector<std::pair<std::uint64_t, Index>>& a, int bits) {

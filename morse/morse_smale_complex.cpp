@@ -136,12 +136,26 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // Pairs closer than this fraction of rho_s + rho_x are cancelled even
   // without a traced arc between them (a step of a traced line is 0.04 rho).
   constexpr double kCoincident = 0.01;
+  struct Cand {
+    double d;
+    Index s, x;
+  };
+  // Coincident pairs: a saddle and an extremum closer than a small fraction
+  // of rho are one degenerate (birth-death) critical point for the sweep,
+  // whatever the traced lines say: the first step of a line from the saddle
+  // jumps over the extremum, so no arc joins them. Positions do not change,
+  // so they are found once; liveness is checked when they are used.
+  std::vector<Cand> coincident;
+  for (Index s = 0; s < n; ++s) {
+    if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
+    for (Index x = 0; x < n; ++x) {
+      if (x == s || !ms.live[x] || ms.critical[x].kind == CriticalKind::Saddle) continue;
+      const double d = (ms.critical[s].position - ms.critical[x].position).norm();
+      if (d < kCoincident * (ms.critical[s].rho + ms.critical[x].rho)) coincident.push_back({d, s, x});
+    }
+  }
   for (bool changed = true; changed;) {
     changed = false;
-    struct Cand {
-      double d;
-      Index s, x;
-    };
     std::vector<Cand> cands;
     for (Index s = 0; s < n; ++s) {
       if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
@@ -151,18 +165,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
         cands.push_back({(ms.critical[s].position - ms.critical[x].position).norm(), s, x});
       }
     }
-    // Coincident pairs: a saddle and an extremum closer than a small fraction
-    // of rho are one degenerate (birth-death) critical point for the sweep,
-    // whatever the traced lines say: the first step of a line from the
-    // saddle jumps over the extremum, so no arc joins them.
-    for (Index s = 0; s < n; ++s) {
-      if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
-      for (Index x = 0; x < n; ++x) {
-        if (x == s || !ms.live[x] || ms.critical[x].kind == CriticalKind::Saddle) continue;
-        const double d = (ms.critical[s].position - ms.critical[x].position).norm();
-        if (d < kCoincident * (ms.critical[s].rho + ms.critical[x].rho)) cands.push_back({d, s, x});
-      }
-    }
+    cands.insert(cands.end(), coincident.begin(), coincident.end());
     std::sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.d < b.d; });
     for (const Cand& cd : cands) {
       if (!ms.live[cd.s] || !ms.live[cd.x]) continue;

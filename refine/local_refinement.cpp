@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/mesh_checks.h"
 #include "refine/restricted_delaunay.h"
 
 namespace skinmesh::refine {
@@ -16,17 +17,9 @@ using geometry::Face;
 using geometry::Halfedge;
 using geometry::SurfaceMesh;
 using geometry::Vertex;
+using geometry::min_angle;
 
 namespace {
-
-/// The smallest angle (radians) of triangle abc.
-double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
-}
 
 class Refiner {
  public:

@@ -11,6 +11,7 @@
 #include "morse/critical_points.h"
 #include "refine/skin_mesh_check.h"
 #include "skin/molecule_io.h"
+#include "tests/refine/check_expectations.h"
 
 using namespace skinmesh;
 
@@ -25,20 +26,7 @@ void mesh_and_check(const std::string& path, double probe = 1.4) {
   const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
   const auto res = front::sweep_mesh(skin, ms);
   const auto rep = refine::check_skin_mesh(skin, res.mesh);
-  INFO(rep.to_json());
-  CHECK(rep.mesh.closed);
-  CHECK(rep.mesh.edge_manifold);
-  CHECK(rep.mesh.vertex_manifold);
-  CHECK(rep.mesh.oriented);
-  CHECK(rep.num_inward_triangles == 0);
-  CHECK(rep.mesh.num_self_intersections == 0);
-  CHECK(rep.max_vertex_distance <= 1e-9);
-  CHECK(rep.topology_matches);
-  CHECK(rep.mesh.min_angle_deg >= 21.5);
-  CHECK(rep.num_L_violations == 0);
-  CHECK(rep.num_U_violations == 0);
-  CHECK(rep.num_rdt_violations == 0);
-  CHECK(rep.ok());
+  test::check_every_property(rep);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "front/sweep_mesher.h"
 #include "morse/critical_points.h"
 #include "refine/skin_mesh_check.h"
+#include "tests/refine/check_expectations.h"
 #include "tests/skin/skin_test_util.h"
 
 using namespace skinmesh;
@@ -61,15 +62,7 @@ TEST_CASE("sweep without refinement: closed, oriented, embedded meshes of the ex
     INFO(c.name);
     front::SweepStats st;
     const auto rep = sweep_and_check(c.pts, &st, /*refine=*/false);
-    INFO(rep.to_json());
-    CHECK(rep.mesh.closed);
-    CHECK(rep.mesh.edge_manifold);
-    CHECK(rep.mesh.vertex_manifold);
-    CHECK(rep.mesh.oriented);
-    CHECK(rep.num_inward_triangles == 0);
-    CHECK(rep.mesh.num_self_intersections == 0);
-    CHECK(rep.max_vertex_distance <= 1e-9);
-    CHECK(rep.topology_matches);
+    test::check_embedded_skin_mesh(rep);
     std::int64_t chi = 0;
     for (auto e : rep.component_euler) chi += e;
     CHECK(chi == c.expected_chi);
@@ -89,18 +82,7 @@ TEST_CASE("sweep + refinement: every check passes, for several height directions
       INFO("direction " << d.transpose());
       front::SweepStats st;
       const auto rep = sweep_and_check(c.pts, &st, /*refine=*/true, d);
-      INFO(rep.to_json());
-      CHECK(rep.mesh.closed);
-      CHECK(rep.mesh.oriented);
-      CHECK(rep.mesh.num_self_intersections == 0);
-      CHECK(rep.num_inward_triangles == 0);
-      CHECK(rep.max_vertex_distance <= 1e-9);
-      CHECK(rep.topology_matches);
-      CHECK(rep.num_L_violations == 0);
-      CHECK(rep.num_U_violations == 0);
-      CHECK(rep.num_rdt_violations == 0);
-      CHECK(rep.mesh.min_angle_deg >= 21.5);
-      CHECK(rep.ok());
+      test::check_every_property(rep);
       CHECK(st.L_left == 0);
       CHECK(st.U_left == 0);
     }

@@ -11,6 +11,7 @@
 #include "refine/local_refinement.h"
 #include "refine/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
+#include "tests/refine/check_expectations.h"
 
 using namespace skinmesh;
 
@@ -29,23 +30,6 @@ refine::SkinCheckReport refine_and_check(const skin::SkinSurface& skin, const ge
   return refine::check_skin_mesh(skin, mesh.to_indexed_mesh());
 }
 
-void check_all(const refine::SkinCheckReport& rep) {
-  INFO(rep.to_json());
-  CHECK(rep.mesh.closed);
-  CHECK(rep.mesh.edge_manifold);
-  CHECK(rep.mesh.vertex_manifold);
-  CHECK(rep.mesh.oriented);
-  CHECK(rep.num_inward_triangles == 0);
-  CHECK(rep.mesh.num_self_intersections == 0);
-  CHECK(rep.max_vertex_distance <= 1e-9);
-  CHECK(rep.num_L_violations == 0);
-  CHECK(rep.num_U_violations == 0);
-  CHECK(rep.num_rdt_violations == 0);
-  CHECK(rep.mesh.min_angle_deg >= 21.5);
-  CHECK(rep.topology_matches);
-  CHECK(rep.ok());
-}
-
 }  // namespace
 
 TEST_SUITE("refine") {
@@ -56,7 +40,7 @@ TEST_CASE("refinement: a coarse icosphere (all triangles violate [U]) is refined
   for (Vec3& p : m.positions) p *= kRadius;
   refine::RefineStats st;
   const auto rep = refine_and_check(skin, m, &st);
-  check_all(rep);
+  test::check_every_property(rep);
   CHECK(st.insertions > 0);
   CHECK(st.L_left == 0);
   CHECK(st.U_left == 0);
@@ -69,7 +53,7 @@ TEST_CASE("refinement: a fine icosphere (edges violate [L]) is coarsened by cont
   for (Vec3& p : m.positions) p *= kRadius;
   refine::RefineStats st;
   const auto rep = refine_and_check(skin, m, &st);
-  check_all(rep);
+  test::check_every_property(rep);
   CHECK(st.contractions > 0);
   CHECK(rep.mesh.num_triangles < 20480);
 }
@@ -92,7 +76,7 @@ TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edge
   }
   refine::RefineStats st;
   const auto rep = refine_and_check(skin, m, &st);
-  check_all(rep);
+  test::check_every_property(rep);
   CHECK(st.flips > 0);
 }
 
