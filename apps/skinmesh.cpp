@@ -18,7 +18,7 @@
 
 #include "apps/cli.h"
 #include "geometry/errors.h"
-#include "front/sweep_mesher.h"
+#include "front/pipeline.h"
 #include "geometry/mesh_io.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
@@ -135,13 +135,6 @@ skin::Molecule load_molecule(const cli::Args& args, const std::string& path) {
   return mol;
 }
 
-std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& mol, double probe) {
-  std::vector<geometry::WeightedPoint> pts;
-  pts.reserve(mol.atoms.size());
-  for (const skin::Atom& a : mol.atoms) pts.push_back({a.centre, skin::atom_weight(a.radius, probe)});
-  return pts;
-}
-
 double probe_radius(const cli::Args& args) {
   const double p = args.number("--probe", 1.4);
   if (!(p >= 0)) throw cli::UsageError("--probe must be >= 0");
@@ -167,7 +160,7 @@ int run_info(const cli::Args& args) {
   const std::string in = args.positional(0);
   const skin::Molecule mol = load_molecule(args, in);
   const double probe = probe_radius(args);
-  const skin::SkinSurface skin(weighted_points(mol, probe));
+  const skin::SkinSurface skin(skin::weighted_points(mol, probe));
   const auto& rt = skin.triangulation();
   const auto& mc = skin.mixed_complex();
   const skin::SkinTopology topo = skin::dual_complex_topology(mc);
@@ -231,7 +224,7 @@ int run_check(const cli::Args& args) {
   args.expect_positional(2, "skinmesh check IN MESH");
   const skin::Molecule mol = load_molecule(args, args.positional(0));
   const geometry::IndexedMesh mesh = geometry::read_mesh(args.positional(1));
-  const skin::SkinSurface skin(weighted_points(mol, probe_radius(args)));
+  const skin::SkinSurface skin(skin::weighted_points(mol, probe_radius(args)));
   refine::SkinCheckOptions opt;
   opt.size.C = args.number("--C", opt.size.C);
   opt.size.Q = args.number("--Q", opt.size.Q);
@@ -275,36 +268,22 @@ int run_mesh(const cli::Args& args) {
 
   const skin::Molecule mol = load_molecule(args, args.positional(0));
   lap("read");
-  const double probe = probe_radius(args);
-  const skin::SkinSurface skin(weighted_points(mol, probe));
-  lap("skin");
-  const Vec3 e = height_direction(args);
-  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, e);
-  const skin::SkinTopology topo = skin::dual_complex_topology(skin.mixed_complex());
-  const morse::MorseCount mc = morse::count_critical_points(ms.critical);
-  if (mc.euler() != topo.euler_skin())
-    throw TopologyError("Morse count " + std::to_string(mc.euler()) +
-                        " differs from the expected Euler characteristic " + std::to_string(topo.euler_skin()));
-  lap("morse");
-  front::SweepOptions sopt;
-  sopt.size.C = args.number("--C", sopt.size.C);
-  sopt.size.Q = args.number("--Q", sopt.size.Q);
-  sopt.paranoid = args.flag("--paranoid");
-  if (args.flag("--trace")) sopt.trace = [](const std::string& line) { std::cerr << line << "\n"; };
-  sopt.max_steps = static_cast<long>(args.number("--max-steps", -1));
-  if (auto d = args.value("--dump-partial")) sopt.dump_path = *d;
-  const front::SweepResult res = front::sweep_mesh(skin, ms, sopt);
-  lap("sweep");
-
-  refine::SkinCheckReport rep;
-  const bool checked = !args.flag("--no-check");
-  if (checked) {
-    refine::SkinCheckOptions copt;
-    copt.size = sopt.size;
-    rep = refine::check_skin_mesh(skin, res.mesh, copt);
-    lap("check");
-  }
-  const bool failed = checked && !rep.ok();
+  MeshOptions mopt;
+  mopt.probe_radius = probe_radius(args);
+  mopt.height_direction = height_direction(args);
+  mopt.size.C = args.number("--C", mopt.size.C);
+  mopt.size.Q = args.number("--Q", mopt.size.Q);
+  mopt.sweep.paranoid = args.flag("--paranoid");
+  if (args.flag("--trace")) mopt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
+  mopt.sweep.max_steps = static_cast<long>(args.number("--max-steps", -1));
+  if (auto d = args.value("--dump-partial")) mopt.sweep.dump_path = *d;
+  mopt.check = !args.flag("--no-check");
+  const MeshResult res = mesh_skin(mol, mopt);
+  seconds.insert(seconds.end(), res.seconds.begin(), res.seconds.end());
+  t0 = Clock::now();
+  const bool checked = res.checked;
+  const refine::SkinCheckReport& rep = res.check;
+  const bool failed = !res.ok();
   if (failed && !args.flag("--force")) {
     for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
     std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
@@ -322,14 +301,14 @@ int run_mesh(const cli::Args& args) {
   if (checked)
     js << ",\n  \"min_angle_deg\": " << rep.mesh.min_angle_deg << ",\n  \"max_angle_deg\": "
        << rep.mesh.max_angle_deg << ",\n  \"checks_passed\": " << (rep.ok() ? "true" : "false");
-  js << ",\n  \"operations\": {\"creations\": " << res.stats.creations << ", \"creeps\": " << res.stats.creeps
-     << ", \"wings\": " << res.stats.wings << ", \"bridges\": " << res.stats.bridges
-     << ", \"seals\": " << res.stats.seals << ", \"held\": " << res.stats.held
-     << ", \"deferred\": " << res.stats.deferred << ", \"bridge_rows\": " << res.stats.bridge_rows
-     << ", \"contacts\": " << res.stats.contacts << ", \"released_saddles\": " << res.stats.released
-     << ", \"flips\": " << res.stats.flips << ", \"contractions\": " << res.stats.contractions
-     << ", \"insertions\": " << res.stats.insertions << ", \"refine_rounds\": " << res.stats.refine_rounds
-     << ", \"L_left\": " << res.stats.L_left << ", \"U_left\": " << res.stats.U_left << "}";
+  js << ",\n  \"operations\": {\"creations\": " << res.sweep.creations << ", \"creeps\": " << res.sweep.creeps
+     << ", \"wings\": " << res.sweep.wings << ", \"bridges\": " << res.sweep.bridges
+     << ", \"seals\": " << res.sweep.seals << ", \"held\": " << res.sweep.held
+     << ", \"deferred\": " << res.sweep.deferred << ", \"bridge_rows\": " << res.sweep.bridge_rows
+     << ", \"contacts\": " << res.sweep.contacts << ", \"released_saddles\": " << res.sweep.released
+     << ", \"flips\": " << res.refinement.flips << ", \"contractions\": " << res.refinement.contractions
+     << ", \"insertions\": " << res.refinement.insertions << ", \"refine_rounds\": " << res.refinement.rounds
+     << ", \"L_left\": " << res.refinement.L_left << ", \"U_left\": " << res.refinement.U_left << "}";
   js << ",\n  \"seconds\": {";
   for (std::size_t i = 0; i < seconds.size(); ++i)
     js << (i ? ", " : "") << "\"" << seconds[i].first << "\": " << seconds[i].second;

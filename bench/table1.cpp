@@ -14,10 +14,8 @@
 
 #include "bench/bench_common.h"
 #include "geometry/indexed_mesh.h"
-#include "front/sweep_mesher.h"
+#include "front/pipeline.h"
 #include "geometry/weighted_point.h"
-#include "morse/critical_points.h"
-#include "morse/morse_smale_complex.h"
 #include "refine/skin_mesh_check.h"
 #include "skin/skin_surface.h"
 
@@ -58,9 +56,9 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
 /// The pipeline the command line runs (skinmesh mesh, default options),
 /// from weighted points to the refined mesh.
 geometry::IndexedMesh sweep_mesher(const std::vector<geometry::WeightedPoint>& points) {
-  const skin::SkinSurface skin(points);
-  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
-  return front::sweep_mesh(skin, ms).mesh;
+  MeshOptions options;
+  options.check = false;  // verified once, outside the timed loop
+  return mesh_skin(points, options).mesh;
 }
 
 // Table 1 stand-ins (data/README.md), then crambin and the rest of the size ladder.

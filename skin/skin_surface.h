@@ -13,6 +13,7 @@
 #include "geometry/types.h"
 #include "geometry/weighted_point.h"
 #include "skin/mixed_complex.h"
+#include "skin/molecule.h"
 
 namespace skinmesh::skin {
 
@@ -22,6 +23,15 @@ namespace skinmesh::skin {
 /// "weight is sqrt 2 times the sum" is dimensionally a radius). Pre: r + p > 0.
 inline double atom_weight(double radius, double probe) {
   return 2.0 * (radius + probe) * (radius + probe);
+}
+
+/// The weighted points of a molecule: centre = atom centre (Å), weight =
+/// atom_weight(radius, probe) (Å²), in atom order. Pre: probe >= 0.
+inline std::vector<geometry::WeightedPoint> weighted_points(const Molecule& molecule, double probe) {
+  std::vector<geometry::WeightedPoint> points;
+  points.reserve(molecule.atoms.size());
+  for (const Atom& a : molecule.atoms) points.push_back({a.centre, atom_weight(a.radius, probe)});
+  return points;
 }
 
 /// Value of the skin function and its derivatives at a point.

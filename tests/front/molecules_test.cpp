@@ -7,9 +7,7 @@
 
 #include <string>
 
-#include "front/sweep_mesher.h"
-#include "morse/critical_points.h"
-#include "refine/skin_mesh_check.h"
+#include "front/pipeline.h"
 #include "skin/molecule_io.h"
 #include "tests/refine/check_expectations.h"
 
@@ -19,14 +17,11 @@ namespace {
 
 void mesh_and_check(const std::string& path, double probe = 1.4) {
   INFO(path);
-  const skin::Molecule mol = skin::read_molecule(path);
-  std::vector<geometry::WeightedPoint> pts;
-  for (const auto& a : mol.atoms) pts.push_back({a.centre, skin::atom_weight(a.radius, probe)});
-  const skin::SkinSurface skin(pts);
-  const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
-  const auto res = front::sweep_mesh(skin, ms);
-  const auto rep = refine::check_skin_mesh(skin, res.mesh);
-  test::check_every_property(rep);
+  MeshOptions options;
+  options.probe_radius = probe;
+  const MeshResult res = mesh_skin(skin::read_molecule(path), options);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
 }
 
 }  // namespace

@@ -9,9 +9,7 @@
 
 #include <cmath>
 
-#include "front/sweep_mesher.h"
-#include "morse/critical_points.h"
-#include "refine/skin_mesh_check.h"
+#include "front/pipeline.h"
 #include "tests/refine/check_expectations.h"
 #include "tests/skin/skin_test_util.h"
 
@@ -19,17 +17,13 @@ using namespace skinmesh;
 
 namespace {
 
-refine::SkinCheckReport sweep_and_check(const std::vector<geometry::WeightedPoint>& pts, front::SweepStats* stats,
-                                        bool refine = true, Vec3 direction = morse::default_height_direction()) {
-  skin::SkinSurface skin(pts);
-  const auto ms = morse::build_morse_smale_complex(skin, direction.normalized());
-  front::SweepOptions so;
-  so.refine = refine;
-  const auto res = front::sweep_mesh(skin, ms, so);
-  if (stats) *stats = res.stats;
-  refine::SkinCheckOptions opt;
-  opt.check_restricted_delaunay = refine;
-  return refine::check_skin_mesh(skin, res.mesh, opt);
+MeshResult sweep_and_check(const std::vector<geometry::WeightedPoint>& pts, bool refine = true,
+                           Vec3 direction = morse::default_height_direction()) {
+  MeshOptions options;
+  options.height_direction = direction.normalized();
+  options.refine = refine;
+  options.checks.check_restricted_delaunay = refine;
+  return mesh_skin(pts, options);
 }
 
 double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
@@ -60,8 +54,9 @@ TEST_SUITE("front") {
 TEST_CASE("sweep without refinement: closed, oriented, embedded meshes of the expected topology") {
   for (const Case& c : cases()) {
     INFO(c.name);
-    front::SweepStats st;
-    const auto rep = sweep_and_check(c.pts, &st, /*refine=*/false);
+    const MeshResult res = sweep_and_check(c.pts, /*refine=*/false);
+    const refine::SkinCheckReport& rep = res.check;
+    const front::SweepStats& st = res.sweep;
     test::check_embedded_skin_mesh(rep);
     std::int64_t chi = 0;
     for (auto e : rep.component_euler) chi += e;
@@ -69,7 +64,7 @@ TEST_CASE("sweep without refinement: closed, oriented, embedded meshes of the ex
     if (c.expect_bridges) CHECK(st.bridges > 0);
     CHECK(st.creations > 0);
     CHECK(st.seals > 0);
-    CHECK(st.flips == 0);
+    CHECK(res.refinement.flips == 0);
   }
 }
 
@@ -80,11 +75,10 @@ TEST_CASE("sweep + refinement: every check passes, for several height directions
     for (const Vec3& d : directions) {
       INFO(c.name);
       INFO("direction " << d.transpose());
-      front::SweepStats st;
-      const auto rep = sweep_and_check(c.pts, &st, /*refine=*/true, d);
-      test::check_every_property(rep);
-      CHECK(st.L_left == 0);
-      CHECK(st.U_left == 0);
+      const MeshResult res = sweep_and_check(c.pts, /*refine=*/true, d);
+      test::check_every_property(res.check);
+      CHECK(res.refinement.L_left == 0);
+      CHECK(res.refinement.U_left == 0);
     }
 }
 

@@ -1,0 +1,155 @@
+// front/bridge.cpp: bridge() at a saddle (Cheng & Shi 2004 §4.1, "Bridging the
+// front", Figure 8). When the front has reached a saddle's protecting sphere
+// from two sides, a held front edge of each side is chosen and the gap between
+// them is closed by a ladder of rows of two triangles, whose inner points are
+// pulled back onto the skin. The same ladder (one row) joins two front parts
+// in a contact (collision_net.cpp).
+// Notes: papers/front/bridge.md
+#include <limits>
+
+#include "front/sweep_internal.h"
+#include "geometry/mesh_checks.h"
+
+namespace skinmesh::front::detail {
+
+using geometry::min_angle;
+
+bool Sweep::try_bridge(Index c) {
+  const morse::CriticalPoint& cp = ms_.critical[c];
+  // Held front edges a -> b with both ends held by c, classified by side of
+  // the saddle along its descending direction (papers/front/open_questions.md Q6.1).
+  std::vector<Halfedge> side[2];
+  for (Vertex v : held_[c]) {
+    if (state_[v] != VState::Held || held_by_[v] != c || !mesh_.is_boundary(v)) continue;
+    const Halfedge h = mesh_.halfedge(v);
+    const Vertex w = mesh_.to_vertex(h);
+    if (state_[w] != VState::Held || held_by_[w] != c) continue;
+    const double sv = (mesh_.position(v) - cp.position).dot(cp.descent);
+    const double sw = (mesh_.position(w) - cp.position).dot(cp.descent);
+    if ((sv > 0) != (sw > 0)) continue;
+    side[sv > 0 ? 0 : 1].push_back(h);
+  }
+  // "If the front reaches the protecting sphere of a saddle point on two
+  // different sides" — otherwise the saddle is not ready yet.
+  if (side[0].empty() || side[1].empty()) return false;
+  // True if the front path from vertex x to vertex y (along next) leaves the
+  // hold region of c; false if it stays inside it or does not reach y (y is
+  // on another boundary loop).
+  auto path_leaves = [&](Vertex x, Vertex y, bool& same_loop) {
+    Halfedge h = mesh_.halfedge(x);
+    bool left = false;
+    for (std::size_t guard = 0; guard < mesh_.n_halfedges(); ++guard) {
+      const Vertex z = mesh_.from_vertex(h);
+      if (z == y) {
+        same_loop = true;
+        return left;
+      }
+      if (!(state_[z] == VState::Held && held_by_[z] == c)) left = true;
+      h = mesh_.next(h);
+      if (mesh_.from_vertex(h) == x) break;
+    }
+    same_loop = false;
+    return left;
+  };
+  // The pair with the closest midpoints among the admissible ones: on two
+  // different loops (merge), or on one loop with both connecting paths
+  // leaving the hold region (split): a bowl or a front piece that straddles
+  // the saddle's descending plane inside the region is one side, not two.
+  double best = std::numeric_limits<double>::infinity();
+  Halfedge ba, bc;
+  for (Halfedge h0 : side[0])
+    for (Halfedge h1 : side[1]) {
+      const Vertex a = mesh_.from_vertex(h0), b = mesh_.to_vertex(h0);
+      const Vertex cc = mesh_.from_vertex(h1), d = mesh_.to_vertex(h1);
+      if (a == cc || a == d || b == cc || b == d) continue;
+      const double dist =
+          (0.5 * (mesh_.position(a) + mesh_.position(b)) - 0.5 * (mesh_.position(cc) + mesh_.position(d))).norm();
+      if (dist >= best) continue;
+      // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
+      // enter the hole wedges at a, b, c, d (papers/front/open_questions.md Q6.2).
+      if (!quad_fits(a, b, cc, d, cp.position, cp.sigma * e_)) continue;
+      bool same = false;
+      const bool leaves1 = path_leaves(b, cc, same);
+      if (same) {
+        bool same2 = false;
+        if (!leaves1 || !path_leaves(d, a, same2)) continue;
+      }
+      best = dist, ba = h0, bc = h1;
+    }
+  if (!ba.is_valid()) return false;
+  const Vec3 ga = 0.5 * (mesh_.position(mesh_.from_vertex(ba)) + mesh_.position(mesh_.to_vertex(ba)));
+  const Vec3 gc = 0.5 * (mesh_.position(mesh_.from_vertex(bc)) + mesh_.position(mesh_.to_vertex(bc)));
+  // Rows about one tangent-disc radius of the saddle apart.
+  const double ell = opt_.disc_factor * cp.rho;
+  bridge(ba, bc, c, std::max(1, static_cast<int>(std::lround((ga - gc).norm() / ell))));
+  return true;
+}
+
+void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
+  const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
+  const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
+  // Ladder of `rows` rows across the gap (papers/front/open_questions.md Q6.2):
+  // left rail a -> d, right rail b -> c, intermediate points pulled back onto
+  // the skin.
+  const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(cv), pd = mesh_.position(d);
+  if (trace_)
+    tracef("bridge saddle %d: a v%u b v%u c v%u d v%u rows %d\n", int(c), a.idx(), b.idx(), cv.idx(), d.idx(), rows);
+  std::vector<Vertex> L{a}, R{b};
+  for (int j = 1; j < rows; ++j) {
+    const double t = double(j) / rows;
+    Index cl = cell_[a], cr = cell_[b];
+    const Vec3 ql = skin_.pull_back((1 - t) * pa + t * pd, cl);
+    const Vec3 qr = skin_.pull_back((1 - t) * pb + t * pc, cr);
+    L.push_back(new_vertex(ql, cl));
+    R.push_back(new_vertex(qr, cr));
+  }
+  L.push_back(d);
+  R.push_back(cv);
+  for (int j = 1; j <= rows; ++j) {
+    const Vertex l0 = L[j - 1], r0 = R[j - 1], r1 = R[j], l1 = L[j];
+    // Quad l0 r0 r1 l1 (counter-clockwise): split by the diagonal with the
+    // better minimum angle.
+    const double d1 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(r1)),
+                               min_angle(mesh_.position(r1), mesh_.position(l1), mesh_.position(l0)));
+    const double d2 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(l1)),
+                               min_angle(mesh_.position(r0), mesh_.position(r1), mesh_.position(l1)));
+    if (d1 >= d2) {
+      add_triangle(l0, r0, r1);
+      add_triangle(r1, l1, l0);
+    } else {
+      add_triangle(l0, r0, l1);
+      add_triangle(r0, r1, l1);
+    }
+  }
+  if (c != kInvalidIndex) {
+    stats_.bridge_rows += rows;
+    ++stats_.bridges;
+    resolved_[c] = 1;
+    release_holds(c, /*requeue=*/false);
+  }
+  for (std::size_t j = 0; j < L.size(); ++j)
+    for (Vertex v : {L[j], R[j]})
+      if (mesh_.is_boundary(v) && state_[v] != VState::Interior) state_[v] = VState::Front;
+  // "We update the priority queue Q after a bridge() operation": re-push the
+  // free front near the saddle (cheap: lazy deletion), or the quad's corners
+  // after a contact.
+  if (c != kInvalidIndex) {
+    const double reach = opt_.bridge_requeue_factor * ms_.protect_radius[c];
+    for (Vertex v : mesh_.vertices())
+      if (state_[v] == VState::Front && mesh_.is_boundary(v) && !mesh_.is_isolated(v) &&
+          (mesh_.position(v) - ms_.critical[c].position).norm() < reach)
+        push(v);
+  } else {
+    for (Vertex v : {a, b, cv, d})
+      if (state_[v] == VState::Front && mesh_.is_boundary(v)) push(v);
+  }
+  for (Vertex v : {a, b, cv, d}) {
+    if (mesh_.is_boundary(v) && state_[v] == VState::Front) wing_worklist_.push_back(v);
+    if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+  }
+  for (std::size_t j = 1; j + 1 < L.size(); ++j)
+    for (Vertex v : {L[j], R[j]})
+      if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+}
+
+}  // namespace skinmesh::front::detail

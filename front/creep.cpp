@@ -1,0 +1,134 @@
+// front/creep.cpp: creep() at the departure vertex (Cheng & Shi 2004 §4.1,
+// "Creeping triangles", Figure 6): a fan of m = ceil(theta / 60°) triangles
+// over the hole angle theta at v, its m - 1 new points on the tangent circle
+// projected onto the skin. Before the fan is built, the Figure 7 test: a fan
+// triangle that would not fit in a neighbour's hole wedge makes that
+// neighbour a forced wing (or holds, defers or finally leaves v for the seal).
+// Notes: papers/front/creep.md
+#include <algorithm>
+#include <sstream>
+
+#include "front/sweep_internal.h"
+#include "geometry/errors.h"
+
+namespace skinmesh::front::detail {
+
+void Sweep::creep(Vertex v) {
+  const double r = disc_radius(v);
+  // Copies: new vertices grow the property arrays and would invalidate references.
+  const Vec3 n = normal_[v];
+  const Vec3 pv = mesh_.position(v);
+  const double fan_angle = opt_.fan_angle_deg * kDeg;
+  Corner k;
+  int m = 1;
+  // Figure 7: if the first (last) fan triangle would not fit in the hole
+  // wedge of w (u), measured in T_w (T_u), or its new point would come close
+  // to w's (u's) other neighbour, wing w (u) first and look again.
+  for (int attempt = 0;; ++attempt) {
+    k = corner(v);
+    if (!std::isfinite(k.angle)) {
+      std::ostringstream os;
+      os << "creep: undefined front angle at vertex " << v.idx() << " (" << pv.transpose()
+         << "): a front neighbour coincides with it in the tangent plane";
+      throw TopologyError(os.str());
+    }
+    if (k.angle < opt_.wing_angle_deg * kDeg && wing(v, false)) return;
+    if (attempt == 0 && try_contact(v, k)) return;
+    m = std::max(1, static_cast<int>(std::ceil(k.angle / fan_angle - 1e-9)));
+    if (attempt >= opt_.max_wing_rounds) break;
+    const Vertex w2 = mesh_.to_vertex(mesh_.next(k.out));
+    const Vertex u2 = mesh_.from_vertex(mesh_.prev(k.in));
+    const Vec3 pw2 = mesh_.position(w2), pu2 = mesh_.position(u2);
+    // Figure 7 test of a fan of mm triangles at both ends. For mm = 1 the
+    // "fan" is the single triangle (v, w, u). Triangle (v, w, p1) spans from
+    // p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
+    auto test_fan = [&](int mm, bool& bw, bool& bu) {
+      const Vec3 p1 = mm == 1 ? mesh_.position(k.u) : Vec3(pv + r * rotate(k.dw, n, k.angle / mm));
+      const Vec3 pm = mm == 1 ? mesh_.position(k.w) : Vec3(pv + r * rotate(k.dw, n, k.angle * (mm - 1) / mm));
+      const Vertex p1v = mm == 1 ? k.u : Vertex(), pmv = mm == 1 ? k.w : Vertex();
+      const double clearance = opt_.fan_clearance * r;
+      bw = w2 != k.u && ((mm > 1 && (p1 - pw2).norm() < clearance) || !fits_at(k.w, p1, pv, p1v, v));
+      bu = u2 != k.w && ((mm > 1 && (pm - pu2).norm() < clearance) || !fits_at(k.u, pv, pm, v, pmv));
+    };
+    bool bad_w = false, bad_u = false;
+    test_fan(m, bad_w, bad_u);
+    if (trace_)
+      tracef("creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
+             k.angle / kDeg, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(state_[k.u]));
+    if (bad_w && wing(k.w, true)) continue;
+    if (bad_u && wing(k.u, true)) continue;
+    // The neighbour's own neighbour may close a narrow spike first.
+    if (bad_w && w2 != k.u && wing(w2, true)) continue;
+    if (bad_u && u2 != k.w && wing(u2, true)) continue;
+    // A fan that would fold over a held neighbour: v joins the hold (it is at
+    // the rim of the hold region; the bridge or seal will take care of it).
+    const Index holder = bad_w && holder_of(k.w) != kInvalidIndex ? holder_of(k.w)
+                         : bad_u                                  ? holder_of(k.u)
+                                                                  : kInvalidIndex;
+    if (holder != kInvalidIndex) {
+      hold(v, holder);
+      return;
+    }
+    if ((bad_w || bad_u) && deferrals_[v] >= opt_.max_deferrals) {
+      // Last resort before giving up: a fan with more or fewer triangles
+      // whose end triangles fit.
+      for (int mm : {m + 1, m + 2, m - 1}) {
+        if (mm < 1 || (mm == 1 && k.angle >= kPi)) continue;
+        bool bw = false, bu = false;
+        test_fan(mm, bw, bu);
+        if (!bw && !bu) {
+          m = mm, bad_w = bad_u = false;
+          break;
+        }
+      }
+      if (!bad_w && !bad_u) break;
+    }
+    if ((bad_w || bad_u) && deferrals_[v] < opt_.max_deferrals) {
+      // The fan would fold over a neighbour that cannot be winged now: let
+      // the front move on around v and try again a little later.
+      defer(v, r);
+      return;
+    }
+    if (bad_w || bad_u) {
+      // Stuck: no fan fits here even after the front moved on. v stays on the
+      // front without departing again; the hole around it is filled when the
+      // fronts meet (small hole) or at the seal, and the final checks decide.
+      if (trace_)
+        tracef("creep: v%u is stuck: its fan would fold over v%u (Figure 7)\n", v.idx(), (bad_w ? k.w : k.u).idx());
+      state_[v] = VState::Held;
+      held_by_[v] = kInvalidIndex;
+      ++stats_.stuck;
+      return;
+    }
+    break;
+  }
+  // Fold check (papers/front/open_questions.md Q4.1): the tangent angles of
+  // the triangles at v plus the hole angle make a full turn.
+  if (const double excess = fold_excess(v); std::abs(excess) > opt_.fold_tolerance_deg * kDeg) {
+    std::ostringstream os;
+    os << "creep: the mesh folds at vertex " << v.idx() << " (" << pv.transpose() << "): triangles and hole cover "
+       << (2 * kPi + excess) / kDeg << "°";
+    throw TopologyError(os.str());
+  }
+  // The safety net for the fan (collision_net.cpp).
+  if (fan_collision(v, k, m)) return;
+  // The fan: p_0 = w, p_1 .. p_{m-1} new, p_m = u (Figure 6).
+  std::vector<Vertex> fan;
+  fan.push_back(k.w);
+  for (int i = 1; i < m; ++i) {
+    const Vec3 dir = rotate(k.dw, n, i * k.angle / m);
+    fan.push_back(new_vertex(project_tangent(v, dir, r), cell_[v]));
+  }
+  fan.push_back(k.u);
+  for (int i = 1; i <= m; ++i) add_triangle(v, fan[i - 1], fan[i]);
+  state_[v] = VState::Interior;
+  // "After each creep() operation, we push the new front edges to the
+  // priority queue"; the fan's ends and points are wing candidates.
+  for (int i = 1; i < m; ++i) push(fan[i]);
+  wing_worklist_.push_back(k.u);
+  wing_worklist_.push_back(k.w);
+  for (int i = 1; i < m; ++i) wing_worklist_.push_back(fan[i]);
+  ++stats_.creeps;
+}
+
+}  // namespace skinmesh::front::detail

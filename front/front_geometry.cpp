@@ -1,0 +1,102 @@
+// front/front_geometry.cpp: the geometry of the front in tangent planes — the
+// corner (hole angle) at a front vertex, the hole-wedge test that keeps a new
+// triangle from folding over the triangles already at a vertex, the convex
+// quad test of bridges and contacts, and the fold test of the paranoid mode.
+// These are the tests the paper leaves implicit in Figure 7 ("the newly added
+// triangles may overlap existing ones").
+// Notes: papers/front/creep.md (hole wedges), papers/front/open_questions.md Q4.1, Q6.2
+#include <sstream>
+
+#include "front/sweep_internal.h"
+#include "geometry/assert.h"
+#include "geometry/errors.h"
+#include "geometry/mesh_io.h"
+#include "geometry/predicates.h"
+
+namespace skinmesh::front::detail {
+
+Sweep::Corner Sweep::corner(Vertex v) const {
+  Corner k;
+  k.out = mesh_.halfedge(v);
+  SKINMESH_ASSERT(mesh_.is_boundary(k.out));
+  k.in = mesh_.prev(k.out);
+  k.w = mesh_.to_vertex(k.out);
+  k.u = mesh_.from_vertex(k.in);
+  const Vec3& p = mesh_.position(v);
+  const Vec3& n = normal_[v];
+  k.dw = tangent_dir(p, n, mesh_.position(k.w));
+  const Vec3 du = tangent_dir(p, n, mesh_.position(k.u));
+  k.angle = ccw_angle(k.dw, du, n);
+  return k;
+}
+
+bool Sweep::fits_at(Vertex x, Vertex y_from, Vertex y_to) const {
+  return fits_at(x, mesh_.position(y_from), mesh_.position(y_to), y_from, y_to);
+}
+
+bool Sweep::fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, Vertex y_to) const {
+  if (!mesh_.is_boundary(x) || mesh_.is_isolated(x)) return mesh_.is_isolated(x);
+  const Corner k = corner(x);
+  const Vec3 px = mesh_.position(x), n = normal_[x];
+  const double tol = kWedgeTolerance;
+  // The span [a, b] of the new triangle at x, measured counter-clockwise from
+  // the front edge x -> w, must lie within the hole angle [0, k.angle].
+  const double a = y_from == k.w ? 0.0 : ccw_angle(k.dw, tangent_dir(px, n, from), n);
+  const double b = y_to == k.u ? k.angle : ccw_angle(k.dw, tangent_dir(px, n, to), n);
+  if (trace_)
+    tracef("fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDeg, b / kDeg,
+           k.angle / kDeg, y_from.idx(), y_to.idx(), k.w.idx(), k.u.idx());
+  return a < b - tol && b <= k.angle + tol && k.angle > tol;
+}
+
+bool Sweep::quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin, const Vec3& normal) const {
+  const Vec3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+  std::array<std::array<double, 2>, 4> P;
+  const Vertex q[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 dd = mesh_.position(q[i]) - origin;
+    P[i] = {dd.dot(t1), dd.dot(t2)};
+  }
+  for (int i = 0; i < 4; ++i)
+    if (geometry::orient2d(P[i][0], P[i][1], P[(i + 1) % 4][0], P[(i + 1) % 4][1], P[(i + 2) % 4][0],
+                           P[(i + 2) % 4][1]) != Sign::Positive)
+      return false;
+  // Counter-clockwise quad a b c d: at a the new triangles span from b to d,
+  // at b from c to a, at c from d to b, at d from a to c.
+  return fits_at(a, b, d) && fits_at(b, c, a) && fits_at(c, d, b) && fits_at(d, a, c);
+}
+
+double Sweep::fold_excess(Vertex v) const {
+  const Vec3 pv = mesh_.position(v);
+  const Vec3 n = normal_[v];
+  double covered = 0;
+  for (Face f : mesh_.faces(v)) {
+    Vertex a, b;
+    for (Halfedge h : mesh_.halfedges(f))
+      if (mesh_.from_vertex(h) == v) a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
+    covered += ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
+  }
+  if (mesh_.is_boundary(v)) covered += corner(v).angle;
+  return covered - 2 * kPi;
+}
+
+void Sweep::paranoid_check(std::size_t first_face, const char* op) {
+  if (!opt_.paranoid) return;
+  for (std::size_t fi = first_face; fi < mesh_.faces_size(); ++fi) {
+    const Face f(static_cast<Index>(fi));
+    if (mesh_.is_deleted(f)) continue;
+    for (Vertex v : mesh_.vertices(f)) {
+      const double ex = fold_excess(v);
+      if (std::abs(ex) > opt_.fold_tolerance_deg * kDeg) {
+        std::ostringstream os;
+        os << "paranoid: after " << op << " (faces " << first_face << ".." << mesh_.faces_size()
+           << ") the mesh folds at vertex " << v.idx() << " (" << mesh_.position(v).transpose()
+           << "): excess " << ex / kDeg << "°";
+        if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
+        throw TopologyError(os.str());
+      }
+    }
+  }
+}
+
+}  // namespace skinmesh::front::detail

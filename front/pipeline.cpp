@@ -1,0 +1,106 @@
+// front/pipeline.cpp: mesh_skin(), the stages of Cheng & Shi 2004 §4.1
+// "Algorithm" in order (skin, Morse–Smale complex, sweep, local refinement,
+// check), timed one by one.
+// Notes: papers/front/pipeline.md
+#include "front/pipeline.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "geometry/errors.h"
+#include "skin/skin_surface.h"
+
+namespace skinmesh {
+
+namespace {
+
+/// The output mesh of a closed SurfaceMesh of the skin: positions, triangles,
+/// and per vertex the normal from "v:normal" and the atom of its mixed cell
+/// ("v:cell"). Compacts the mesh first.
+geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh) {
+  mesh.garbage_collection();
+  geometry::IndexedMesh out = mesh.to_indexed_mesh();
+  const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
+  const auto cell = mesh.get_vertex_property<Index>("v:cell");
+  out.normals.resize(out.positions.size());
+  out.atom.resize(out.positions.size());
+  Index i = 0;
+  for (geometry::Vertex v : mesh.vertices()) {
+    out.normals[i] = normal[v];
+    out.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
+    ++i;
+  }
+  return out;
+}
+
+}  // namespace
+
+MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  MeshResult res;
+  auto t0 = Clock::now();
+  auto stage = [&](const char* name) {
+    if (options.progress) options.progress(name, 0.0);
+  };
+  auto lap = [&](const char* name) {
+    const auto t1 = Clock::now();
+    res.seconds.emplace_back(name, std::chrono::duration<double>(t1 - t0).count());
+    t0 = t1;
+    if (options.progress) options.progress(name, 1.0);
+  };
+
+  // 1. The skin: regular triangulation and mixed complex (§2.1).
+  stage("skin");
+  const skin::SkinSurface skin(points);
+  lap("skin");
+
+  // 2. Critical points and the Morse–Smale complex (§3), checked against the
+  //    Euler characteristic of the skin from its dual complex.
+  stage("morse");
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, options.height_direction, options.morse);
+  res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+  res.critical = morse::count_critical_points(ms.critical);
+  res.live = ms.live_count();
+  if (res.critical.euler() != res.expected_topology.euler_skin())
+    throw TopologyError("Morse count " + std::to_string(res.critical.euler()) +
+                        " differs from the expected Euler characteristic " +
+                        std::to_string(res.expected_topology.euler_skin()));
+  lap("morse");
+
+  // 3. The sweep (§4.1, §4.2).
+  stage("sweep");
+  front::SweepOptions sweep_options = options.sweep;
+  sweep_options.size = options.size;
+  if (!sweep_options.progress) sweep_options.progress = options.progress;
+  front::SweepResult swept = front::sweep_mesh(skin, ms, sweep_options);
+  res.sweep = swept.stats;
+  lap("sweep");
+
+  // 4. The local refinement (§4.3).
+  if (options.refine) {
+    stage("refine");
+    refine::RefineOptions refine_options = options.refinement;
+    refine_options.size = options.size;
+    res.refinement = refine::refine_mesh(skin, swept.mesh, refine_options);
+    lap("refine");
+  }
+  res.mesh = output_mesh(skin, swept.mesh);
+
+  // 5. The check.
+  if (options.check) {
+    stage("check");
+    refine::SkinCheckOptions check_options = options.checks;
+    check_options.size = options.size;
+    res.check = refine::check_skin_mesh(skin, res.mesh, check_options);
+    res.checked = true;
+    lap("check");
+  }
+  return res;
+}
+
+MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options) {
+  if (!(options.probe_radius >= 0)) throw std::invalid_argument("the probe radius must be >= 0 Å");
+  return mesh_skin(skin::weighted_points(molecule, options.probe_radius), options);
+}
+
+}  // namespace skinmesh

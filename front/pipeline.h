@@ -1,0 +1,100 @@
+// front/pipeline.h: the whole algorithm of Cheng & Shi 2004 as one call, the
+// entry point that the command line, the benchmarks and the tests share.
+// §4.1 "Algorithm": the input is a set of weighted points B, the output a
+// triangulation K of the skin F_B; the stages are
+//   1. skin       the regular triangulation and the mixed complex of B (§2.1)
+//   2. morse      the critical points of the height function, the Morse–Smale
+//                 complex and its simplification (§3), checked against the
+//                 Euler characteristic of the skin (from its dual complex)
+//   3. sweep      Algorithm 1: creation, creep, wing, bridge, seal (§4.1, §4.2)
+//   4. refine     the local refinement: flips, contractions, insertions (§4.3)
+//   5. check      the skin-aware verifier (refine/skin_mesh_check.h)
+// Notes: papers/front/pipeline.md
+#pragma once
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "front/sweep.h"
+#include "geometry/indexed_mesh.h"
+#include "geometry/weighted_point.h"
+#include "morse/critical_points.h"
+#include "morse/morse_smale_complex.h"
+#include "refine/local_refinement.h"
+#include "refine/size_conditions.h"
+#include "refine/skin_mesh_check.h"
+#include "skin/dual_complex.h"
+#include "skin/molecule.h"
+
+namespace skinmesh {
+
+/// Options of the whole pipeline, one struct per stage.
+struct MeshOptions {
+  /// Probe radius (Å) used by the Molecule overload of mesh_skin: atom weight
+  /// w = 2 (r + probe)² (Cheng & Shi §2.1; papers/skin/molecule_io.md).
+  double probe_radius = 1.4;
+  /// C and Q of [L] and [U] (Cheng & Shi §2.2). They are copied into the
+  /// sweep, refinement and check options (whose own `size` fields are
+  /// ignored), so that all stages agree.
+  refine::SizeConstants size;
+  /// Unit height direction of the sweep (§3.1 uses +y; the default is tilted
+  /// slightly so that no two atoms are at the same height by accident).
+  Vec3 height_direction = morse::default_height_direction();
+  /// Stage 2: integral lines, protecting spheres, arc contraction.
+  morse::MorseSmaleOptions morse;
+  /// Stage 3: the sweep's tuning numbers and debugging aids.
+  front::SweepOptions sweep;
+  /// Stage 4: run the local refinement (default). Without it the mesh is
+  /// closed, embedded and of the right topology but [L], [U] and the
+  /// restricted Delaunay property may fail.
+  bool refine = true;
+  refine::RefineOptions refinement;
+  /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
+  bool check = true;
+  refine::SkinCheckOptions checks;
+  /// Called with a stage name ("skin", "morse", "sweep", "refine", "check")
+  /// and the fraction of it done (0..1); empty: no reports. The library
+  /// itself prints nothing.
+  std::function<void(const std::string& stage, double fraction)> progress;
+};
+
+/// What the pipeline produced and measured.
+struct MeshResult {
+  /// The mesh: positions (Å, on the skin), triangles counter-clockwise about
+  /// the outward normal, unit outward normals per vertex, and per vertex the
+  /// index (into the input points) of the atom whose mixed cell holds it.
+  geometry::IndexedMesh mesh;
+  /// Critical points of the height function before and after simplification.
+  morse::MorseCount critical, live;
+  /// Topology of the skin computed from the dual complex (independent of the mesh).
+  skin::SkinTopology expected_topology;
+  front::SweepStats sweep;
+  refine::RefineStats refinement;
+  /// True if stage 5 ran; then `check` holds its report.
+  bool checked = false;
+  refine::SkinCheckReport check;
+  /// Wall-clock seconds per stage, in order ("skin", "morse", "sweep",
+  /// "refine", "check"; stages that did not run are absent).
+  std::vector<std::pair<std::string, double>> seconds;
+
+  /// True unless the check ran and failed.
+  bool ok() const { return !checked || check.ok(); }
+};
+
+/// Meshes the skin of the weighted points `points` (centres in Å, weights in
+/// Å²) with the algorithm of Cheng & Shi 2004 (stages listed in this header).
+/// Throws InputError if `points` is empty, TopologyError if the Morse count
+/// of the critical points differs from the skin's Euler characteristic or
+/// the sweep cannot close the front, GeometryError if a projection fails,
+/// std::invalid_argument for options out of range (a tangent-disc factor
+/// outside the window of C and Q). A mesh that fails its check is returned
+/// with the report (ok() false), never silently.
+MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options = {});
+
+/// mesh_skin() of a molecule's atoms, weighted with options.probe_radius
+/// (std::invalid_argument if it is negative).
+MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options = {});
+
+}  // namespace skinmesh

@@ -1,0 +1,193 @@
+// front/seal.cpp: seal() (Cheng & Shi 2004 §4.1, "Sealing holes"): when the
+// queue is empty, the surface is covered but for holes around the maxima;
+// each is closed "by repeatedly adding triangles whose two edges are
+// neighbors in the circle" — ear clipping, in a plane where the hole is a
+// simple polygon. Small holes go first to the max-min-angle programme, and
+// a hole tangled in every plane is enlarged first (hole_filling.cpp).
+// Notes: papers/front/seal.md
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "front/sweep_internal.h"
+#include "geometry/errors.h"
+#include "geometry/mesh_checks.h"
+#include "geometry/predicates.h"
+
+namespace skinmesh::front::detail {
+
+using geometry::min_angle;
+
+namespace {
+
+/// Orthogonal projection onto the plane through `centre` with unit normal n.
+struct HolePlane {
+  Vec3 centre, n, t1, t2;
+  std::array<double, 2> operator()(const Vec3& p) const {
+    const Vec3 d = p - centre;
+    return {d.dot(t1), d.dot(t2)};
+  }
+};
+
+/// True if the projection of the closed polygon P (counter-clockwise wanted)
+/// has positive area and no two non-adjacent edges touch or cross (exact
+/// orient2d).
+bool simple_ccw(const std::vector<std::array<double, 2>>& P) {
+  const std::size_t k = P.size();
+  double area2 = 0;
+  for (std::size_t i = 0; i < k; ++i) area2 += P[i][0] * P[(i + 1) % k][1] - P[(i + 1) % k][0] * P[i][1];
+  if (!(area2 > 0)) return false;
+  auto o = [&](std::size_t a, std::size_t b, std::size_t c) {
+    return geometry::orient2d(P[a][0], P[a][1], P[b][0], P[b][1], P[c][0], P[c][1]);
+  };
+  for (std::size_t i = 0; i < k; ++i)
+    for (std::size_t j = i + 1; j < k; ++j) {
+      const std::size_t i1 = (i + 1) % k, j1 = (j + 1) % k;
+      if (j == i1 || i == j1) continue;  // adjacent edges
+      const Sign s1 = o(i, i1, j), s2 = o(i, i1, j1), s3 = o(j, j1, i), s4 = o(j, j1, i1);
+      if (s1 != s2 && s3 != s4) return false;  // the edges touch or cross
+    }
+  return true;
+}
+
+}  // namespace
+
+void Sweep::seal_all() {
+  const std::size_t max_loops = mesh_.n_halfedges() + 1;
+  for (std::size_t iter = 0;; ++iter) {
+    if (iter > max_loops) throw TopologyError("seal: the holes do not close");
+    Halfedge start;
+    for (Vertex v : mesh_.vertices())
+      if (!mesh_.is_deleted(v) && !mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
+        start = mesh_.halfedge(v);
+        break;
+      }
+    if (!start.is_valid()) return;
+    seal_loop(start, opt_.max_hole_enlargements);
+  }
+}
+
+void Sweep::seal_loop(Halfedge start, int enlargements_left) {
+  std::vector<Halfedge> loop = mesh_.boundary_loop(start);
+  std::vector<Vertex> poly;
+  for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
+  if (poly.size() <= static_cast<std::size_t>(opt_.dp_max_hole_vertices) && fill_hole_dp(poly)) return;
+  // Plane of projection: the first of (the average vertex normal, the normal
+  // of the best-fit plane, each vertex normal) in which the hole is a simple,
+  // counter-clockwise polygon. A hole with a narrow waist can cross itself in
+  // the average plane.
+  HolePlane plane;
+  plane.centre = Vec3::Zero();
+  Vec3 nbar = Vec3::Zero();
+  for (Vertex v : poly) plane.centre += mesh_.position(v), nbar += normal_[v];
+  plane.centre /= double(poly.size());
+  if (nbar.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
+  nbar.normalize();
+  std::vector<Vec3> planes{nbar};
+  {
+    Mat3 cov = Mat3::Zero();
+    for (Vertex v : poly) {
+      const Vec3 d = mesh_.position(v) - plane.centre;
+      cov += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Mat3> es(cov);
+    Vec3 pn = es.eigenvectors().col(0);
+    planes.push_back(pn.dot(nbar) < 0 ? Vec3(-pn) : pn);
+    for (Vertex v : poly) planes.push_back(normal_[v]);
+  }
+  auto proj = [&](Vertex v) { return plane(mesh_.position(v)); };
+  bool found = false;
+  std::vector<std::array<double, 2>> P(poly.size());
+  for (const Vec3& cand : planes) {
+    if (cand.dot(nbar) <= opt_.seal_plane_min_cosine) continue;
+    plane.n = cand;
+    plane.t1 = cand.unitOrthogonal(), plane.t2 = cand.cross(plane.t1);
+    for (std::size_t i = 0; i < poly.size(); ++i) P[i] = proj(poly[i]);
+    if ((found = simple_ccw(P))) break;
+  }
+  if (!found) {
+    std::ostringstream os;
+    os << "seal: the hole of " << poly.size() << " vertices near (" << plane.centre.transpose()
+       << ") is not a simple polygon in any plane tried";
+    if (enlargements_left > 0) {
+      if (trace_) tracef("%s: enlarging it\n", os.str().c_str());
+      const Halfedge h = enlarge_hole(poly);
+      if (h.is_valid()) {
+        seal_loop(h, enlargements_left - 1);
+        return;
+      }
+      os << "; enlarging it pinched the front";
+    }
+    throw TopologyError(os.str());
+  }
+  if (trace_) {
+    std::ostringstream os;
+    os << "seal loop of " << poly.size() << ":";
+    for (Vertex x : poly) {
+      const auto px = proj(x);
+      os << " v" << x.idx() << "[" << px[0] << "," << px[1] << "|hole " << corner(x).angle / kDeg << "]";
+    }
+    opt_.trace(os.str());
+  }
+  // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
+  // left turn with no other polygon vertex inside; take the best 3D angle.
+  bool strict = true;  // ears must fit the hole wedges; relaxed when no ear does
+  while (poly.size() > 3) {
+    const std::size_t k = poly.size();
+    double best = -1;
+    std::size_t bi = k;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vertex u = poly[(i + k - 1) % k], v = poly[i], w = poly[(i + 1) % k];
+      const auto pu = proj(u), pv = proj(v), pw = proj(w);
+      if (geometry::orient2d(pu[0], pu[1], pv[0], pv[1], pw[0], pw[1]) != Sign::Positive) continue;
+      if (mesh_.find_halfedge(w, u).is_valid()) continue;
+      bool empty = true;
+      for (std::size_t j = 0; j < k && empty; ++j) {
+        const Vertex x = poly[j];
+        if (x == u || x == v || x == w) continue;
+        const auto px = proj(x);
+        if (geometry::orient2d(pu[0], pu[1], pv[0], pv[1], px[0], px[1]) != Sign::Negative &&
+            geometry::orient2d(pv[0], pv[1], pw[0], pw[1], px[0], px[1]) != Sign::Negative &&
+            geometry::orient2d(pw[0], pw[1], pu[0], pu[1], px[0], px[1]) != Sign::Negative)
+          empty = false;
+      }
+      if (!empty) continue;
+      // The ear must also face outwards at its three corners (a sliver across
+      // a narrow waist can turn over between the projection plane and T_x).
+      const Vec3 nt = (mesh_.position(w) - mesh_.position(v)).cross(mesh_.position(u) - mesh_.position(v));
+      if (nt.dot(normal_[u]) <= 0 || nt.dot(normal_[v]) <= 0 || nt.dot(normal_[w]) <= 0) continue;
+      if (strict && (!fits_at(u, v, w) || !fits_at(v, w, u) || !fits_at(w, u, v))) continue;
+      const double q = min_angle(mesh_.position(u), mesh_.position(v), mesh_.position(w));
+      if (q > best) best = q, bi = i;
+    }
+    if (bi == k && strict) {
+      strict = false;
+      continue;
+    }
+    if (bi == k) {
+      if (trace_) {
+        std::ostringstream os;
+        os << "seal: no ear; the hole's vertices in its projection plane:";
+        for (Vertex x : poly) {
+          const auto px = proj(x);
+          os << " [" << px[0] << "," << px[1] << "]";
+        }
+        opt_.trace(os.str());
+      }
+      std::ostringstream os;
+      os << "seal: no ear in a hole of " << k << " vertices near (" << plane.centre.transpose()
+         << ") (the sweep's trace lists them)";
+      throw TopologyError(os.str());
+    }
+    const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
+    if (trace_) tracef("  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
+    add_triangle(v, w, u);
+    state_[v] = VState::Interior;
+    poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
+  }
+  add_triangle(poly[0], poly[1], poly[2]);
+  for (Vertex v : poly) state_[v] = VState::Interior;
+  ++stats_.seals;
+}
+
+}  // namespace skinmesh::front::detail

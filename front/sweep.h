@@ -1,0 +1,162 @@
+// front/sweep.h: the adaptive sweeping triangulation — an advancing front that
+// grows from the minima of the height function upwards, bridges at saddles and
+// seals at maxima, with triangle sizes adapted to the local length scale rho.
+// Cheng & Shi 2004 §4.1 (Algorithm 1: creation, creep, wing, bridge, seal) and
+// §4.2 (tangent-disc radius). The local refinement of §4.3 is a separate stage
+// (refine/local_refinement.h), run after the sweep by the pipeline
+// (front/pipeline.h).
+// Notes: papers/front/README.md (one note per operation).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "geometry/surface_mesh.h"
+#include "morse/morse_smale_complex.h"
+#include "refine/size_conditions.h"
+#include "skin/skin_surface.h"
+
+namespace skinmesh::front {
+
+/// Every tuning number of the sweep, with its meaning, unit and the origin of
+/// its default: [paper] Cheng & Shi 2004, [derived] a derivation in papers/,
+/// [measured] chosen by experiment on the bundled molecules and the stress
+/// inputs (papers/front/*.md say which). Lengths are multiples of the
+/// tangent-disc radius r = disc_factor · rho(v) of the vertex concerned.
+struct SweepOptions {
+  /// C and Q of conditions [L], [U] (Cheng & Shi §2.2); the window of
+  /// disc_factor is derived from them.
+  refine::SizeConstants size;
+  /// Tangent-disc radius r_a = disc_factor · rho(a) (Cheng & Shi §4.2). Must lie
+  /// in size's window (disc_factor_lower(), disc_factor_upper()] =
+  /// (0.1074, 0.2077] for the default C, Q. [derived] 0.185: below 0.1853 the
+  /// fan triangles satisfy [U] themselves (papers/skin/skin_math.md §8).
+  double disc_factor = 0.185;
+
+  // creation() and creep(), Figures 5 and 6.
+  /// Angle of one fan triangle at its apex (degrees): a bowl has 360/60 = 6
+  /// triangles, a creep fan ceil(theta / 60°). [paper §4.1]
+  double fan_angle_deg = 60;
+
+  // wing(), Figure 7.
+  /// wing() closes a front angle below this (degrees). [paper §4.1: "no
+  /// angles smaller than 90° between any two adjacent front edges"]
+  double wing_angle_deg = 90;
+  /// A forced wing (a neighbour over which a fan would fold) closes angles
+  /// below this (degrees): any convex corner. [measured]
+  double forced_wing_angle_deg = 180;
+  /// Rounds of "wing a neighbour, recompute the fan" in one creep. [measured]
+  int max_wing_rounds = 8;
+  /// A new fan point closer than fan_clearance · r to the neighbour's other
+  /// front neighbour makes that neighbour a wing candidate. [measured]
+  double fan_clearance = 0.5;
+
+  // Deferral and the fold check (papers/front/creep.md).
+  /// A creep whose fan would fold is postponed at most this many times.
+  /// [measured]
+  int max_deferrals = 8;
+  /// Each deferral re-queues the vertex defer_step · r · (deferrals so far)
+  /// higher. [measured]
+  double defer_step = 0.25;
+  /// The tangent angles at a vertex plus its hole angle must make 360° within
+  /// this (degrees), else the mesh folds. [measured: numerical noise is
+  /// below 1e-6°, a fold is at least one triangle angle > 21°]
+  double fold_tolerance_deg = 5;
+
+  // The collision safety net (papers/front/collision_net.md), not in the paper.
+  /// A fan point within collision_radius · r of another vertex would come too
+  /// close to another front part. [measured]
+  double collision_radius = 0.5;
+  /// Vertices whose normals make a larger angle than acos(min_normal_cosine)
+  /// are on another sheet of the skin and never collide or touch. [measured]
+  double min_normal_cosine = 0.5;
+  /// A free front vertex within contact_radius · r of the departure vertex,
+  /// in each other's hole wedge, is joined to it by a contact. [measured]
+  double contact_radius = 1.5;
+  /// Contact candidates must lie this far (degrees) inside both hole wedges.
+  /// [measured]
+  double contact_margin_deg = 15;
+  /// Front vertices fewer than this many hops away along the front are left
+  /// to wing() instead of a contact. [measured]
+  int contact_min_hops = 3;
+
+  // bridge(), Figure 8.
+  /// After a bridge, free front vertices within bridge_requeue_factor · r_p
+  /// of the saddle are queued again (r_p: its protecting radius). [measured]
+  double bridge_requeue_factor = 3;
+
+  // seal() and hole filling (papers/front/seal.md, papers/front/hole_filling.md).
+  /// A front loop of at most small_hole_vertices vertices, all within
+  /// small_hole_reach · r of the departure vertex, is a small hole, closed
+  /// at once. [measured]
+  int small_hole_vertices = 7;
+  /// See small_hole_vertices. [measured]
+  double small_hole_reach = 2.5;
+  /// Holes of at most this many vertices are filled by the max-min-angle
+  /// dynamic programme (O(k³)); larger ones by ear clipping. [measured]
+  int dp_max_hole_vertices = 40;
+  /// A projection plane for ear clipping must make an angle below
+  /// acos(seal_plane_min_cosine) with the hole's average normal. [measured]
+  double seal_plane_min_cosine = 0.3;
+  /// A hole tangled in every projection is enlarged (its faces deleted) at
+  /// most this many times. [measured]
+  int max_hole_enlargements = 2;
+  /// Rounds of deleting the faces at pinched vertices while enlarging a hole.
+  /// [measured]
+  int max_pinch_rounds = 4;
+
+  // Reporting and debugging aids (papers/front/sweep.md, "Debugging aids").
+  /// Called now and then with the stage name "sweep" and the fraction of the
+  /// height range swept (0..1); empty: no progress reports.
+  std::function<void(const std::string& stage, double fraction)> progress;
+  /// After every operation, check that the tangent angles around the vertices
+  /// of the new triangles make 360° (no fold); throw TopologyError naming the
+  /// operation otherwise.
+  bool paranoid = false;
+  /// Called with one line per decision of the sweep (creep, wing refusals,
+  /// contacts, bridges, seals, the vertices of a hole that cannot be sealed);
+  /// empty: no trace.
+  std::function<void(const std::string& line)> trace;
+  /// Stop with TopologyError after this many departures (negative: no limit).
+  long max_steps = -1;
+  /// If not empty, the partial mesh is written here before the seal, when a
+  /// paranoid check fails, and when max_steps stops the sweep.
+  std::string dump_path;
+};
+
+/// Counters of the sweep (Algorithm 1's operations and the safety net).
+struct SweepStats {
+  std::size_t creations = 0, creeps = 0, wings = 0, bridges = 0, seals = 0;
+  std::size_t held = 0;           ///< departure vertices stopped in a protecting sphere
+  std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
+  std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
+  std::size_t contacts = 0;       ///< front parts joined by the safety net (not in the paper)
+  std::size_t stuck = 0;          ///< departure vertices left for the seal (no fan fits, Figure 7)
+  std::size_t enlarged_holes = 0;  ///< tangled holes re-opened by deleting the faces around them
+  std::size_t collisions = 0;     ///< fans that would have come within collision_radius · r of another front part
+  std::size_t released = 0;       ///< saddles whose holds were released unbridged
+};
+
+/// The closed mesh produced by the sweep, before the local refinement.
+struct SweepResult {
+  /// Closed triangle mesh of the skin, faces counter-clockwise about the
+  /// outward normal, every vertex on the skin. Elements may be marked deleted
+  /// (call garbage_collection()). Vertex properties: "v:normal" (unit outward
+  /// skin normal), "v:rho" (local length scale, Å), "v:cell" (mixed cell).
+  geometry::SurfaceMesh mesh;
+  SweepStats stats;
+};
+
+/// Meshes the skin by Algorithm 1 of Cheng & Shi §4.1: creation at every live
+/// minimum of `ms`, creeps from the lowest front vertex, holds in protecting
+/// spheres, bridges at saddles, seals at maxima. `ms` gives the critical
+/// points (live ones after simplification), their protecting spheres and the
+/// height direction. Throws std::invalid_argument if opt.disc_factor is
+/// outside opt.size's tangent-disc window, TopologyError when the front
+/// cannot be closed consistently (a fold, a hole without an ear), GeometryError
+/// when a projection fails.
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                       const SweepOptions& opt = {});
+
+}  // namespace skinmesh::front
