@@ -1,24 +1,32 @@
-// apps/skinmesh.cpp: the command-line program. Parses options (strings stop
-// here, STYLE.md §3), runs the pipeline, reports errors as "file:line: problem"
-// with a non-zero exit code and never leaves a partial output file.
+// apps/skinmesh.cpp: the command-line program. Options are parsed here with
+// CLI11, per command (an option a command does not have is an error), and the
+// library takes typed structs (papers/conventions.md §3). Errors are one line
+// "file:line: problem" with a non-zero exit code; no partial output file is
+// ever left behind (every file is written to a temporary and renamed).
 //
 //   skinmesh info  IN                describe the skin of a molecule
 //   skinmesh mesh  IN -o OUT         mesh the skin (Cheng & Shi 2004)
 //   skinmesh check IN MESH           verify a mesh against the analytic skin
+//
+// Exit codes: 0 success; 1 bad input or a mesh that fails `check`; 2 bad
+// command line; 3 the algorithm failed (or the mesh failed its checks);
+// 4 internal error.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "apps/cli.h"
-#include "geometry/errors.h"
+#include "apps/output.h"
 #include "front/pipeline.h"
+#include "geometry/errors.h"
 #include "geometry/mesh_io.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
@@ -28,190 +36,173 @@
 #include "skin/skin_surface.h"
 
 using namespace skinmesh;
+using json = nlohmann::ordered_json;
 
 namespace {
 
-// Help Texts
+constexpr const char* kDescription =
+    "skinmesh: guaranteed-quality meshes of molecular skin surfaces\n"
+    "(Cheng & Shi, \"Guaranteed Quality Triangulation of Molecular Skin Surfaces\", IEEE Vis 2004).";
 
-constexpr const char* kMainHelp = R"(skinmesh: guaranteed-quality meshes of molecular skin surfaces
-(Cheng & Shi, "Guaranteed Quality Triangulation of Molecular Skin Surfaces", IEEE Vis 2004).
+constexpr const char* kFormats =
+    "\nInput formats (by extension, optionally .gz): .pdb .ent (PDB), .cif .mmcif (mmCIF),\n"
+    ".pqr (PQR, radius from the file), .xyzr (x y z r per line). Radii: Bondi by element;\n"
+    "atom weight w = 2 (r + probe)^2 (shrink factor 1/2).\n"
+    "Output meshes (by extension): .ply (binary, with normals and atom index), .off, .obj.\n"
+    "Exit codes: 0 ok, 1 bad input or failed check, 2 bad command line, 3 the algorithm\n"
+    "failed or the mesh failed its checks, 4 internal error.";
 
-Usage: skinmesh <command> [options]
+// Options Shared by the Commands
 
-Commands:
-  mesh  IN -o OUT    mesh the skin of a molecule (PLY, OFF or OBJ by extension)
-  check IN MESH      verify a mesh against the analytic skin; prints a JSON report
-  info  IN           atoms, regular triangulation, mixed cells, critical points,
-                     and the skin's expected topology
+/// A validator for numbers >= 0 (positive: > 0) with a short message.
+CLI::Validator number_at_least_zero(bool strictly) {
+  return CLI::Validator(
+      [strictly](std::string& s) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v)) return "expects a number, got '" + s + "'";
+        if (strictly ? !(v > 0) : !(v >= 0)) return std::string("must be ") + (strictly ? "> 0" : ">= 0") + ", got " + s;
+        return {};
+      },
+      strictly ? "POSITIVE" : "NONNEGATIVE");
+}
 
-Input formats (by extension, optionally .gz): .pdb .ent (PDB), .cif .mmcif
-(mmCIF), .pqr (PQR, radius from the file), .xyzr (x y z r per line).
+/// The molecule options of every command.
+struct MoleculeArgs {
+  std::string input;
+  double probe = 1.4;
+  bool keep_water = false;
+  bool no_hydrogens = false;
+  std::string format;
+  bool quiet = false;
+};
 
-Run 'skinmesh <command> --help' for the options of a command.
-)";
+void add_molecule_options(CLI::App& cmd, MoleculeArgs& m) {
+  cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz)")
+      ->required();
+  cmd.add_option("--probe", m.probe, "probe radius in Å; atom weight w = 2 (r + probe)²")
+      ->check(number_at_least_zero(false))
+      ->capture_default_str();
+  cmd.add_flag("--keep-water", m.keep_water, "keep water molecules (default: dropped, with a note)");
+  cmd.add_flag("--no-hydrogens", m.no_hydrogens, "drop hydrogen atoms (default: kept if present)");
+  cmd.add_option("--format", m.format, "input format (default: by extension)")
+      ->check(CLI::IsMember({"pdb", "cif", "mmcif", "pqr", "xyzr"}));
+  cmd.add_flag("--quiet,-q", m.quiet, "no notes or progress on stderr");
+}
 
-constexpr const char* kMoleculeOptions = R"(Molecule options:
-  --probe R          probe radius in Å (default 1.4); atom weight w = 2 (r + R)²
-  --keep-water       keep water molecules (default: dropped, with a note)
-  --no-hydrogens     drop hydrogen atoms (default: kept if present)
-  --format F         input format: pdb, cif, pqr or xyzr (default: by extension)
-  --direction X,Y,Z  height direction of the sweep (default: generic, near +y)
-  --quiet            no notes or progress on stderr
-)";
-
-constexpr const char* kInfoHelp = R"(Usage: skinmesh info IN [options]
-
-Prints the atoms read (and any skipped or repaired), the regular triangulation
-(vertices, redundant atoms, simplices), the mixed cells by type, the critical
-points of the height function by index, the Morse–Smale complex, and the skin's
-expected topology (from the dual complex K0 of the unshrunk balls).
-
-Options:
-  --json             print a JSON object instead of text
-)";
-
-constexpr const char* kCheckHelp = R"(Usage: skinmesh check IN MESH [options]
-
-Verifies MESH (PLY, OFF or OBJ) against the skin of molecule IN and prints a
-JSON report: closed, manifold, oriented outward, exact self-intersections,
-components' Euler characteristics against the expected topology, vertex
-distance to the skin (|f|/|grad f| <= 1e-9 Å), angles, conditions [L] and [U]
-(C, Q), and the restricted Delaunay property. Exit code 0 if every check
-passes, 1 otherwise.
-
-Options:
-  -o FILE                 also write the report to FILE
-  --C C --Q Q             size constants of [L] and [U] (default 0.08, 1.65)
-  --min-angle DEG         smallest admissible angle (default 21.5)
-  --no-self-intersections skip the exact self-intersection test
-  --no-rdt                skip the restricted Delaunay test
-)";
-
-constexpr const char* kMeshHelp = R"(Usage: skinmesh mesh IN -o OUT [options]
-
-Meshes the skin surface (shrink factor 1/2) of molecule IN with the advancing
-front of Cheng & Shi (2004) and writes OUT (.ply binary with normals and atom
-index, .off or .obj).
-
-Options:
-  -o OUT             output mesh (required)
-  --stats FILE       write a JSON summary to FILE ('-' for stdout)
-  --C C --Q Q        size constants (default 0.08, 1.65)
-  --no-check         do not verify the mesh before writing it
-  --force            write the mesh even if it fails its checks (the report says what failed)
-
-Debugging the sweep (papers/front/sweep_mesher.md):
-  --paranoid         check for folds after every operation of the sweep
-  --trace            print every decision of the sweep on stderr
-  --max-steps N      stop the sweep after N departures
-  --dump-partial F   write the partial mesh to F before the seal or when stopped
-)";
-
-// Shared Pipeline Pieces
-
-/// Reads the molecule named by the first positional argument and prints its notes.
-skin::Molecule load_molecule(const cli::Args& args, const std::string& path) {
+/// Reads the molecule and prints (at most ten of) its notes unless quiet.
+skin::Molecule load_molecule(const MoleculeArgs& m) {
   skin::ReadOptions ro;
-  ro.keep_water = args.flag("--keep-water");
-  ro.keep_hydrogens = !args.flag("--no-hydrogens");
-  if (auto f = args.value("--format")) {
-    const std::map<std::string, skin::ReadOptions::Format> formats = {
-        {"pdb", skin::ReadOptions::Format::Pdb},
-        {"cif", skin::ReadOptions::Format::Mmcif},
-        {"mmcif", skin::ReadOptions::Format::Mmcif},
-        {"pqr", skin::ReadOptions::Format::Pqr},
-        {"xyzr", skin::ReadOptions::Format::Xyzr}};
-    auto it = formats.find(*f);
-    if (it == formats.end()) throw cli::UsageError("unknown --format '" + *f + "' (pdb, cif, pqr or xyzr)");
-    ro.format = it->second;
-  }
-  skin::Molecule mol = skin::read_molecule(path, ro);
-  if (!args.flag("--quiet")) {
+  ro.keep_water = m.keep_water;
+  ro.keep_hydrogens = !m.no_hydrogens;
+  const std::map<std::string, skin::ReadOptions::Format> formats = {{"pdb", skin::ReadOptions::Format::Pdb},
+                                                                     {"cif", skin::ReadOptions::Format::Mmcif},
+                                                                     {"mmcif", skin::ReadOptions::Format::Mmcif},
+                                                                     {"pqr", skin::ReadOptions::Format::Pqr},
+                                                                     {"xyzr", skin::ReadOptions::Format::Xyzr}};
+  if (!m.format.empty()) ro.format = formats.at(m.format);
+  skin::Molecule mol = skin::read_molecule(m.input, ro);
+  if (!m.quiet) {
     const std::size_t shown = std::min<std::size_t>(mol.notes.size(), 10);
     for (std::size_t i = 0; i < shown; ++i) std::cerr << "note: " << mol.notes[i] << "\n";
-    if (mol.notes.size() > shown)
-      std::cerr << "note: ... and " << (mol.notes.size() - shown) << " more notes\n";
+    if (mol.notes.size() > shown) std::cerr << "note: ... and " << (mol.notes.size() - shown) << " more notes\n";
   }
   return mol;
 }
 
-double probe_radius(const cli::Args& args) {
-  const double p = args.number("--probe", 1.4);
-  if (!(p >= 0)) throw cli::UsageError("--probe must be >= 0");
-  return p;
+/// --direction X,Y,Z of info and mesh.
+void add_direction_option(CLI::App& cmd, std::vector<double>& direction) {
+  cmd.add_option("--direction", direction, "height direction of the sweep X,Y,Z (default: generic, near +y)")
+      ->delimiter(',')
+      ->expected(3);
 }
 
-Vec3 height_direction(const cli::Args& args) {
-  if (auto d = args.value("--direction")) {
-    const std::vector<double> v = cli::parse_numbers(*d, "--direction");
-    if (v.size() != 3) throw cli::UsageError("--direction takes three numbers X,Y,Z");
-    const Vec3 e(v[0], v[1], v[2]);
-    if (!(e.norm() > 0)) throw cli::UsageError("--direction must be a non-zero vector");
-    return e.normalized();
-  }
-  return morse::default_height_direction();
+/// The unit height direction from --direction, or the default.
+Vec3 height_direction(const std::vector<double>& d) {
+  if (d.empty()) return morse::default_height_direction();
+  const Vec3 e(d[0], d[1], d[2]);
+  if (!(e.norm() > 0) || !e.allFinite()) throw CLI::ValidationError("--direction", "must be a finite non-zero vector");
+  return e.normalized();
 }
 
-// Commands
+/// --C and --Q of mesh and check.
+void add_size_options(CLI::App& cmd, refine::SizeConstants& size) {
+  cmd.add_option("--C", size.C, "size constant C of [L] and [U]")
+      ->check(number_at_least_zero(true))
+      ->capture_default_str();
+  cmd.add_option("--Q", size.Q, "size constant Q of [L] and [U]")
+      ->check(number_at_least_zero(true))
+      ->capture_default_str();
+}
 
-int run_info(const cli::Args& args) {
-  if (args.flag("--help")) return std::cout << kInfoHelp << kMoleculeOptions, 0;
-  args.expect_positional(1, "skinmesh info IN");
-  const std::string in = args.positional(0);
-  const skin::Molecule mol = load_molecule(args, in);
-  const double probe = probe_radius(args);
-  const skin::SkinSurface skin(skin::weighted_points(mol, probe));
+// info
+
+struct InfoArgs {
+  MoleculeArgs mol;
+  std::vector<double> direction;
+  bool json = false;
+};
+
+int run_info(const InfoArgs& a) {
+  const skin::Molecule mol = load_molecule(a.mol);
+  const skin::SkinSurface skin(skin::weighted_points(mol, a.mol.probe));
   const auto& rt = skin.triangulation();
   const auto& mc = skin.mixed_complex();
   const skin::SkinTopology topo = skin::dual_complex_topology(mc);
-  const Vec3 e = height_direction(args);
+  const Vec3 e = height_direction(a.direction);
   const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, e);
   const morse::MorseCount all = morse::count_critical_points(ms.critical);
   const morse::MorseCount live = ms.live_count();
   std::size_t failed_lines = 0;
   for (const auto& l : ms.lines) failed_lines += l.end == kInvalidIndex ? 1 : 0;
   const std::size_t redundant = rt.redundant_points().size();
+  const bool matches = all.euler() == topo.euler_skin();
 
-  if (args.flag("--json")) {
-    std::cout << "{\n  \"input\": \"" << in << "\",\n  \"atoms\": " << mol.atoms.size()
-              << ",\n  \"notes\": " << mol.notes.size() << ",\n  \"probe_radius\": " << probe
-              << ",\n  \"redundant_atoms\": " << redundant << ",\n  \"mixed_cells\": {\"vertex\": "
-              << mc.num_cells_of_dim(0) << ", \"edge\": " << mc.num_cells_of_dim(1)
-              << ", \"triangle\": " << mc.num_cells_of_dim(2) << ", \"tetrahedron\": " << mc.num_cells_of_dim(3)
-              << "},\n  \"height_direction\": [" << e.x() << ", " << e.y() << ", " << e.z()
-              << "],\n  \"critical_points\": {\"minima\": " << all.minima << ", \"saddles\": " << all.saddles
-              << ", \"maxima\": " << all.maxima << "},\n  \"morse_euler\": " << all.euler()
-              << ",\n  \"live_after_simplification\": {\"minima\": " << live.minima
-              << ", \"saddles\": " << live.saddles << ", \"maxima\": " << live.maxima
-              << "},\n  \"cancelled_pairs\": " << ms.cancelled.size()
-              << ",\n  \"remaining_sphere_conflicts\": " << ms.conflicts.size()
-              << ",\n  \"failed_integral_lines\": " << failed_lines
-              << ",\n  \"expected_topology\": {\"euler\": " << topo.euler_skin()
-              << ", \"components\": " << topo.components() << ", \"body_components\": " << topo.betti0
-              << ", \"cavities\": " << topo.betti2 << ", \"total_genus\": " << topo.total_genus()
-              << "},\n  \"morse_count_matches\": " << (all.euler() == topo.euler_skin() ? "true" : "false")
-              << "\n}\n";
+  if (a.json) {
+    json j;
+    j["input"] = a.mol.input;
+    j["atoms"] = mol.atoms.size();
+    j["notes"] = mol.notes.size();
+    j["probe_radius"] = a.mol.probe;
+    j["redundant_atoms"] = redundant;
+    j["mixed_cells"] = {{"vertex", mc.num_cells_of_dim(0)},
+                        {"edge", mc.num_cells_of_dim(1)},
+                        {"triangle", mc.num_cells_of_dim(2)},
+                        {"tetrahedron", mc.num_cells_of_dim(3)}};
+    j["height_direction"] = {e.x(), e.y(), e.z()};
+    j["critical_points"] = {{"minima", all.minima}, {"saddles", all.saddles}, {"maxima", all.maxima}};
+    j["morse_euler"] = all.euler();
+    j["live_after_simplification"] = {{"minima", live.minima}, {"saddles", live.saddles}, {"maxima", live.maxima}};
+    j["cancelled_pairs"] = ms.cancelled.size();
+    j["remaining_sphere_conflicts"] = ms.conflicts.size();
+    j["failed_integral_lines"] = failed_lines;
+    j["expected_topology"] = {{"euler", topo.euler_skin()},
+                              {"components", topo.components()},
+                              {"body_components", topo.betti0},
+                              {"cavities", topo.betti2},
+                              {"total_genus", topo.total_genus()}};
+    j["morse_count_matches"] = matches;
+    std::cout << j.dump(2) << "\n";
   } else {
-    std::cout << "input              " << in << "\n"
+    std::cout << "input              " << a.mol.input << "\n"
               << "atoms              " << mol.atoms.size() << " (" << mol.notes.size() << " notes)\n"
-              << "probe radius       " << probe << " Å (weights w = 2 (r + probe)²)\n"
+              << "probe radius       " << a.mol.probe << " Å (weights w = 2 (r + probe)²)\n"
               << "redundant atoms    " << redundant << "\n"
               << "regular triangulation: " << rt.num_tets() << " tetrahedra (incl. "
               << "those of the 4 bounding points)\n"
               << "mixed cells        vertex " << mc.num_cells_of_dim(0) << ", edge " << mc.num_cells_of_dim(1)
               << ", triangle " << mc.num_cells_of_dim(2) << ", tetrahedron " << mc.num_cells_of_dim(3) << "\n"
               << "height direction   (" << e.x() << ", " << e.y() << ", " << e.z() << ")\n"
-              << "critical points    " << all.minima << " minima, " << all.saddles << " saddles, "
-              << all.maxima << " maxima (Morse sum " << all.euler() << ")\n"
+              << "critical points    " << all.minima << " minima, " << all.saddles << " saddles, " << all.maxima
+              << " maxima (Morse sum " << all.euler() << ")\n"
               << "simplification     " << ms.cancelled.size() << " pairs cancelled, " << live.minima << "/"
               << live.saddles << "/" << live.maxima << " live, " << ms.conflicts.size()
               << " protecting-sphere conflicts left, " << failed_lines << " integral lines failed\n"
               << "expected topology  chi = " << topo.euler_skin() << ", " << topo.components()
-              << " component(s): " << topo.betti0 << " body component(s), " << topo.betti2
-              << " cavit" << (topo.betti2 == 1 ? "y" : "ies") << ", total genus " << topo.total_genus() << "\n"
-              << "Morse check        " << (all.euler() == topo.euler_skin() ? "ok" : "MISMATCH") << "\n";
+              << " component(s): " << topo.betti0 << " body component(s), " << topo.betti2 << " cavit"
+              << (topo.betti2 == 1 ? "y" : "ies") << ", total genus " << topo.total_genus() << "\n"
+              << "Morse check        " << (matches ? "ok" : "MISMATCH") << "\n";
   }
-  if (all.euler() != topo.euler_skin()) {
+  if (!matches) {
     std::cerr << "error: Morse count " << all.euler() << " differs from the expected Euler characteristic "
               << topo.euler_skin() << "\n";
     return 1;
@@ -219,26 +210,40 @@ int run_info(const cli::Args& args) {
   return 0;
 }
 
-int run_check(const cli::Args& args) {
-  if (args.flag("--help")) return std::cout << kCheckHelp << kMoleculeOptions, 0;
-  args.expect_positional(2, "skinmesh check IN MESH");
-  const skin::Molecule mol = load_molecule(args, args.positional(0));
-  const geometry::IndexedMesh mesh = geometry::read_mesh(args.positional(1));
-  const skin::SkinSurface skin(skin::weighted_points(mol, probe_radius(args)));
+// check
+
+struct CheckArgs {
+  MoleculeArgs mol;
+  std::string mesh;
+  std::string report;
   refine::SkinCheckOptions opt;
-  opt.size.C = args.number("--C", opt.size.C);
-  opt.size.Q = args.number("--Q", opt.size.Q);
-  opt.min_angle_deg = args.number("--min-angle", opt.min_angle_deg);
-  opt.check_self_intersections = !args.flag("--no-self-intersections");
-  opt.check_restricted_delaunay = !args.flag("--no-rdt");
-  const refine::SkinCheckReport rep = refine::check_skin_mesh(skin, mesh, opt);
-  const std::string json = rep.to_json();
-  std::cout << json;
-  if (auto out = args.value("-o")) cli::write_text_file(*out, json);
-  if (!args.flag("--quiet"))
+  bool no_self_intersections = false, no_rdt = false;
+};
+
+int run_check(CheckArgs& a) {
+  const skin::Molecule mol = load_molecule(a.mol);
+  const geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
+  const skin::SkinSurface skin(skin::weighted_points(mol, a.mol.probe));
+  a.opt.check_self_intersections = !a.no_self_intersections;
+  a.opt.check_restricted_delaunay = !a.no_rdt;
+  const refine::SkinCheckReport rep = refine::check_skin_mesh(skin, mesh, a.opt);
+  const std::string text = rep.to_json();
+  std::cout << text;
+  if (!a.report.empty()) app::write_text_file(a.report, text);
+  if (!a.mol.quiet)
     for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
   return rep.ok() ? 0 : 1;
 }
+
+// mesh
+
+struct MeshArgs {
+  MoleculeArgs mol;
+  std::string out, stats;
+  std::vector<double> direction;
+  MeshOptions opt;
+  bool no_check = false, force = false, trace = false;
+};
 
 /// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
 std::size_t peak_memory_bytes() {
@@ -249,108 +254,204 @@ std::size_t peak_memory_bytes() {
   return 0;
 }
 
-int run_mesh(const cli::Args& args) {
-  if (args.flag("--help")) return std::cout << kMeshHelp << kMoleculeOptions, 0;
-  args.expect_positional(1, "skinmesh mesh IN -o OUT");
-  const auto out = args.value("-o");
-  if (!out) throw cli::UsageError("mesh needs an output file: -o OUT");
-  geometry::mesh_format_from_extension(*out);  // unknown extension: fail before the work
-  const bool quiet = args.flag("--quiet");
-  using Clock = std::chrono::steady_clock;
-  std::vector<std::pair<std::string, double>> seconds;
-  auto t0 = Clock::now();
-  auto lap = [&](const std::string& stage) {
-    const auto t1 = Clock::now();
-    seconds.emplace_back(stage, std::chrono::duration<double>(t1 - t0).count());
-    t0 = t1;
-  };
-  const auto start = Clock::now();
+/// The JSON summary of a mesh run (`--stats`).
+json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult& res, double read_s,
+                  double write_s, double total_s) {
+  json j;
+  j["input"] = a.mol.input;
+  j["output"] = a.out;
+  j["atoms"] = mol.atoms.size();
+  j["probe_radius"] = a.mol.probe;
+  j["vertices"] = res.mesh.positions.size();
+  j["triangles"] = res.mesh.triangles.size();
+  if (res.checked) {
+    j["min_angle_deg"] = res.check.mesh.min_angle_deg;
+    j["max_angle_deg"] = res.check.mesh.max_angle_deg;
+    j["checks_passed"] = res.check.ok();
+  }
+  j["critical_points"] = {{"minima", res.critical.minima}, {"saddles", res.critical.saddles},
+                          {"maxima", res.critical.maxima}};
+  j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles},
+                               {"maxima", res.live.maxima}};
+  const front::SweepStats& s = res.sweep;
+  const refine::RefineStats& r = res.refinement;
+  j["operations"] = {{"creations", s.creations},
+                     {"creeps", s.creeps},
+                     {"wings", s.wings},
+                     {"bridges", s.bridges},
+                     {"seals", s.seals},
+                     {"held", s.held},
+                     {"deferred", s.deferred},
+                     {"bridge_rows", s.bridge_rows},
+                     {"contacts", s.contacts},
+                     {"collisions", s.collisions},
+                     {"stuck", s.stuck},
+                     {"enlarged_holes", s.enlarged_holes},
+                     {"released_saddles", s.released},
+                     {"flips", r.flips},
+                     {"contractions", r.contractions},
+                     {"insertions", r.insertions},
+                     {"refine_rounds", r.rounds},
+                     {"L_left", r.L_left},
+                     {"U_left", r.U_left}};
+  json seconds = json::object();
+  seconds["read"] = read_s;
+  for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
+  seconds["write"] = write_s;
+  seconds["total"] = total_s;
+  j["seconds"] = seconds;
+  j["peak_memory_bytes"] = peak_memory_bytes();
+  return j;
+}
 
-  const skin::Molecule mol = load_molecule(args, args.positional(0));
-  lap("read");
-  MeshOptions mopt;
-  mopt.probe_radius = probe_radius(args);
-  mopt.height_direction = height_direction(args);
-  mopt.size.C = args.number("--C", mopt.size.C);
-  mopt.size.Q = args.number("--Q", mopt.size.Q);
-  mopt.sweep.paranoid = args.flag("--paranoid");
-  if (args.flag("--trace")) mopt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
-  mopt.sweep.max_steps = static_cast<long>(args.number("--max-steps", -1));
-  if (auto d = args.value("--dump-partial")) mopt.sweep.dump_path = *d;
-  mopt.check = !args.flag("--no-check");
-  const MeshResult res = mesh_skin(mol, mopt);
-  seconds.insert(seconds.end(), res.seconds.begin(), res.seconds.end());
-  t0 = Clock::now();
-  const bool checked = res.checked;
-  const refine::SkinCheckReport& rep = res.check;
+int run_mesh(MeshArgs& a) {
+  geometry::mesh_format_from_extension(a.out);  // unknown extension: fail before the work
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+
+  const skin::Molecule mol = load_molecule(a.mol);
+  const double read_s = since(start);
+  a.opt.probe_radius = a.mol.probe;
+  a.opt.height_direction = height_direction(a.direction);
+  a.opt.check = !a.no_check;
+  if (a.trace) a.opt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
+  app::ProgressReporter progress(!a.mol.quiet);
+  a.opt.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
+  const MeshResult res = mesh_skin(mol, a.opt);
+  progress.finish();
+
   const bool failed = !res.ok();
-  if (failed && !args.flag("--force")) {
-    for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
+  if (failed && !a.force) {
+    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
     std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
-    if (auto st = args.value("--stats")) cli::write_text_file(*st, rep.to_json());
+    if (!a.stats.empty()) app::write_text_file(a.stats, res.check.to_json());
     return 3;
   }
-  geometry::write_mesh(*out, res.mesh);
-  lap("write");
-  const double total = std::chrono::duration<double>(Clock::now() - start).count();
-
-  std::ostringstream js;
-  js << "{\n  \"input\": \"" << args.positional(0) << "\",\n  \"output\": \"" << *out
-     << "\",\n  \"atoms\": " << mol.atoms.size() << ",\n  \"vertices\": " << res.mesh.positions.size()
-     << ",\n  \"triangles\": " << res.mesh.triangles.size();
-  if (checked)
-    js << ",\n  \"min_angle_deg\": " << rep.mesh.min_angle_deg << ",\n  \"max_angle_deg\": "
-       << rep.mesh.max_angle_deg << ",\n  \"checks_passed\": " << (rep.ok() ? "true" : "false");
-  js << ",\n  \"operations\": {\"creations\": " << res.sweep.creations << ", \"creeps\": " << res.sweep.creeps
-     << ", \"wings\": " << res.sweep.wings << ", \"bridges\": " << res.sweep.bridges
-     << ", \"seals\": " << res.sweep.seals << ", \"held\": " << res.sweep.held
-     << ", \"deferred\": " << res.sweep.deferred << ", \"bridge_rows\": " << res.sweep.bridge_rows
-     << ", \"contacts\": " << res.sweep.contacts << ", \"released_saddles\": " << res.sweep.released
-     << ", \"flips\": " << res.refinement.flips << ", \"contractions\": " << res.refinement.contractions
-     << ", \"insertions\": " << res.refinement.insertions << ", \"refine_rounds\": " << res.refinement.rounds
-     << ", \"L_left\": " << res.refinement.L_left << ", \"U_left\": " << res.refinement.U_left << "}";
-  js << ",\n  \"seconds\": {";
-  for (std::size_t i = 0; i < seconds.size(); ++i)
-    js << (i ? ", " : "") << "\"" << seconds[i].first << "\": " << seconds[i].second;
-  js << ", \"total\": " << total << "}";
-  js << ",\n  \"peak_memory_bytes\": " << peak_memory_bytes() << "\n}\n";
-  if (auto st = args.value("--stats")) cli::write_text_file(*st, js.str());
-  if (!quiet)
-    std::cerr << "wrote " << *out << ": " << res.mesh.triangles.size() << " triangles"
-              << (checked ? ", min angle " + std::to_string(rep.mesh.min_angle_deg) + "°" : std::string())
+  const auto write_start = Clock::now();
+  geometry::write_mesh(a.out, res.mesh);
+  const double write_s = since(write_start);
+  const double total = since(start);
+  if (!a.stats.empty())
+    app::write_text_file(a.stats, mesh_summary(a, mol, res, read_s, write_s, total).dump(2) + "\n");
+  if (!a.mol.quiet)
+    std::cerr << "wrote " << a.out << ": " << res.mesh.triangles.size() << " triangles"
+              << (res.checked ? ", min angle " + std::to_string(res.check.mesh.min_angle_deg) + "°" : std::string())
               << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s\n";
   if (failed)
-    for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
+    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
   return failed ? 3 : 0;
+}
+
+/// One line, at most ~300 characters: details belong in --trace.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  if (s.size() > 300) s = s.substr(0, 297) + "...";
+  return s;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{kDescription, "skinmesh"};
+  app.footer(kFormats);
+  app.require_subcommand(1);
+
+  InfoArgs info;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "atoms, regular triangulation, mixed cells, critical points, the Morse–Smale complex and the skin's "
+              "expected topology");
+  add_molecule_options(*info_cmd, info.mol);
+  info_cmd->footer(kFormats);
+  add_direction_option(*info_cmd, info.direction);
+  info_cmd->add_flag("--json", info.json, "print a JSON object instead of text");
+
+  MeshArgs mesh;
+  CLI::App* mesh_cmd = app.add_subcommand(
+      "mesh",
+      "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
+      "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off or .obj)");
+  add_molecule_options(*mesh_cmd, mesh.mol);
+  mesh_cmd->footer(kFormats);
+  mesh_cmd->add_option("-o,--output", mesh.out, "output mesh (.ply, .off or .obj)")->required();
+  mesh_cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
+  add_direction_option(*mesh_cmd, mesh.direction);
+  add_size_options(*mesh_cmd, mesh.opt.size);
+  mesh_cmd
+      ->add_option("--disc-factor", mesh.opt.sweep.disc_factor,
+                   "tangent-disc radius / rho; must lie in (2C/(Q-2C), 2CQ sqrt((1+CQ)(1+3CQ))/(1+2CQ)^2]")
+      ->check(number_at_least_zero(true))
+      ->capture_default_str();
+  mesh_cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
+  mesh_cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
+  const char* debug = "Debugging the sweep (papers/front/sweep.md)";
+  mesh_cmd->add_flag("--paranoid", mesh.opt.sweep.paranoid, "check for folds after every operation of the sweep")
+      ->group(debug);
+  mesh_cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
+  mesh_cmd->add_option("--max-steps", mesh.opt.sweep.max_steps, "stop the sweep after N departures")
+      ->check(number_at_least_zero(false))
+      ->group(debug);
+  mesh_cmd->add_option("--dump-partial", mesh.opt.sweep.dump_path,
+                       "write the partial mesh to this file before the seal or when stopped")
+      ->group(debug);
+
+  CheckArgs check;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check",
+      "verify MESH against the skin of molecule IN and print a JSON report: closed, manifold, oriented outward, "
+      "exact self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay; exit 0 "
+      "if every check passes, 1 otherwise");
+  add_molecule_options(*check_cmd, check.mol);
+  check_cmd->footer(kFormats);
+  check_cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off or .obj)")->required();
+  check_cmd->add_option("-o,--output", check.report, "also write the report to this file");
+  add_size_options(*check_cmd, check.opt.size);
+  check_cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
+      ->capture_default_str();
+  check_cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
+  check_cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
+
+  if (argc < 2) {
+    std::cerr << app.help();
+    return 2;
+  }
+  if (const std::string first = argv[1]; first[0] != '-' && first != "info" && first != "mesh" && first != "check") {
+    std::cerr << "skinmesh: unknown command '" << first << "' (commands: info, mesh, check; see 'skinmesh --help')\n";
+    return 2;
+  }
   try {
-    if (argc < 2) return std::cerr << kMainHelp, 2;
-    const std::string cmd = argv[1];
-    if (cmd == "--help" || cmd == "-h" || cmd == "help") return std::cout << kMainHelp, 0;
-    const cli::Args args(argc - 2, argv + 2);
-    if (cmd == "info") return run_info(args);
-    if (cmd == "check") return run_check(args);
-    if (cmd == "mesh") return run_mesh(args);
-    std::cerr << "skinmesh: unknown command '" << cmd << "'\n\n" << kMainHelp;
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string cmd;
+    for (CLI::App* sub : app.get_subcommands()) cmd = " " + sub->get_name();
+    std::cerr << "skinmesh" << cmd << ": " << one_line(e.what()) << " (see 'skinmesh" << cmd << " --help')\n";
+    return 2;
+  }
+  try {
+    if (info_cmd->parsed()) return run_info(info);
+    if (check_cmd->parsed()) return run_check(check);
+    return run_mesh(mesh);
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "skinmesh: " << one_line(e.what()) << "\n";
     return 2;
   } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << one_line(e.what()) << "\n";
     return 1;
-  } catch (const cli::UsageError& e) {
-    std::cerr << "skinmesh: " << e.what() << " (see 'skinmesh --help')\n";
-    return 2;
   } catch (const TopologyError& e) {
-    std::cerr << "error: topology: " << e.what() << "\n";
+    std::cerr << "error: topology: " << one_line(e.what())
+              << (mesh_cmd->parsed() ? " (rerun with --trace for the sweep's decisions)" : "") << "\n";
     return 3;
   } catch (const GeometryError& e) {
-    std::cerr << "error: geometry: " << e.what() << "\n";
+    std::cerr << "error: geometry: " << one_line(e.what()) << "\n";
     return 3;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "skinmesh: " << one_line(e.what()) << "\n";
+    return 2;
   } catch (const std::exception& e) {
-    std::cerr << "internal error: " << e.what() << "\n";
+    std::cerr << "internal error: " << one_line(e.what()) << "\n";
     return 4;
   }
 }

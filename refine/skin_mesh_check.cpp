@@ -7,6 +7,8 @@
 #include <sstream>
 #include <unordered_set>
 
+#include <nlohmann/json.hpp>
+
 #include "geometry/point_grid.h"
 #include "refine/restricted_delaunay.h"
 
@@ -14,16 +16,16 @@ namespace skinmesh::refine {
 
 namespace {
 
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
+/// A number for a message: 17 significant digits, "inf"/"nan" as such.
+std::string number_text(double x) {
   std::ostringstream os;
   os.precision(17);
   os << x;
   return os.str();
 }
 
-template <class T>
-std::string json_array(const std::vector<T>& v) {
+/// "[a, b, c]" for a message.
+std::string list_text(const std::vector<std::int64_t>& v) {
   std::ostringstream os;
   os << "[";
   for (std::size_t i = 0; i < v.size(); ++i) os << (i ? ", " : "") << v[i];
@@ -31,53 +33,41 @@ std::string json_array(const std::vector<T>& v) {
   return os.str();
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (ch == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += ch;
-  }
-  return out + "\"";
+/// A finite number, or null.
+nlohmann::ordered_json finite_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
 }
 
 }  // namespace
 
 std::string SkinCheckReport::to_json() const {
-  std::ostringstream os;
-  os << "{\n";
-  os << "  \"ok\": " << (ok() ? "true" : "false") << ",\n";
-  os << "  \"closed\": " << (mesh.closed ? "true" : "false") << ",\n";
-  os << "  \"manifold\": " << (mesh.edge_manifold && mesh.vertex_manifold ? "true" : "false") << ",\n";
-  os << "  \"oriented\": " << (mesh.oriented ? "true" : "false") << ",\n";
-  os << "  \"outward\": " << (num_inward_triangles == 0 ? "true" : "false") << ",\n";
-  os << "  \"num_inward_triangles\": " << num_inward_triangles << ",\n";
-  os << "  \"self_intersections\": "
-     << (mesh.self_intersections_checked ? std::to_string(mesh.num_self_intersections) : "null") << ",\n";
-  os << "  \"component_euler\": " << json_array(component_euler) << ",\n";
-  os << "  \"expected_component_euler\": " << json_array(expected_component_euler) << ",\n";
-  os << "  \"expected_components\": " << expected.components() << ",\n";
-  os << "  \"expected_euler\": " << expected.euler_skin() << ",\n";
-  os << "  \"topology_matches\": " << (topology_matches ? "true" : "false") << ",\n";
-  os << "  \"max_vertex_distance\": " << json_number(max_vertex_distance) << ",\n";
-  os << "  \"num_far_vertices\": " << num_far_vertices << ",\n";
-  os << "  \"min_angle_deg\": " << json_number(mesh.min_angle_deg) << ",\n";
-  os << "  \"max_angle_deg\": " << json_number(mesh.max_angle_deg) << ",\n";
-  os << "  \"min_angle_required_deg\": " << json_number(min_angle_required_deg) << ",\n";
-  os << "  \"angle_histogram_10deg\": " << json_array(mesh.angle_histogram) << ",\n";
-  os << "  \"num_L_violations\": " << num_L_violations << ",\n";
-  os << "  \"num_U_violations\": " << num_U_violations << ",\n";
-  os << "  \"num_rdt_violations\": "
-     << (restricted_delaunay_checked ? std::to_string(num_rdt_violations) : "null") << ",\n";
-  os << "  \"problems\": [";
-  for (std::size_t i = 0; i < problems.size(); ++i) os << (i ? ", " : "") << json_string(problems[i]);
-  os << "],\n";
-  os << "  \"mesh\": " << mesh.to_json() << "\n";
-  os << "}\n";
-  return os.str();
+  nlohmann::ordered_json j;
+  j["ok"] = ok();
+  j["closed"] = mesh.closed;
+  j["manifold"] = mesh.edge_manifold && mesh.vertex_manifold;
+  j["oriented"] = mesh.oriented;
+  j["outward"] = num_inward_triangles == 0;
+  j["num_inward_triangles"] = num_inward_triangles;
+  j["self_intersections"] = mesh.self_intersections_checked ? nlohmann::ordered_json(mesh.num_self_intersections)
+                                                            : nlohmann::ordered_json(nullptr);
+  j["component_euler"] = component_euler;
+  j["expected_component_euler"] = expected_component_euler;
+  j["expected_components"] = expected.components();
+  j["expected_euler"] = expected.euler_skin();
+  j["topology_matches"] = topology_matches;
+  j["max_vertex_distance"] = finite_or_null(max_vertex_distance);
+  j["num_far_vertices"] = num_far_vertices;
+  j["min_angle_deg"] = finite_or_null(mesh.min_angle_deg);
+  j["max_angle_deg"] = finite_or_null(mesh.max_angle_deg);
+  j["min_angle_required_deg"] = finite_or_null(min_angle_required_deg);
+  j["angle_histogram_10deg"] = mesh.angle_histogram;
+  j["num_L_violations"] = num_L_violations;
+  j["num_U_violations"] = num_U_violations;
+  j["num_rdt_violations"] = restricted_delaunay_checked ? nlohmann::ordered_json(num_rdt_violations)
+                                                        : nlohmann::ordered_json(nullptr);
+  j["problems"] = problems;
+  j["mesh"] = nlohmann::ordered_json::parse(mesh.to_json());
+  return j.dump(2) + "\n";
 }
 
 SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
@@ -110,8 +100,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   }
   if (rep.num_far_vertices)
     rep.problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
-                           json_number(opt.max_vertex_distance) + " Å from the skin (max " +
-                           json_number(rep.max_vertex_distance) + " Å)");
+                           number_text(opt.max_vertex_distance) + " Å from the skin (max " +
+                           number_text(rep.max_vertex_distance) + " Å)");
 
   // Triangles: orientation against the skin normal, [U]; edges: [L].
   auto valid = [&](const std::array<Index, 3>& t) {
@@ -138,8 +128,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   if (rep.num_U_violations)
     rep.problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
   if (rep.mesh.num_triangles > 0 && rep.mesh.min_angle_deg < opt.min_angle_deg)
-    rep.problems.push_back("minimum angle " + json_number(rep.mesh.min_angle_deg) + "° below " +
-                           json_number(opt.min_angle_deg) + "°");
+    rep.problems.push_back("minimum angle " + number_text(rep.mesh.min_angle_deg) + "° below " +
+                           number_text(opt.min_angle_deg) + "°");
 
   // Restricted Delaunay: the surface Delaunay ball of every triangle is empty.
   if (opt.check_restricted_delaunay && !mesh.triangles.empty()) {
@@ -192,10 +182,10 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
                          (rep.expected_component_euler.empty() ||
                           rep.expected_component_euler == rep.component_euler);
   if (!rep.topology_matches) {
-    rep.problems.push_back("topology: components' Euler characteristics " + json_array(rep.component_euler) +
+    rep.problems.push_back("topology: components' Euler characteristics " + list_text(rep.component_euler) +
                            ", expected " + std::to_string(rep.expected.components()) +
                            " components with total " + std::to_string(rep.expected.euler_skin()) +
-                           (rep.expected_component_euler.empty() ? "" : " " + json_array(rep.expected_component_euler)));
+                           (rep.expected_component_euler.empty() ? "" : " " + list_text(rep.expected_component_euler)));
   }
   return rep;
 }

@@ -1,0 +1,137 @@
+// tests/apps/cli_test.cpp: the skinmesh command line as a user meets it — per
+// command options (an option a command does not have is an error), one-line
+// errors with the documented exit codes, no output file after a failure, and
+// JSON that parses whatever the paths contain.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Result of one run of the program.
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream is(p, std::ios::binary);
+  std::ostringstream os;
+  os << is.rdbuf();
+  return os.str();
+}
+
+/// A scratch directory, removed at the end of the test.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("skinmesh_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+};
+
+/// Single-quotes s for the shell.
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// Runs `skinmesh ARGS` (already shell-quoted) in `dir`, capturing both streams.
+Run run(const Scratch& s, const std::string& args) {
+  const fs::path out = s.dir / "stdout.txt", err = s.dir / "stderr.txt";
+  const std::string cmd = "cd " + quoted(s.dir.string()) + " && " + quoted(SKINMESH_BINARY) + " " + args + " >" +
+                          quoted(out.string()) + " 2>" + quoted(err.string()) + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::size_t lines(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+const std::string kAtom = quoted(std::string(SKINMESH_TEST_DATA) + "/one_atom.xyzr");
+
+}  // namespace
+
+TEST_SUITE("apps") {
+
+TEST_CASE("an option the command does not have is a one-line error, exit 2, no output file") {
+  Scratch s;
+  const Run r = run(s, "mesh " + kAtom + " -o out.ply --min-angle 30");
+  CHECK(r.exit_code == 2);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("--min-angle") != std::string::npos);
+  CHECK(r.err.size() < 300);
+  CHECK_FALSE(fs::exists(s.dir / "out.ply"));
+}
+
+TEST_CASE("bad values, unknown commands and missing files: one line each, documented exit codes") {
+  Scratch s;
+  const Run probe = run(s, "mesh " + kAtom + " -o out.ply --probe -1");
+  CHECK(probe.exit_code == 2);
+  CHECK(lines(probe.err) == 1);
+  const Run cmd = run(s, "frobnicate");
+  CHECK(cmd.exit_code == 2);
+  CHECK(lines(cmd.err) == 1);
+  const Run missing = run(s, "mesh no_such_file.pdb -o out.ply");
+  CHECK(missing.exit_code == 1);
+  CHECK(lines(missing.err) == 1);
+  CHECK(missing.err.find("no_such_file.pdb") != std::string::npos);
+  const Run ext = run(s, "mesh " + kAtom + " -o out.stl");
+  CHECK(ext.exit_code == 1);
+  CHECK(lines(ext.err) == 1);
+  CHECK_FALSE(fs::exists(s.dir / "out.ply"));
+  CHECK_FALSE(fs::exists(s.dir / "out.stl"));
+}
+
+TEST_CASE("--stats is valid JSON even for a path with a quote and a backslash; check accepts the mesh") {
+  Scratch s;
+  const std::string name = "a\"b\\c.ply";
+  const Run r = run(s, "mesh " + kAtom + " -o " + quoted(name) + " --stats - --quiet");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.empty());
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j.at("output") == name);
+  CHECK(j.at("checks_passed") == true);
+  CHECK(j.at("triangles").get<std::size_t>() > 0);
+  CHECK(j.at("min_angle_deg").get<double>() > 21.5);
+  CHECK(fs::exists(s.dir / name));
+  const Run c = run(s, "check " + kAtom + " " + quoted(name) + " --quiet");
+  CHECK(c.exit_code == 0);
+  const nlohmann::json report = nlohmann::json::parse(c.out);
+  CHECK(report.at("ok") == true);
+  CHECK(report.at("num_U_violations") == 0);
+}
+
+TEST_CASE("help of each command lists its own options only") {
+  Scratch s;
+  const Run mesh = run(s, "mesh --help");
+  CHECK(mesh.exit_code == 0);
+  CHECK(mesh.out.find("--stats") != std::string::npos);
+  CHECK(mesh.out.find("--min-angle") == std::string::npos);
+  const Run check = run(s, "check --help");
+  CHECK(check.exit_code == 0);
+  CHECK(check.out.find("--min-angle") != std::string::npos);
+  CHECK(check.out.find("--stats") == std::string::npos);
+}
+
+}  // TEST_SUITE
