@@ -1,6 +1,6 @@
 // bench/bench_common.h: helpers shared by the Google Benchmark files of
 // skinmesh_bench (bundled molecules, weighted points, a triangulation check).
-// STYLE.md §3 "Benchmarks"; definitions in bench/bench_main.cpp.
+// papers/conventions.md §3 "Benchmarks"; definitions in bench/bench_main.cpp.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // bench/bench_main.cpp: main() of skinmesh_bench and the shared helpers of
-// bench/bench_common.h. STYLE.md §3 "Benchmarks".
+// bench/bench_common.h. papers/conventions.md §3 "Benchmarks".
 //
 // Usage (Release build), one line:
 //   skinmesh_bench --benchmark_out=bench.json --benchmark_out_format=json

@@ -2,7 +2,8 @@
 // molecules: building the skin (regular triangulation + mixed complex),
 // evaluating f / grad f / rho near the skin, the normal-line projection of
 // Cheng & Shi Figure 9, and the Morse–Smale complex of the height function.
-// STYLE.md §3 "Benchmarks"; skin/skin_surface.h, morse/morse_smale_complex.h.
+// papers/conventions.md §3 "Benchmarks"; skin/skin_surface.h,
+// morse/morse_smale_complex.h.
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -26,8 +27,8 @@ using skin::SkinSurface;
 
 /// Tolerance of the setup checks, relative to the input length scale L (f in
 /// Å² against L², distances in Å against L), as constructions are measured in
-/// skin-math §9. Loose on purpose: the checks catch wrong results, the tests
-/// pin down accuracy.
+/// papers/skin/skin_math.md §9. Loose on purpose: the checks catch wrong results,
+/// the tests pin down accuracy.
 constexpr double kCheckTolerance = 1e-9;
 
 // Skin Points ------------------------------------------------------------------
@@ -47,9 +48,10 @@ struct SkinPoint {
 /// Skin points in atom order (consecutive atoms are usually bonded, so
 /// consecutive points are close): for each atom, kAttemptsPerAtom random points
 /// of its shrunk sphere |x - z| = sqrt(w / 2) (the sphere patch of its vertex
-/// cell, skin-math §3.2), kept when their distance estimate |f| / |grad f| is
-/// below a quarter of rho (pull_back converges from about rho / 2) and then
-/// pulled back onto the skin. Points of buried atoms are dropped that way.
+/// cell, papers/skin/skin_math.md §3.2), kept when their distance estimate
+/// |f| / |grad f| is below a quarter of rho (pull_back converges from about
+/// rho / 2) and then pulled back onto the skin. Points of buried atoms are
+/// dropped that way.
 std::vector<SkinPoint> skin_points(const SkinSurface& skin) {
   std::mt19937_64 rng(0x5EED2004ULL);
   std::normal_distribution<double> g;
@@ -184,7 +186,8 @@ void BM_ProjectAlongLine(benchmark::State& state, const char* molecule_file) {
     state.SkipWithError("no skin points");
     return;
   }
-  // Check once: every projection finds its root, on the skin (skin-math §7.2).
+  // Check once: every projection finds its root, on the skin
+  // (papers/skin/skin_math.md §7.2).
   const double L = skin.length_scale();
   std::size_t failures = 0;
   for (const Projection& p : jobs) {
@@ -219,7 +222,8 @@ void BM_MorseSmale(benchmark::State& state, const char* molecule_file) {
   const Vec3 e = morse::default_height_direction();
   {
     // Check once: the Morse count of all critical points, and of the live
-    // ones after simplification, equals chi(skin) = 2 chi(K0) (skin-math §5).
+    // ones after simplification, equals chi(skin) = 2 chi(K0)
+    // (papers/skin/skin_math.md §5).
     const morse::MorseSmaleComplex msc = morse::build_morse_smale_complex(skin, e);
     const int expected = skin::dual_complex_topology(skin.mixed_complex()).euler_skin();
     const morse::MorseCount all = morse::count_critical_points(msc.critical);

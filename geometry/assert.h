@@ -1,5 +1,5 @@
-// geometry/assert.h: invariant checks at three levels (STYLE.md §3, geogram's
-// geo_assert / geo_debug_assert / geo_parano_assert). A failed check throws
+// geometry/assert.h: invariant checks at three levels (papers/conventions.md §3,
+// geogram's geo_assert / geo_debug_assert / geo_parano_assert). A failed check throws
 // std::logic_error naming the expression, file and line: it is a bug, not bad input.
 #pragma once
 

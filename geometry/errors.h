@@ -1,4 +1,5 @@
-// geometry/errors.h: the typed exceptions of the project (STYLE.md §3 "Errors").
+// geometry/errors.h: the typed exceptions of the project
+// (papers/conventions.md §3 "Errors").
 // Bad input throws InputError (file, line, problem); algorithm failures throw
 // TopologyError or GeometryError carrying what went wrong.
 #pragma once

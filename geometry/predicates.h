@@ -1,6 +1,7 @@
 // geometry/predicates.h: exact geometric predicates (orientation in 2D and 3D, the
 // regular-triangulation power test, and its symbolically perturbed version).
-// skin-math §2.1 and §9; STYLE.md §3 "Predicates decide; constructions estimate".
+// papers/skin/skin_math.md §2.1 and §9; papers/conventions.md §3 "Predicates
+// decide; constructions estimate".
 //
 // Every robust predicate runs in layers, like geogram's side4h_3d_SOS:
 //   1. a floating-point filter: the determinant in double plus a semi-static
@@ -98,7 +99,7 @@ double orient3d_fast(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 /// outside (its lift above), Zero iff e is orthogonal to the orthosphere.
 /// Exact. The determinant: D = -det[[x_i, y_i, z_i, |z_i|² - w_i, 1]] (rows i =
 /// a, b, c, d, e) = (w_T - pi_e(z_T)) * orient3d(a, b, c, d); see predicates.cpp.
-/// skin-math §2.1 (tetrahedron test). Throws nothing.
+/// papers/skin/skin_math.md §2.1 (tetrahedron test). Throws nothing.
 Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c,
                 const WeightedPoint& d, const WeightedPoint& e);
 

@@ -1,6 +1,7 @@
 // geometry/regular_triangulation.h: the regular (weighted Delaunay)
 // triangulation R_B of a set of weighted points, built incrementally.
-// skin-math §2.1 (definitions, redundant points) and §9 (degeneracies).
+// papers/skin/skin_math.md §2.1 (definitions, redundant points) and §9
+// (degeneracies).
 //
 // Ideas used (cited in the order they appear in the code):
 // * Bounding points (below): the triangulation is one of a big tetrahedron, so
@@ -24,12 +25,13 @@
 //   regular triangulation of symbolically perturbed weights, which never has a
 //   flat tetrahedron, even for coplanar or cospherical input.
 //
-// Redundant points (skin-math §2.1): a point whose lifted point lies above the
-// lower hull is not a vertex. An input is redundant either because it is not in
-// conflict with the tetrahedron that contains it when it is inserted (it is then
-// never inserted), or because a later insertion hides it (all its tetrahedra are
-// in conflict and it lies inside the cavity). Duplicate centres: the larger
-// weight wins; equal weights: the larger index wins (SoS, see power_test_sos()).
+// Redundant points (papers/skin/skin_math.md §2.1): a point whose lifted point
+// lies above the lower hull is not a vertex. An input is redundant either
+// because it is not in conflict with the tetrahedron that contains it when it is
+// inserted (it is then never inserted), or because a later insertion hides it
+// (all its tetrahedra are in conflict and it lies inside the cavity). Duplicate
+// centres: the larger weight wins; equal weights: the larger index wins (SoS,
+// see power_test_sos()).
 //
 // What this class does NOT do: no point removal, no insertion after
 // construction, no dimensions other than 3 (lower-dimensional inputs are made

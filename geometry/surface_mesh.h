@@ -1,7 +1,8 @@
 // geometry/surface_mesh.h: SurfaceMesh, the half-edge triangle mesh that the
 // advancing front (front/) and the local refinement (refine/) edit together.
-// Design after pmp-library's SurfaceMesh (STYLE.md §1): typed handles, paired
-// half-edges, named per-element properties, check-then-modify operations.
+// Design after pmp-library's SurfaceMesh (papers/conventions.md §1): typed
+// handles, paired half-edges, named per-element properties, check-then-modify
+// operations.
 #pragma once
 
 #include <compare>
@@ -365,7 +366,7 @@ class Circulator {
 // SurfaceMesh
 // ---------------------------------------------------------------------------
 
-/// Half-edge triangle mesh (pmp-library style, STYLE.md §1 and §3).
+/// Half-edge triangle mesh (pmp-library style, papers/conventions.md §1 and §3).
 ///
 /// Storage. Half-edges come in pairs: opposite(h) = h ^ 1, edge(h) = h >> 1.
 /// Every half-edge stores its target vertex, its face (invalid on the boundary),

@@ -1,6 +1,6 @@
 // geometry/types.h: basic types shared by every module (points, indices, signs).
 // Conventions: lengths in Å, weights (squared radii) in Å², angles in radians
-// inside the code and degrees at the edges. See STYLE.md §3.
+// inside the code and degrees at the edges. See papers/conventions.md §3.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,5 @@
-// morse/critical_points.cpp: analytic critical points per patch. skin-math §5.
+// morse/critical_points.cpp: analytic critical points per patch.
+// papers/skin/skin_math.md §5.
 #include "morse/critical_points.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // morse/critical_points.h: critical points of the height function h(x) = e·x
 // on the skin, found analytically patch by patch, with their index.
-// Cheng & Shi 2004 §3.1, §3.2 "Construction"; skin-math §5.
+// Cheng & Shi 2004 §3.1, §3.2 "Construction"; papers/skin/skin_math.md §5.
 // Notes: papers/morse/critical_points.md
 #pragma once
 
@@ -18,7 +18,7 @@ enum class CriticalKind : int { Minimum = 0, Saddle = 1, Maximum = 2 };
 /// (the paper's h(p) = y_p, Cheng & Shi §3.1), tilted by about 2.4° so that
 /// symmetric molecules (axes along coordinate directions, atoms on lattices)
 /// do not put critical points on mixed-cell faces or create saddle–saddle
-/// connections (skin-math §9 "Generic height direction").
+/// connections (papers/skin/skin_math.md §9 "Generic height direction").
 Vec3 default_height_direction();
 
 /// A critical point of h on the skin.
@@ -30,19 +30,19 @@ struct CriticalPoint {
   double rho = 0;                ///< local length scale (Å)
   /// Outward normal is sigma·e (sigma = ±1).
   int sigma = 1;
-  /// Principal curvatures at the point (1/Å), skin-math §4.1.
+  /// Principal curvatures at the point (1/Å), papers/skin/skin_math.md §4.1.
   double k1 = 0, k2 = 0;
   /// For saddles: unit horizontal tangent directions of steepest ascent and
-  /// descent (each up to sign), skin-math §5 "Steepest directions".
+  /// descent (each up to sign), papers/skin/skin_math.md §5 "Steepest directions".
   Vec3 ascent = Vec3::Zero(), descent = Vec3::Zero();
 };
 
 /// All critical points of h(x) = e·x (e unit) on the skin, sorted by height.
 /// For each non-bounding mixed cell X the candidates are
 /// p = z_X ± |mu| A e with mu² = -w_X / (2 e^T A e), A = P_perp - P_par
-/// (skin-math §5, s = 1/2), kept if p lies in the cell (within 1e-9 L);
+/// (papers/skin/skin_math.md §5, s = 1/2), kept if p lies in the cell (within 1e-9 L);
 /// points found in two cells (on a shared face) are merged. The index comes
-/// from the Gauss curvature sign and sigma (skin-math §5 "Index rule").
+/// from the Gauss curvature sign and sigma (papers/skin/skin_math.md §5 "Index rule").
 std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e);
 
 /// Counts per kind: [minima, saddles, maxima].

@@ -1,5 +1,5 @@
-// morse/morse_smale_complex.cpp: integral-line tracing (skin-math §6) and arc
-// contraction (Cheng & Shi §3.2, Figure 3).
+// morse/morse_smale_complex.cpp: integral-line tracing (papers/skin/skin_math.md
+// §6) and arc contraction (Cheng & Shi §3.2, Figure 3).
 #include "morse/morse_smale_complex.h"
 
 #include <algorithm>
@@ -14,7 +14,7 @@ namespace skinmesh::morse {
 namespace {
 
 /// Unit ascent direction of the height on the surface: (e - (n·e) n) / |...|
-/// (skin-math §6; not the paper's g_p). Zero at critical points.
+/// (papers/skin/skin_math.md §6; not the paper's g_p). Zero at critical points.
 Vec3 surface_ascent(const Vec3& n, const Vec3& e) {
   const Vec3 g = e - n.dot(e) * n;
   const double len = g.norm();
@@ -32,7 +32,7 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
   const CriticalPoint& sp = cps[s];
   const CriticalKind target = sgn > 0 ? CriticalKind::Maximum : CriticalKind::Minimum;
   Index cell = sp.cell;
-  Vec3 x = skin.pull_back(sp.position + 1e-2 * sp.rho * dir, cell);
+  Vec3 x = skin.pull_back(sp.position + opt.start_offset * sp.rho * dir, cell);
   line.points.push_back(sp.position);
   line.points.push_back(x);
 
@@ -42,9 +42,9 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
     for (std::size_t i = 0; i < cps.size(); ++i) {
       if (cps[i].kind != target) continue;
       const double d = (cps[i].position - p).norm();
-      // Within 3h, but never within half the saddle's own distance: a line
+      // Within arrival_steps · h, but never within half the saddle's own distance: a line
       // that starts next to an extremum must first head towards it.
-      const double stop = std::min(3.0 * h, 0.5 * (cps[i].position - sp.position).norm());
+      const double stop = std::min(opt.arrival_steps * h, 0.5 * (cps[i].position - sp.position).norm());
       if (d <= stop && d < best_d) best = static_cast<Index>(i), best_d = d;
     }
     return best;
@@ -61,7 +61,7 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
     }
     const Vec3 t1 = sgn * surface_ascent(sx.gradient.normalized(), e);
     bool advanced = false;
-    for (int halve = 0; halve < 30 && !advanced; ++halve, h *= 0.5) {
+    for (int halve = 0; halve < opt.max_step_halvings && !advanced; ++halve, h *= 0.5) {
       Index c2 = sx.cell;
       const Vec3 xp = skin.pull_back(x + h * t1, c2);
       const Vec3 t2 = sgn * surface_ascent(skin.normal(xp, c2), e);
@@ -133,9 +133,6 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     return (ms.critical[a].position - ms.critical[b].position).norm() <
            opt.cancel_factor * (ms.critical[a].rho + ms.critical[b].rho);
   };
-  // Pairs closer than this fraction of rho_s + rho_x are cancelled even
-  // without a traced arc between them (a step of a traced line is 0.04 rho).
-  constexpr double kCoincident = 0.01;
   struct Cand {
     double d;
     Index s, x;
@@ -151,7 +148,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     for (Index x = 0; x < n; ++x) {
       if (x == s || !ms.live[x] || ms.critical[x].kind == CriticalKind::Saddle) continue;
       const double d = (ms.critical[s].position - ms.critical[x].position).norm();
-      if (d < kCoincident * (ms.critical[s].rho + ms.critical[x].rho)) coincident.push_back({d, s, x});
+      if (d < opt.coincident_factor * (ms.critical[s].rho + ms.critical[x].rho)) coincident.push_back({d, s, x});
     }
   }
   for (bool changed = true; changed;) {
@@ -172,7 +169,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
       const int base = ms.critical[cd.x].kind == CriticalKind::Maximum ? 0 : 2;
       const Index e0 = ms.arc_end(cd.s, base), e1 = ms.arc_end(cd.s, base + 1);
       if (e0 == kInvalidIndex || e1 == kInvalidIndex) continue;
-      const bool coincident = cd.d < kCoincident * (ms.critical[cd.s].rho + ms.critical[cd.x].rho);
+      const bool coincident = cd.d < opt.coincident_factor * (ms.critical[cd.s].rho + ms.critical[cd.x].rho);
       if (coincident && e0 != cd.x && e1 != cd.x) {
         ms.live[cd.s] = ms.live[cd.x] = 0;
         ms.replaced_by[cd.x] = e0;

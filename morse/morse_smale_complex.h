@@ -2,8 +2,8 @@
 // from every saddle, the Morse–Smale complex they form, protecting spheres, and
 // its simplification by arc contraction.
 // Cheng & Shi 2004 §3.2 ("Morse-Smale complex", "Construction", "Elimination of
-// the noisy critical points", Figure 3); skin-math §5, §6 (the paper's g_p is
-// not an ascent field: we follow V - (n·V) n).
+// the noisy critical points", Figure 3); papers/skin/skin_math.md §5, §6 (the
+// paper's g_p is not an ascent field: we follow V - (n·V) n).
 // Notes: papers/morse/morse_smale_complex.md
 #pragma once
 
@@ -27,12 +27,13 @@ struct IntegralLine {
 
 /// Options of the Morse–Smale construction.
 struct MorseSmaleOptions {
-  /// Step h = step_factor * rho(x) of the Heun integrator (skin-math §6: 0.04–0.05).
+  /// Step h = step_factor * rho(x) of the Heun integrator
+  /// (papers/skin/skin_math.md §6: 0.04–0.05).
   double step_factor = 0.04;
   /// Protecting-sphere radius r_p = protect_factor * rho(c). The paper uses the
   /// tangent-disc radius (§4.2, about 0.185–0.208 rho); we default to 0.25 rho
   /// because a fan from a vertex just outside a sphere of the paper's size can
-  /// still cover the critical point (sweep-design-notes Q8.1,
+  /// still cover the critical point (papers/front/open_questions.md Q8.1,
   /// papers/morse/morse_smale_complex.md).
   double protect_factor = 0.25;
   /// Arc contraction cancels a (saddle, extremum) pair joined by a single arc
@@ -42,8 +43,23 @@ struct MorseSmaleOptions {
   /// spheres meet: the sweep holds front vertices at the nearest live critical
   /// point (papers/morse/morse_smale_complex.md).
   double cancel_factor = 0.1;
+  /// Pairs (saddle, extremum) closer than coincident_factor · (rho_s + rho_c)
+  /// are cancelled even without a traced arc between them: one step of a
+  /// traced line (step_factor · rho) jumps over such an extremum, so they are
+  /// one degenerate critical point for the sweep. [measured]
+  double coincident_factor = 0.01;
   /// Maximum number of steps of one integral line.
   int max_steps = 20000;
+  /// An integral line starts start_offset · rho_s away from its saddle, in
+  /// the saddle's ascending or descending direction, pulled back onto the
+  /// skin. [measured: far enough for a non-zero gradient, well inside one step]
+  double start_offset = 0.01;
+  /// A line has arrived at an extremum c when it is within arrival_steps
+  /// steps of c (and within half the saddle's distance to c). [measured]
+  double arrival_steps = 3.0;
+  /// A Heun step that does not climb (descend) is halved at most this many
+  /// times before the line is declared stalled. [numerical]
+  int max_step_halvings = 30;
 };
 
 /// The Morse–Smale complex: critical points, the four arcs of every saddle,
@@ -77,10 +93,10 @@ struct MorseSmaleComplex {
 
 /// Traces one integral line from saddle `s` of `cps`, starting in tangent
 /// direction `dir` (unit), ascending (sgn = +1) or descending (sgn = -1), by
-/// Heun predictor–corrector steps with re-projection (skin-math §6), until it
-/// comes within min(3h, |c - s| / 2) of an extremum c of the right kind (not
-/// within its protecting sphere, which may contain the saddle itself when the
-/// two are close).
+/// Heun predictor–corrector steps with re-projection (papers/skin/skin_math.md
+/// §6), until it comes within min(3h, |c - s| / 2) of an extremum c of the
+/// right kind (not within its protecting sphere, which may contain the saddle
+/// itself when the two are close).
 IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
                                  const std::vector<CriticalPoint>& cps, Index s,
                                  const Vec3& dir, int sgn, const MorseSmaleOptions& opt);

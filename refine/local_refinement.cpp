@@ -1,5 +1,5 @@
 // refine/local_refinement.cpp: flips, contraction and insertion (Cheng & Shi
-// 2004 §4.3; sweep-design-notes §9).
+// 2004 §4.3; papers/front/open_questions.md §9).
 #include "refine/local_refinement.h"
 
 #include <algorithm>
@@ -212,7 +212,7 @@ bool Refiner::insert(Face f) {
     return false;
   }
   for (int k = 0; k < 3; ++k)
-    if ((pos(x[k]) - m).norm() < 0.25 * radius) {  // the ball is far from empty
+    if ((pos(x[k]) - m).norm() < opt_.min_insertion_clearance * radius) {  // the ball is far from empty
       ++stats_.refused_insertions;
       return false;
     }
@@ -227,7 +227,7 @@ bool Refiner::insert(Face f) {
   for (int k = 1; k < 3; ++k)
     if (lam[k] < lam[small]) small = k;
   Vertex nv;
-  if (lam[small] < 0.15) {
+  if (lam[small] < opt_.split_edge_barycentric) {
     // m is near the edge opposite corner `small`: split that edge.
     const Halfedge h = hs[small];
     const Halfedge o = mesh_.opposite(h);

@@ -21,8 +21,17 @@ struct RefineOptions {
   int max_rounds = 60;
   /// Flips per Lawson pass are capped at this factor times the number of edges
   /// (termination of flips with surface Delaunay balls is not proved,
-  /// sweep-design-notes Q9.2).
+  /// papers/front/open_questions.md Q9.2).
   double max_flips_factor = 20;
+  /// An insertion is refused when the new point would lie closer than
+  /// min_insertion_clearance · R to a corner of the triangle that contains it
+  /// (R: the surface Delaunay radius of the violating triangle): its ball is
+  /// far from empty, a flip will fix the triangle instead. [measured]
+  double min_insertion_clearance = 0.25;
+  /// A new point whose smallest barycentric coordinate in its containing
+  /// triangle is below this splits the opposite edge instead of the
+  /// triangle (no sliver next to the edge). [measured]
+  double split_edge_barycentric = 0.15;
 };
 
 /// What the refinement did and what it left.
@@ -39,10 +48,10 @@ struct RefineStats {
 /// Refines a closed triangle mesh of the skin in place so that every edge
 /// satisfies [L], every triangle [U] and (as far as flips reach) every edge is
 /// locally restricted Delaunay: Lawson flips with the surface Delaunay ball
-/// test (sweep-design-notes Q9.2), then rounds of contraction of edges that
-/// violate [L] (keeping the endpoint whose new star has the better minimum
-/// angle, Q9.3) and insertion of the surface Delaunay centre of triangles that
-/// violate [U] (Q9.4), each followed by local flips. [L] and [U] together
+/// test (papers/front/open_questions.md Q9.2), then rounds of contraction of
+/// edges that violate [L] (keeping the endpoint whose new star has the better
+/// minimum angle, Q9.3) and insertion of the surface Delaunay centre of
+/// triangles that violate [U] (Q9.4), each followed by local flips. [L] and [U] together
 /// bound every angle below by arcsin(1/Q²) = 21.55°.
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;

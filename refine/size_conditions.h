@@ -25,7 +25,7 @@ struct SizeConstants {
   double disc_factor_lower() const { return 2 * C / (Q - 2 * C); }
   /// Upper end of the tangent-disc window,
   /// r_a / rho(a) = 2CQ / (1 + 2CQ)² · sqrt((1 + CQ)(1 + 3CQ)) (0.2077; the
-  /// paper prints this without the factor 2, skin-math §8 error 1).
+  /// paper prints this without the factor 2, papers/skin/skin_math.md §8 error 1).
   double disc_factor_upper() const {
     const double cq = C * Q;
     return 2 * cq / ((1 + 2 * cq) * (1 + 2 * cq)) * std::sqrt((1 + cq) * (1 + 3 * cq));

@@ -1,5 +1,5 @@
 // skin/dual_complex.cpp: K0 filtration values, Euler characteristic, components
-// and voids. skin-math §5.
+// and voids. papers/skin/skin_math.md §5.
 #include "skin/dual_complex.h"
 
 #include <algorithm>

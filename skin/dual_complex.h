@@ -1,7 +1,8 @@
 // skin/dual_complex.h: the dual complex K0 (alpha shape at alpha = 0) of the
 // unshrunk weighted points, and the skin topology it predicts.
-// skin-math §5 "Global check"; Edelsbrunner 1999 (the skin body, shrink 1/2,
-// has the homotopy type of the union of the input balls, hence of K0).
+// papers/skin/skin_math.md §5 "Global check"; Edelsbrunner 1999 (the skin body,
+// shrink 1/2, has the homotopy type of the union of the input balls, hence of
+// K0).
 // Notes: papers/skin/dual_complex.md
 #pragma once
 
@@ -27,8 +28,8 @@ struct SkinTopology {
 /// Builds K0 from the mixed complex's simplices with the standard filtration:
 /// a simplex X has value w_X if it is unattached (pi_k(z_X) >= w_X for every
 /// vertex k of every coface) and otherwise the minimum value of its cofaces;
-/// X is in K0 iff its value <= 0 (skin-math §5). Simplices with a bounding
-/// point are never in K0. Counts components and voids with union–find.
+/// X is in K0 iff its value <= 0 (papers/skin/skin_math.md §5). Simplices with a
+/// bounding point are never in K0. Counts components and voids with union–find.
 SkinTopology dual_complex_topology(const MixedComplex& mc);
 
 }  // namespace skinmesh::skin

@@ -1,5 +1,6 @@
 // skin/mixed_complex.cpp: construction of the mixed complex and point location.
-// Cheng & Shi 2004 §2.1; skin-math §2.2 (foci), §2.3 (half-space form), §3.2.
+// Cheng & Shi 2004 §2.1; papers/skin/skin_math.md §2.2 (foci), §2.3 (half-space
+// form), §3.2.
 #include "skin/mixed_complex.h"
 
 #include <Eigen/Dense>
@@ -26,7 +27,8 @@ void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w) {
     return;
   }
   if (k == 1) {
-    // Edge: t = (d² + w0 - w1) / (2d) along u (skin-math §2.2 special case).
+    // Edge: t = (d² + w0 - w1) / (2d) along u (papers/skin/skin_math.md §2.2,
+    // special case).
     const Vec3 e = pts[1].z - z0;
     const double d2 = e.squaredNorm();
     const double t_over_d = (d2 + w0 - pts[1].w) / (2.0 * d2);
@@ -80,7 +82,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
   SKINMESH_ASSERT_MSG(np <= kMaxPoints, "at most 2^21 - 1 weighted points are supported");
   const Index nt = rt.num_tets();
 
-  // Length scale of the input (skin-math §9).
+  // Length scale of the input (papers/skin/skin_math.md §9).
   {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     Vec3 hi = -lo;
@@ -160,8 +162,9 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
   }
 
-  // Planes (skin-math §2.3): for X ⊂ Y = X ∪ {k}, m = P_perp^X (z_k - z_X);
-  // mu_X ⊆ {m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X)}, mu_Y on the other side.
+  // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k},
+  // m = P_perp^X (z_k - z_X); mu_X ⊆ {m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X)},
+  // mu_Y on the other side.
   constexpr double s = 0.5;
   std::vector<Index> count(cells_.size(), 0);
   for (const Pair& pr : pairs) {

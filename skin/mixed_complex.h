@@ -1,6 +1,7 @@
 // skin/mixed_complex.h: the mixed complex M_B of a set of weighted points
 // (shrink factor s = 1/2), in half-space form, with point location by walking.
-// Cheng & Shi 2004 §2.1 and §4.1 "Initialization"; skin-math §2.3, §3, §9.
+// Cheng & Shi 2004 §2.1 and §4.1 "Initialization"; papers/skin/skin_math.md
+// §2.3, §3, §9.
 // Notes: papers/skin/mixed_complex.md
 #pragma once
 
@@ -20,7 +21,8 @@ using geometry::WeightedPoint;
 
 /// One bounding plane of a mixed cell: the cell lies in {x : normal·x <= offset}.
 /// `normal` is a unit vector (Å⁰), `offset` in Å. `neighbor` is the cell on
-/// the other side of the plane (it shares the plane, skin-math §2.3).
+/// the other side of the plane (it shares the plane,
+/// papers/skin/skin_math.md §2.3).
 struct CellPlane {
   Vec3 normal;
   double offset;
@@ -28,7 +30,7 @@ struct CellPlane {
 };
 
 /// The mixed cell mu_X of a simplex X of the regular triangulation and the
-/// quadric patch f_X it carries (skin-math §3.2 with s = 1/2):
+/// quadric patch f_X it carries (papers/skin/skin_math.md §3.2 with s = 1/2):
 ///   f_X(x) = |P_perp y|² - |P_par y|² + w_X / 2,   y = x - z_X,
 /// where P_par projects onto the direction space of aff X. `dim` is 0 (vertex:
 /// sphere patch), 1 (edge: hyperboloid about the edge line), 2 (triangle:
@@ -37,7 +39,8 @@ struct CellPlane {
 struct MixedCell {
   int dim = 0;
   std::array<Index, 4> vertices{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
-  /// Focus (orthocentre) z_X (Å) and focus weight w_X (Å²), skin-math §2.2.
+  /// Focus (orthocentre) z_X (Å) and focus weight w_X (Å²),
+  /// papers/skin/skin_math.md §2.2.
   Vec3 focus = Vec3::Zero();
   double focus_weight = 0.0;
   /// Edge direction (dim 1) or triangle normal (dim 2), unit; zero otherwise.
@@ -74,7 +77,8 @@ class MixedComplex {
   /// Vertex cell of triangulation point v, or kInvalidIndex if v is redundant.
   Index vertex_cell(Index v) const { return vertex_cell_[v]; }
   /// Length scale L of the input (bounding-box diagonal of the non-bounding
-  /// points plus their radii, Å): the unit for tolerances (skin-math §9).
+  /// points plus their radii, Å): the unit for tolerances
+  /// (papers/skin/skin_math.md §9).
   double length_scale() const { return length_scale_; }
 
   /// Largest signed distance (Å) by which x lies outside the planes of cell c
@@ -93,7 +97,8 @@ class MixedComplex {
   double f(Index c, const Vec3& x) const;
   /// grad f_X(x) = 2 (P_perp y - P_par y) (Å).
   Vec3 gradient(Index c, const Vec3& x) const;
-  /// Local length scale rho(x) = |x - z_X| (Å), skin-math §4.1 (s = 1/2).
+  /// Local length scale rho(x) = |x - z_X| (Å), papers/skin/skin_math.md §4.1
+  /// (s = 1/2).
   double rho(Index c, const Vec3& x) const { return (x - cells_[c].focus).norm(); }
   /// A = P_perp - P_par (half the Hessian of f_X).
   Mat3 quadric_matrix(Index c) const;
@@ -107,9 +112,9 @@ class MixedComplex {
 };
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices
-/// (1 to 4 weighted points), skin-math §2.2: the point of aff X with equal
-/// power distance w_X to every vertex. Computed in coordinates relative to the
-/// first vertex. Pre: the points are affinely independent.
+/// (1 to 4 weighted points), papers/skin/skin_math.md §2.2: the point of aff X
+/// with equal power distance w_X to every vertex. Computed in coordinates
+/// relative to the first vertex. Pre: the points are affinely independent.
 void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w);
 
 }  // namespace skinmesh::skin

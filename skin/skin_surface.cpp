@@ -1,6 +1,6 @@
 // skin/skin_surface.cpp: evaluation and projection on the skin surface.
-// skin-math §3 (patches), §4.1 (curvature), §7.2 (normal-line projection),
-// §7.3 (gradient–Newton pull-back).
+// papers/skin/skin_math.md §3 (patches), §4.1 (curvature), §7.2 (normal-line
+// projection), §7.3 (gradient–Newton pull-back).
 #include "skin/skin_surface.h"
 
 #include <algorithm>

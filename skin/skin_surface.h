@@ -1,7 +1,7 @@
 // skin/skin_surface.h: the skin surface F_B of a set of weighted points
 // (shrink factor 1/2) as an implicit surface f = 0 over the mixed complex, with
 // evaluation, normals, curvature, local length scale and projection.
-// Cheng & Shi 2004 §2.1, §4.2 (Figure 9); skin-math §3, §4, §7.
+// Cheng & Shi 2004 §2.1, §4.2 (Figure 9); papers/skin/skin_math.md §3, §4, §7.
 // Notes: papers/skin/skin_surface.md
 #pragma once
 
@@ -19,8 +19,9 @@ namespace skinmesh::skin {
 
 /// Weight of an atom of van der Waals radius r (Å) with probe radius p (Å):
 /// w = 2 (r + p)², so the shrunk ball (s = 1/2) is the solvent-accessible ball
-/// of radius r + p. Cheng & Shi §2.1 as read by skin-math §1.3 (the paper's
-/// "weight is sqrt 2 times the sum" is dimensionally a radius). Pre: r + p > 0.
+/// of radius r + p. Cheng & Shi §2.1 as read by papers/skin/skin_math.md §1.3
+/// (the paper's "weight is sqrt 2 times the sum" is dimensionally a radius).
+/// Pre: r + p > 0.
 inline double atom_weight(double radius, double probe) {
   return 2.0 * (radius + probe) * (radius + probe);
 }
@@ -42,8 +43,9 @@ struct SkinSample {
   Index cell = kInvalidIndex;  ///< mixed cell containing x
 };
 
-/// Principal curvatures (1/Å) with the sign convention of skin-math §0
-/// (positive when the surface bends away from the outward normal).
+/// Principal curvatures (1/Å) with the sign convention of
+/// papers/skin/skin_math.md §0 (positive when the surface bends away from the
+/// outward normal).
 struct PrincipalCurvatures {
   double k1 = 0, k2 = 0;
 };
@@ -64,28 +66,30 @@ class SkinSurface {
   const std::vector<geometry::WeightedPoint>& points() const { return points_; }
   const geometry::RegularTriangulation& triangulation() const { return *rt_; }
   const MixedComplex& mixed_complex() const { return *mc_; }
-  /// Input length scale L (Å), the unit of tolerances (skin-math §9).
+  /// Input length scale L (Å), the unit of tolerances (papers/skin/skin_math.md §9).
   double length_scale() const { return mc_->length_scale(); }
 
-  /// f, grad f, rho and the containing cell at x (skin-math §3, §4.1).
+  /// f, grad f, rho and the containing cell at x (papers/skin/skin_math.md §3, §4.1).
   SkinSample sample(const Vec3& x, Index hint = kInvalidIndex) const;
-  /// Outward unit normal grad f / |grad f| at x (skin-math §3.2).
+  /// Outward unit normal grad f / |grad f| at x (papers/skin/skin_math.md §3.2).
   Vec3 normal(const Vec3& x, Index hint = kInvalidIndex) const;
-  /// Principal curvatures at a skin point x of cell c (closed forms, skin-math §4.1).
+  /// Principal curvatures at a skin point x of cell c (closed forms,
+  /// papers/skin/skin_math.md §4.1).
   PrincipalCurvatures curvatures(Index c, const Vec3& x) const;
 
-  /// Normal-line projection (skin-math §7.2, Cheng & Shi Figure 9): the point
-  /// q + t n with f = 0 and t in [-delta, delta] closest to t = 0. The bracket
-  /// is guaranteed by the sandwiching balls when q lies in the tangent disc of
-  /// radius r at a skin point a with outward normal n and
-  /// delta = rho(a) - sqrt(rho(a)² - r²). Returns false if f does not change
+  /// Normal-line projection (papers/skin/skin_math.md §7.2, Cheng & Shi
+  /// Figure 9): the point q + t n with f = 0 and t in [-delta, delta] closest
+  /// to t = 0. The bracket is guaranteed by the sandwiching balls when q lies
+  /// in the tangent disc of radius r at a skin point a with outward normal n
+  /// and delta = rho(a) - sqrt(rho(a)² - r²). Returns false if f does not change
   /// sign on the segment. `cell` is the hint on entry and the cell of the
   /// result on exit.
   bool project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out,
                           Index& cell) const;
   /// Gradient–Newton pull-back x <- x - f grad f / |grad f|² until
-  /// |f| / |grad f| <= 1e-14 L (skin-math §7.3). Converges from offsets up to
-  /// about rho/2. Throws GeometryError if it does not converge in 100 steps.
+  /// |f| / |grad f| <= 1e-14 L (papers/skin/skin_math.md §7.3). Converges from
+  /// offsets up to about rho/2. Throws GeometryError if it does not converge in
+  /// 100 steps.
   Vec3 pull_back(const Vec3& x, Index& cell) const;
   /// Distance estimate |f(x)| / |grad f(x)| (Å): first-order distance to the skin.
   double distance_estimate(const Vec3& x, Index hint = kInvalidIndex) const;

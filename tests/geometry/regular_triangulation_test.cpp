@@ -485,7 +485,7 @@ TEST_CASE("regular triangulation: larger random and PDB-like inputs") {
     }
     const RegularTriangulation rt(pts);
     verify(rt, false);
-    // About 6.5 tetrahedra per point for large inputs (skin-math §9).
+    // About 6.5 tetrahedra per point for large inputs (papers/skin/skin_math.md §9).
     CHECK(rt.num_tets() > 5 * 3000);
     CHECK(rt.num_tets() < 8 * 3000);
   }

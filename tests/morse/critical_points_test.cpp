@@ -1,5 +1,6 @@
 // tests/morse/critical_points_test.cpp: analytic critical points and the Morse
-// count #min - #saddle + #max = chi(skin) = 2 chi(K0) (skin-math §5, §10).
+// count #min - #saddle + #max = chi(skin) = 2 chi(K0) (papers/skin/skin_math.md
+// §5, §10), against the test vectors of tests/data/skin_vectors.txt.
 #include <doctest/doctest.h>
 
 #include <random>
@@ -8,30 +9,32 @@
 #include "morse/morse_smale_complex.h"
 #include "skin/dual_complex.h"
 #include "tests/skin/skin_test_util.h"
+#include "tests/skin/skin_vectors.h"
 
 using namespace skinmesh;
 using morse::CriticalKind;
 
 TEST_SUITE("morse") {
 
-TEST_CASE("two balls, e = y: the critical points of examples.txt") {
+TEST_CASE("two balls, e = y: the critical points of the test vectors") {
+  const test::SkinVectors v = test::load_skin_vectors("two_balls");
+  REQUIRE(test::same_points(v.points, test::two_balls()));
+  const auto& expected = v.counts_for(Vec3(0, 1, 0));
   skin::SkinSurface skin(test::two_balls());
-  const auto cps = morse::critical_points(skin, Vec3(0, 1, 0));
+  const auto cps = morse::critical_points(skin, expected.e);
   const auto m = morse::count_critical_points(cps);
-  CHECK(m.minima == 2);
-  CHECK(m.saddles == 2);
-  CHECK(m.maxima == 2);
+  CHECK(m.minima == expected.minima);
+  CHECK(m.saddles == expected.saddles);
+  CHECK(m.maxima == expected.maxima);
   auto has = [&](CriticalKind k, Vec3 p) {
     for (const auto& c : cps)
       if (c.kind == k && (c.position - p).norm() < 1e-9) return true;
     return false;
   };
-  CHECK(has(CriticalKind::Maximum, Vec3(0, 1, 0)));
-  CHECK(has(CriticalKind::Maximum, Vec3(2, 1, 0)));
-  CHECK(has(CriticalKind::Minimum, Vec3(0, -1, 0)));
-  CHECK(has(CriticalKind::Minimum, Vec3(2, -1, 0)));
-  CHECK(has(CriticalKind::Saddle, Vec3(1, std::sqrt(0.5), 0)));
-  CHECK(has(CriticalKind::Saddle, Vec3(1, -std::sqrt(0.5), 0)));
+  // The file lists every critical point for this direction.
+  const auto listed = v.critical_for(expected.e);
+  REQUIRE(listed.size() == static_cast<std::size_t>(expected.minima + expected.saddles + expected.maxima));
+  for (const auto& c : listed) CHECK(has(static_cast<CriticalKind>(c.index), c.position));
   // Every critical point is on the skin with normal ±e.
   for (const auto& c : cps) {
     const auto s = skin.sample(c.position, c.cell);
@@ -74,12 +77,12 @@ TEST_CASE("Morse count equals 2 chi(K0) for several directions and configuration
   struct Case {
     const char* name;
     std::vector<geometry::WeightedPoint> pts;
-    int expected_chi;  // designed topology, -1000 if not designed
+    int expected_chi;  // designed topology (test vectors where listed), -1000 if not designed
   };
   std::vector<Case> cases = {
-      {"two balls", test::two_balls(), 2},
-      {"tetrahedron void", test::tetrahedron_void(), 4},
-      {"three-ball ring", test::three_ball_ring(), 0},
+      {"two balls", test::two_balls(), test::load_skin_vectors("two_balls").euler_skin},
+      {"tetrahedron void", test::tetrahedron_void(), test::load_skin_vectors("tetrahedron_void").euler_skin},
+      {"three-ball ring", test::three_ball_ring(), test::load_skin_vectors("three_ball_ring").euler_skin},
       {"cube corners (Figure 4)", test::cube_corners(1.4), -1000},
       {"cube corners, closed", test::cube_corners(2.2), -1000},
       {"random 20", test::random_points(20, 6.0, 0.5, 2.5, rng), -1000},
@@ -102,19 +105,25 @@ TEST_CASE("Morse count equals 2 chi(K0) for several directions and configuration
 }
 
 TEST_CASE("three-ball ring, e = (0, .6, .8): 3 minima, 6 saddles, 3 maxima") {
+  const test::SkinVectors v = test::load_skin_vectors("three_ball_ring");
+  REQUIRE(test::same_points(v.points, test::three_ball_ring()));
+  const auto& expected = v.counts_for(Vec3(0, 0.6, 0.8));
   skin::SkinSurface skin(test::three_ball_ring());
-  const auto m = morse::count_critical_points(morse::critical_points(skin, Vec3(0, 0.6, 0.8)));
-  CHECK(m.minima == 3);
-  CHECK(m.saddles == 6);
-  CHECK(m.maxima == 3);
+  const auto m = morse::count_critical_points(morse::critical_points(skin, expected.e));
+  CHECK(m.minima == expected.minima);
+  CHECK(m.saddles == expected.saddles);
+  CHECK(m.maxima == expected.maxima);
 }
 
 TEST_CASE("tetrahedron void, e = y: 3 minima, 2 saddles, 3 maxima") {
+  const test::SkinVectors v = test::load_skin_vectors("tetrahedron_void");
+  REQUIRE(test::same_points(v.points, test::tetrahedron_void()));
+  const auto& expected = v.counts_for(Vec3(0, 1, 0));
   skin::SkinSurface skin(test::tetrahedron_void());
-  const auto m = morse::count_critical_points(morse::critical_points(skin, Vec3(0, 1, 0)));
-  CHECK(m.minima == 3);
-  CHECK(m.saddles == 2);
-  CHECK(m.maxima == 3);
+  const auto m = morse::count_critical_points(morse::critical_points(skin, expected.e));
+  CHECK(m.minima == expected.minima);
+  CHECK(m.saddles == expected.saddles);
+  CHECK(m.maxima == expected.maxima);
 }
 
 }  // TEST_SUITE

@@ -25,7 +25,7 @@ geometry::IndexedMesh icosphere(const Vec3& c, double R, int levels) {
 
 TEST_SUITE("refine") {
 
-TEST_CASE("size constants: the numbers of skin-math §8") {
+TEST_CASE("size constants: the numbers of papers/skin/skin_math.md §8") {
   refine::SizeConstants k;
   CHECK(k.min_angle_bound_deg() == doctest::Approx(21.5498).epsilon(1e-4));
   CHECK(k.disc_factor_lower() == doctest::Approx(0.107383).epsilon(1e-5));

@@ -1,6 +1,7 @@
 // tests/skin/skin_surface_test.cpp: mixed complex, patches, curvature and
-// projection against the test vectors of skin-math §10 (examples.txt) and the
-// brute-force skin function from the definition.
+// projection against the test vectors of tests/data/skin_vectors.txt
+// (papers/skin/skin_math.md §10) and the brute-force skin function from the
+// definition.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "skin/dual_complex.h"
 #include "skin/skin_surface.h"
 #include "tests/skin/skin_test_util.h"
+#include "tests/skin/skin_vectors.h"
 
 using namespace skinmesh;
 using skin::SkinSurface;
@@ -32,71 +34,78 @@ Index find_cell(const skin::MixedComplex& mc, std::vector<Index> v) {
 
 TEST_SUITE("skin") {
 
-TEST_CASE("two balls: foci, gradient, curvature and rho match examples.txt") {
+TEST_CASE("two balls: foci, gradient, curvature and rho match the test vectors") {
+  const test::SkinVectors v = test::load_skin_vectors("two_balls");
+  REQUIRE(test::same_points(v.points, test::two_balls()));
   SkinSurface skin(test::two_balls());
   const auto& mc = skin.mixed_complex();
   const Index e = find_cell(mc, {0, 1});
   REQUIRE(e != kInvalidIndex);
-  CHECK((mc.cell(e).focus - Vec3(1, 0, 0)).norm() < 1e-14);
-  CHECK(mc.cell(e).focus_weight == doctest::Approx(-1.0));
-  CHECK(mc.cell(mc.vertex_cell(0)).focus_weight == doctest::Approx(-2.0));
-  CHECK(mc.num_cells_of_dim(0) == 2);
-  CHECK(mc.num_cells_of_dim(1) == 1);
-  CHECK(mc.num_cells_of_dim(2) == 0);
+  CHECK((mc.cell(e).focus - v.simplex({0, 1}).focus).norm() < 1e-14);
+  CHECK(mc.cell(e).focus_weight == doctest::Approx(v.simplex({0, 1}).weight));
+  CHECK(mc.cell(mc.vertex_cell(0)).focus_weight == doctest::Approx(v.simplex({0}).weight));
+  CHECK(mc.num_cells_of_dim(0) == v.num_simplices(0));
+  CHECK(mc.num_cells_of_dim(1) == v.num_simplices(1));
+  CHECK(mc.num_cells_of_dim(2) == v.num_simplices(2));
 
-  const Vec3 x1(0.5, std::sqrt(0.75), 0);  // on the plane x = 0.5 between cells
-  const auto s1 = skin.sample(x1);
-  CHECK(std::abs(s1.f) < 1e-14);
-  CHECK((s1.gradient - Vec3(1, std::sqrt(3.0), 0)).norm() < 1e-12);
-  CHECK(s1.rho == doctest::Approx(1.0));
+  const auto& p1 = v.sample("face");  // on the plane x = 0.5 between cells
+  const auto s1 = skin.sample(p1.x);
+  CHECK(std::abs(s1.f - p1.f) < 1e-14);
+  CHECK((s1.gradient - p1.gradient).norm() < 1e-12);
+  CHECK(s1.rho == doctest::Approx(p1.rho));
 
-  const Vec3 x2(1.0, std::sqrt(0.5), 0);  // on the throat circle
-  const auto s2 = skin.sample(x2);
-  CHECK(s2.cell == e);
-  CHECK(std::abs(s2.f) < 1e-14);
-  CHECK((s2.gradient - Vec3(0, std::sqrt(2.0), 0)).norm() < 1e-12);
-  CHECK(s2.rho == doctest::Approx(std::sqrt(0.5)));
-  const auto k = skin.curvatures(s2.cell, x2);
-  CHECK(k.k1 == doctest::Approx(std::sqrt(2.0)));
-  CHECK(k.k2 == doctest::Approx(-std::sqrt(2.0)));
+  const auto& p2 = v.sample("throat");  // on the throat circle
+  const auto s2 = skin.sample(p2.x);
+  CHECK(s2.cell == find_cell(mc, p2.cell));
+  CHECK(std::abs(s2.f - p2.f) < 1e-14);
+  CHECK((s2.gradient - p2.gradient).norm() < 1e-12);
+  CHECK(s2.rho == doctest::Approx(p2.rho));
+  const auto k = skin.curvatures(s2.cell, p2.x);
+  CHECK(k.k1 == doctest::Approx(p2.k1));
+  CHECK(k.k2 == doctest::Approx(p2.k2));
 
-  const auto s3 = skin.sample(Vec3(-1, 0, 0));
-  CHECK(s3.cell == mc.vertex_cell(0));
-  CHECK((s3.gradient - Vec3(-2, 0, 0)).norm() < 1e-14);
+  const auto& p3 = v.sample("pole");
+  const auto s3 = skin.sample(p3.x);
+  CHECK(s3.cell == find_cell(mc, p3.cell));
+  CHECK((s3.gradient - p3.gradient).norm() < 1e-14);
 }
 
 TEST_CASE("tetrahedron void: cavity sphere of radius 0.2 and foci") {
+  const test::SkinVectors v = test::load_skin_vectors("tetrahedron_void");
+  REQUIRE(test::same_points(v.points, test::tetrahedron_void()));
   SkinSurface skin(test::tetrahedron_void());
   const auto& mc = skin.mixed_complex();
   const Index t = find_cell(mc, {0, 1, 2, 3});
   REQUIRE(t != kInvalidIndex);
-  CHECK(mc.cell(t).focus.norm() < 1e-12);
-  CHECK(mc.cell(t).focus_weight == doctest::Approx(0.08));
+  CHECK((mc.cell(t).focus - v.simplex({0, 1, 2, 3}).focus).norm() < 1e-12);
+  CHECK(mc.cell(t).focus_weight == doctest::Approx(v.simplex({0, 1, 2, 3}).weight));
   const Index tri = find_cell(mc, {0, 1, 2});
   REQUIRE(tri != kInvalidIndex);
-  CHECK(mc.cell(tri).focus_weight == doctest::Approx(-0.086667).epsilon(1e-5));
+  CHECK(mc.cell(tri).focus_weight == doctest::Approx(v.simplex({0, 1, 2}).weight).epsilon(1e-5));
   const Index ed = find_cell(mc, {0, 1});
   REQUIRE(ed != kInvalidIndex);
-  CHECK(mc.cell(ed).focus_weight == doctest::Approx(-0.42));
-  const Vec3 x(0, 0, -0.2);
-  const auto s = skin.sample(x);
-  CHECK(s.cell == t);
-  CHECK(std::abs(s.f) < 1e-14);
-  CHECK((s.gradient - Vec3(0, 0, 0.4)).norm() < 1e-12);
-  const auto k = skin.curvatures(s.cell, x);
-  CHECK(k.k1 == doctest::Approx(-5.0));
-  CHECK(k.k2 == doctest::Approx(-5.0));
+  CHECK(mc.cell(ed).focus_weight == doctest::Approx(v.simplex({0, 1}).weight));
+  const auto& p = v.sample("cavity");
+  const auto s = skin.sample(p.x);
+  CHECK(s.cell == find_cell(mc, p.cell));
+  CHECK(std::abs(s.f - p.f) < 1e-14);
+  CHECK((s.gradient - p.gradient).norm() < 1e-12);
+  const auto k = skin.curvatures(s.cell, p.x);
+  CHECK(k.k1 == doctest::Approx(p.k1));
+  CHECK(k.k2 == doctest::Approx(p.k2));
 }
 
 TEST_CASE("three-ball ring: edge and triangle focus weights") {
+  const test::SkinVectors v = test::load_skin_vectors("three_ball_ring");
+  REQUIRE(test::same_points(v.points, test::three_ball_ring()));
   SkinSurface skin(test::three_ball_ring());
   const auto& mc = skin.mixed_complex();
   const Index e = find_cell(mc, {0, 1});
   const Index t = find_cell(mc, {0, 1, 2});
   REQUIRE(e != kInvalidIndex);
   REQUIRE(t != kInvalidIndex);
-  CHECK(mc.cell(e).focus_weight == doctest::Approx(-0.0975));
-  CHECK(mc.cell(t).focus_weight == doctest::Approx(0.203333).epsilon(1e-5));
+  CHECK(mc.cell(e).focus_weight == doctest::Approx(v.simplex({0, 1}).weight));
+  CHECK(mc.cell(t).focus_weight == doctest::Approx(v.simplex({0, 1, 2}).weight).epsilon(1e-5));
 }
 
 TEST_CASE("mixed-complex f equals the brute-force definition; cells tile space") {

@@ -1,5 +1,5 @@
 // tests/skin/skin_test_util.h: an independent brute-force evaluation of the skin
-// function from its definition, for tests (skin-math §1.2, §10 "BruteForce").
+// function from its definition, for tests (papers/skin/skin_math.md §1.2, §10).
 #pragma once
 
 #include <algorithm>
@@ -92,7 +92,8 @@ inline Mat3 random_rotation(std::mt19937& rng) {
   return q.normalized().toRotationMatrix();
 }
 
-/// The configurations of skin-math §10 / examples.txt.
+/// The configurations of papers/skin/skin_math.md §10; their reference values
+/// are in tests/data/skin_vectors.txt (tests/skin/skin_vectors.h).
 inline std::vector<WeightedPoint> two_balls() { return {{Vec3(0, 0, 0), 2.0}, {Vec3(2, 0, 0), 2.0}}; }
 inline std::vector<WeightedPoint> tetrahedron_void() {
   const double s = 1.0 / std::sqrt(2.0);
