@@ -1,7 +1,7 @@
 // bench/table1.cpp: the mesher benchmark that reproduces Cheng & Shi 2004,
 // Table 1 (per molecule: triangles, minimum angle, computing time of the sweep
 // and of the dynamic skin algorithm), on the stand-ins for its molecules listed
-// in data/README.md. STYLE.md §3 "Benchmarks".
+// in data/README.md. papers/conventions.md §3 "Benchmarks".
 //
 // BM_SweepMesher/<molecule> times the whole pipeline from weighted points to
 // the refined mesh (skin, critical points and Morse–Smale complex, sweep,

@@ -175,8 +175,7 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left) {
         opt_.trace(os.str());
       }
       std::ostringstream os;
-      os << "seal: no ear in a hole of " << k << " vertices near (" << plane.centre.transpose()
-         << ") (the sweep's trace lists them)";
+      os << "seal: no ear in a hole of " << k << " vertices near (" << plane.centre.transpose() << ")";
       throw TopologyError(os.str());
     }
     const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];

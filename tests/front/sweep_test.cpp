@@ -1,5 +1,5 @@
-// tests/front/sweep_mesher_test.cpp: the sweep on the test configurations of
-// sweep-design-notes §11 (one atom, two atoms, a neck with live saddles, the
+// tests/front/sweep_test.cpp: the whole pipeline on the test configurations of
+// papers/front/open_questions.md §11 (one atom, two atoms, a neck with live saddles, the
 // three-ball torus, the tetrahedral void, the paper's Figure 4 cube corners):
 // the result must be closed, manifold, outward-oriented, free of
 // self-intersections, on the skin, and of the expected topology; with the
