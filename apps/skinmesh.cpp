@@ -77,6 +77,7 @@ struct MoleculeArgs {
 };
 
 void add_molecule_options(CLI::App& cmd, MoleculeArgs& m) {
+  cmd.footer(kFormats);
   cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz)")
       ->required();
   cmd.add_option("--probe", m.probe, "probe radius in Å; atom weight w = 2 (r + probe)²")
@@ -363,7 +364,6 @@ int main(int argc, char** argv) {
       "info", "atoms, regular triangulation, mixed cells, critical points, the Morse–Smale complex and the skin's "
               "expected topology");
   add_molecule_options(*info_cmd, info.mol);
-  info_cmd->footer(kFormats);
   add_direction_option(*info_cmd, info.direction);
   info_cmd->add_flag("--json", info.json, "print a JSON object instead of text");
 
@@ -373,7 +373,6 @@ int main(int argc, char** argv) {
       "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
       "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off or .obj)");
   add_molecule_options(*mesh_cmd, mesh.mol);
-  mesh_cmd->footer(kFormats);
   mesh_cmd->add_option("-o,--output", mesh.out, "output mesh (.ply, .off or .obj)")->required();
   mesh_cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
   add_direction_option(*mesh_cmd, mesh.direction);
@@ -403,7 +402,6 @@ int main(int argc, char** argv) {
       "exact self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay; exit 0 "
       "if every check passes, 1 otherwise");
   add_molecule_options(*check_cmd, check.mol);
-  check_cmd->footer(kFormats);
   check_cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off or .obj)")->required();
   check_cmd->add_option("-o,--output", check.report, "also write the report to this file");
   add_size_options(*check_cmd, check.opt.size);
