@@ -26,8 +26,9 @@ bool Sweep::small_hole(Vertex v) const {
   for (int count = 1; count <= opt_.small_hole_vertices; ++count) {
     const Vertex x = mesh_.to_vertex(h);
     angle_sum += corner(x).angle;
-    // A loop of k vertices bounds a small hole (not the outside of a small
-    // disc, like a fresh bowl) iff its hole angles add up to (k - 2) 180°.
+    // A loop of k vertices bounds a small hole iff its hole angles add up to
+    // less than k 180°: (k - 2) 180° inside a polygon, (k + 2) 180° around
+    // the outside of a small disc (like a fresh bowl).
     if (x == v) return angle_sum < count * kPi;
     if ((mesh_.position(x) - mesh_.position(v)).norm() > reach) return false;
     h = mesh_.next(h);
@@ -83,6 +84,7 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
   }
   for (Vertex v : poly) state_[v] = VState::Interior;
   ++stats_.seals;
+  if (trace_) tracef("seal loop of %zu by the max-min-angle programme\n", k);
   return true;
 }
 

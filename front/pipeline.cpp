@@ -85,6 +85,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
     lap("refine");
   }
   res.mesh = output_mesh(skin, swept.mesh);
+  lap("output");
 
   // 5. The check.
   if (options.check) {

@@ -76,7 +76,8 @@ struct MeshResult {
   bool checked = false;
   refine::SkinCheckReport check;
   /// Wall-clock seconds per stage, in order ("skin", "morse", "sweep",
-  /// "refine", "check"; stages that did not run are absent).
+  /// "refine", "output" (compaction, normals, atoms), "check"; stages that
+  /// did not run are absent).
   std::vector<std::pair<std::string, double>> seconds;
 
   /// True unless the check ran and failed.

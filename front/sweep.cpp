@@ -134,6 +134,7 @@ void Sweep::hold(Vertex v, Index c) {
   held_by_[v] = c;
   held_[c].push_back(v);
   ++stats_.held;
+  if (trace_) tracef("hold v%u by critical point %u\n", v.idx(), c);
   const std::size_t f0 = mesh_.faces_size();
   if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) paranoid_check(f0, "bridge");
   const std::size_t f1 = mesh_.faces_size();
@@ -162,6 +163,7 @@ bool Sweep::release_saddles() {
     if (!ms_.live[c] || ms_.critical[c].kind != CriticalKind::Saddle || resolved_[c]) continue;
     resolved_[c] = 1;
     ++stats_.released;
+    if (trace_) tracef("release saddle %zu unbridged\n", c);
     if (release_holds(static_cast<Index>(c), /*requeue=*/true)) any = true;
   }
   return any;
@@ -187,10 +189,6 @@ void Sweep::report_progress(double h) {
 bool Sweep::departure_step() {
   // Line 1: while Q is not empty.
   while (!queue_.empty()) {
-    if (opt_.max_steps >= 0 && steps_++ >= opt_.max_steps) {
-      if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
-      throw TopologyError("stopped after max_steps departures");
-    }
     // Line 2: t = ExtractMin(Q), the lowest front vertex (lazy deletion: an
     // entry whose stamp is old, or a vertex no longer free on the front, is
     // skipped).
@@ -200,6 +198,10 @@ bool Sweep::departure_step() {
     if (top.stamp != stamp_[v] || state_[v] != VState::Front || mesh_.is_deleted(v) || mesh_.is_isolated(v) ||
         !mesh_.is_boundary(v))
       continue;
+    if (opt_.max_steps >= 0 && steps_++ >= opt_.max_steps) {
+      if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
+      throw TopologyError("stopped after " + std::to_string(opt_.max_steps) + " departures (max_steps)");
+    }
     report_progress(top.h);
     // Lines 3–10: in the protecting sphere of a saddle (bridged when ready)
     // or of a maximum: the vertex is held.

@@ -61,7 +61,8 @@ struct SweepOptions {
   double defer_step = 0.25;
   /// The tangent angles at a vertex plus its hole angle must make 360° within
   /// this (degrees), else the mesh folds. [measured: numerical noise is
-  /// below 1e-6°, a fold is at least one triangle angle > 21°]
+  /// below 1e-6°; a fold thinner than this goes unnoticed here and is
+  /// caught by the final self-intersection check]
   double fold_tolerance_deg = 5;
 
   // The collision safety net (papers/front/collision_net.md), not in the paper.
@@ -118,7 +119,8 @@ struct SweepOptions {
   /// contacts, bridges, seals, the vertices of a hole that cannot be sealed);
   /// empty: no trace.
   std::function<void(const std::string& line)> trace;
-  /// Stop with TopologyError after this many departures (negative: no limit).
+  /// Stop with TopologyError after this many departures (valid queue entries;
+  /// negative: no limit).
   long max_steps = -1;
   /// If not empty, the partial mesh is written here before the seal, when a
   /// paranoid check fails, and when max_steps stops the sweep.
@@ -127,14 +129,15 @@ struct SweepOptions {
 
 /// Counters of the sweep (Algorithm 1's operations and the safety net).
 struct SweepStats {
-  std::size_t creations = 0, creeps = 0, wings = 0, bridges = 0, seals = 0;
-  std::size_t held = 0;           ///< departure vertices stopped in a protecting sphere
+  std::size_t creations = 0, creeps = 0, wings = 0, bridges = 0;
+  std::size_t seals = 0;          ///< holes closed: at the seal and small holes during the sweep
+  std::size_t held = 0;           ///< vertices held: in a protecting sphere, or next to a held vertex they would fold over or touch
   std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
   std::size_t contacts = 0;       ///< front parts joined by the safety net (not in the paper)
   std::size_t stuck = 0;          ///< departure vertices left for the seal (no fan fits, Figure 7)
   std::size_t enlarged_holes = 0;  ///< tangled holes re-opened by deleting the faces around them
-  std::size_t collisions = 0;     ///< fans that would have come within collision_radius · r of another front part
+  std::size_t collisions = 0;     ///< fans that would have come within collision_radius · r of another vertex
   std::size_t released = 0;       ///< saddles whose holds were released unbridged
 };
 

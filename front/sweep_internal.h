@@ -92,8 +92,9 @@ class Sweep {
   /// creation() at every live minimum.
   void create_initial_front();
   /// One iteration of Algorithm 1's loop (lines 2–14): the lowest valid
-  /// departure vertex is held, closes a small hole, or creeps; then the
-  /// wings are drained. False if the queue was empty.
+  /// departure vertex is held (a ready saddle is bridged), closes a small
+  /// hole, or creeps; after a hold or a creep the wings are drained. False if
+  /// the queue was empty.
   bool departure_step();
   /// Releases the vertices held by unresolved saddles (the queue ran dry
   /// before both sides arrived); returns true if any was released.
@@ -249,12 +250,12 @@ class Sweep {
   /// (papers/front/open_questions.md Q1.2).
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
   std::vector<Vertex> wing_worklist_;
-  std::vector<char> resolved_;              ///< saddle bridged / maximum sealed
+  std::vector<char> resolved_;              ///< saddle bridged or released (holds no more)
   std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
   std::unique_ptr<geometry::PointGrid> hold_grid_;
   std::unique_ptr<geometry::PointGrid> vertex_grid_;  ///< every vertex, for the collision safety net
   double max_hold_radius_ = 0;
-  long steps_ = 0;                  ///< queue entries taken (for max_steps)
+  long steps_ = 0;                  ///< departures so far (for max_steps)
   double h_min_ = 0, h_max_ = 0;    ///< height range of the critical points (progress)
   double next_progress_ = 0;        ///< next fraction to report
   const bool trace_ = static_cast<bool>(opt_.trace);

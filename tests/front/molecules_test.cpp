@@ -37,7 +37,7 @@ TEST_CASE("molecules: crambin_1crn") { mesh_and_check(kData + "/crambin_1crn.pdb
 TEST_CASE("molecules: adna_3dna_fiber_30bp (genus 1)") { mesh_and_check(kData + "/adna_3dna_fiber_30bp.pdb"); }
 TEST_CASE("molecules: ligand_1hvr_xk263") { mesh_and_check(kData + "/ligand_1hvr_xk263.pdb"); }
 
-// Inputs that once broke the sweep (see papers/front/sweep_mesher.md).
+// Inputs that once broke the sweep (see papers/front/creep.md and papers/front/hole_filling.md).
 TEST_CASE("regression: a neighbour's narrow spike that no fan fits (Figure 7), random 50 atoms") {
   mesh_and_check(kRegression + "random50_probe1.4_figure7_stuck.xyzr");
 }
