@@ -1,8 +1,10 @@
 // geometry/mesh_checks.h: check_mesh(), the verifier shared by the tests, the
-// benchmarks and the CLI (STYLE.md §3 "Tests", like CDT's verifyTopology). It
+// benchmarks and the CLI (papers/conventions.md §3 "Tests", like CDT's verifyTopology). It
 // reads any IndexedMesh triangle soup, broken ones included, and reports its
 // topology (closed, manifold, oriented, components, Euler characteristic,
 // genus), its geometry (volume, angles) and its exact self-intersections.
+// Implemented in geometry/mesh_checks*.cpp, one file per kind of check (the
+// list is in geometry/mesh_checks_internal.h).
 #pragma once
 
 #include <algorithm>

@@ -1,7 +1,9 @@
 // geometry/mesh_io.h: writing and reading IndexedMesh as PLY, OFF or OBJ, the last
-// stage of the pipeline (STYLE.md §2) and the verifier's way back in.
+// stage of the pipeline (papers/conventions.md §2) and the verifier's way back in.
 // Formats: PLY (G. Turk, "The PLY Polygon File Format", 1994), OFF (Geomview),
-// Wavefront OBJ.
+// Wavefront OBJ. Implemented in geometry/mesh_io.cpp (dispatch, file writing and
+// reading) and one file per format, geometry/mesh_io_{ply,off,obj}.cpp (see
+// geometry/mesh_io_internal.h).
 #pragma once
 
 #include <string>

@@ -31,6 +31,13 @@ inline std::vector<std::string_view> split_blanks(std::string_view s) {
   return out;
 }
 
+/// The white-space separated fields of `line` before its first '#' (a
+/// comment to the end of the line, as in OBJ, OFF and XYZR files).
+inline std::vector<std::string_view> fields_before_comment(std::string_view line) {
+  if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+  return split_blanks(line);
+}
+
 /// The lines of `text` without their "\n" or "\r\n"; entry k is line k + 1.
 inline std::vector<std::string_view> split_lines(std::string_view text) {
   std::vector<std::string_view> lines;

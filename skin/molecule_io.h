@@ -1,6 +1,8 @@
 // skin/molecule_io.h: read_molecule() turns a PDB, mmCIF, PQR or XYZR file into a
-// Molecule (atom centres and radii, Å). The first stage of the pipeline (STYLE.md §2).
+// Molecule (atom centres and radii, Å). The first stage of the pipeline (papers/conventions.md §2).
 // PDB and mmCIF go through gemmi; radii come from Bondi (skin/element_radii.h).
+// Implemented in skin/molecule_io.cpp (dispatch and shared parts) and one file per
+// reader, skin/molecule_io_{gemmi,pqr,xyzr}.cpp (see skin/molecule_io_internal.h).
 #pragma once
 
 #include <string>

@@ -1,0 +1,400 @@
+// skin/molecule_io_gemmi.cpp: the PDB and mmCIF readers of read_molecule(),
+// through gemmi. gemmi is used only in this file (papers/conventions.md §2): its types never
+// leave it. Declared in molecule_io_internal.h.
+//
+// gemmi 0.5.7 reads the PDB coordinate columns 31-54 without checking them:
+// pdb_impl::read_double() keeps whatever fast_float parses from the front of the
+// field ("abc" -> 0, "12.1x4" -> 12.1, blank -> 0, "nan" -> NaN, "1e999" -> inf).
+// So the PDB text is scanned here first: every ATOM/HETATM record of the first
+// model must hold three complete, finite numbers in columns 31-38, 39-46, 47-54,
+// else InputError with the line number. The same scan records each record's line,
+// so atoms coming back from gemmi (regrouped by chain and residue) find their
+// source line again by (x, y, z, name, altloc). The scan also blanks columns
+// 79-80 (formal charge) of the copy handed to gemmi, which otherwise rejects
+// files with old-style identifiers there ("Wrong format for charge", bundled
+// 1GRM). mmCIF is handled the same way
+// through gemmi's cif::Document and a small tokenizer that finds the line of each
+// value of the _atom_site loop.
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <map>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <gemmi/cif.hpp>
+#include <gemmi/mmcif.hpp>
+#include <gemmi/pdb.hpp>
+
+#include "geometry/errors.h"
+#include "geometry/text_split.h"
+#include "skin/element_radii.h"
+#include "skin/molecule_io_internal.h"
+
+namespace skinmesh::skin::molecule_io_detail {
+
+namespace {
+
+using geometry::is_blank;
+using geometry::split_lines;
+using geometry::trim;
+
+// Source Lines of gemmi Atoms
+
+/// Where an atom record sits in the text: its line and whether its element came
+/// from an element column (PDB columns 77-78, mmCIF type_symbol).
+struct SourceRecord {
+  int line = 0;
+  bool element_from_column = true;
+};
+
+/// Finds the source record of an atom returned by gemmi. gemmi regroups atoms by
+/// chain and residue, so they are matched by exact coordinates (gemmi's fast_float
+/// and std::from_chars both round correctly, so they agree on every field that
+/// passed parse_double), atom name and altloc; equal keys are served in file order.
+class SourceIndex {
+ public:
+  using Key = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, std::string, char>;
+
+  static Key key(double x, double y, double z, std::string name, char altloc) {
+    return {std::bit_cast<std::uint64_t>(x), std::bit_cast<std::uint64_t>(y),
+            std::bit_cast<std::uint64_t>(z), std::move(name), altloc};
+  }
+  void add(Key k, SourceRecord r) { records_[std::move(k)].push_back(r); }
+  /// The record of `k` not handed out yet, or {0, true} if there is none.
+  SourceRecord take(const Key& k) {
+    auto it = records_.find(k);
+    if (it == records_.end() || it->second.empty()) return {};
+    SourceRecord r = it->second.front();
+    it->second.pop_front();
+    return r;
+  }
+
+ private:
+  std::map<Key, std::deque<SourceRecord>> records_;
+};
+
+// PDB Pre-scan
+
+/// True if the record name of `line` is `rec` (case-insensitive, gemmi's rule).
+bool record_is(std::string_view line, std::string_view rec) {
+  if (line.size() < rec.size()) return false;
+  for (std::size_t i = 0; i < rec.size(); ++i)
+    if (std::toupper(static_cast<unsigned char>(line[i])) != rec[i]) return false;
+  return true;
+}
+
+/// Checks the coordinate columns of every ATOM/HETATM record of the first model
+/// and indexes the records by (x, y, z, name, altloc). Blanks columns 79-80 (the
+/// formal charge, unused here) of every ATOM/HETATM record in `text`: gemmi
+/// rejects the whole file when they hold anything but a charge, and old-style
+/// files keep identifiers there (1GRM: columns 73-80 read "1GRM 125").
+/// Throws InputError.
+SourceIndex scan_pdb(const std::string& path, std::string& text) {
+  SourceIndex index;
+  bool seen_atom = false;
+  const std::vector<std::string_view> lines = split_lines(text);
+  for (const std::string_view line : lines)  // every model: gemmi reads them all
+    if (record_is(line, "ATOM") || record_is(line, "HETA"))
+      for (std::size_t c = 78; c < std::min<std::size_t>(line.size(), 80); ++c)
+        text[static_cast<std::size_t>(line.data() - text.data()) + c] = ' ';
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const std::string_view line = lines[k];
+    const int line_no = static_cast<int>(k + 1);
+    if (record_is(line, "ENDMDL") && seen_atom) break;  // gemmi starts model 2 here
+    if (record_is(line, "END") && (line.size() == 3 || is_blank(line[3]))) break;  // gemmi stops
+    if (!record_is(line, "ATOM") && !record_is(line, "HETA")) continue;
+    seen_atom = true;
+    if (line.size() < 54)
+      throw InputError(path, line_no,
+                       "ATOM/HETATM record too short: x, y, z must fill columns 31-54 (" +
+                           std::to_string(line.size()) + " columns found)");
+    const double x = parse_number(path, line_no, line.substr(30, 8), "x coordinate");
+    const double y = parse_number(path, line_no, line.substr(38, 8), "y coordinate");
+    const double z = parse_number(path, line_no, line.substr(46, 8), "z coordinate");
+    const std::string name(trim(line.substr(12, 4)));
+    const char altloc = line[16] == ' ' ? '\0' : line[16];
+    const bool element_column =
+        line.size() > 76 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
+                             (line.size() > 77 && std::isalpha(static_cast<unsigned char>(line[77]))));
+    index.add(SourceIndex::key(x, y, z, name, altloc), {line_no, element_column});
+  }
+  return index;
+}
+
+// mmCIF Pre-scan
+
+/// The source line of every value of the loop that starts (keyword "loop_") on
+/// 1-based line `loop_line`, for its first `value_count` values; empty if the
+/// text does not match (then atom lines stay unknown). CIF 1.1 tokens: blank
+/// separated, '#' comments, '...' and "..." quoted strings ending at a quote
+/// followed by a blank, and ;-delimited text fields.
+std::vector<int> loop_value_lines(std::string_view text, int loop_line, std::size_t value_count) {
+  std::vector<int> lines;
+  std::size_t pos = 0;
+  int line = 1;
+  while (line < loop_line && pos < text.size()) {
+    const std::size_t nl = text.find('\n', pos);
+    if (nl == std::string_view::npos) return {};
+    pos = nl + 1;
+    ++line;
+  }
+  enum class Stage { Keyword, Tags, Values } stage = Stage::Keyword;
+  bool line_start = true;
+  while (pos < text.size() && lines.size() < value_count) {
+    const char c = text[pos];
+    if (c == '\n') {
+      ++line;
+      ++pos;
+      line_start = true;
+      continue;
+    }
+    if (is_blank(c)) {
+      ++pos;
+      line_start = false;
+      continue;
+    }
+    if (c == '#') {
+      pos = text.find('\n', pos);
+      if (pos == std::string_view::npos) break;
+      continue;
+    }
+    const int token_line = line;
+    std::size_t end = pos;
+    bool quoted = false;
+    if (c == ';' && line_start) {  // text field up to a line starting with ';'
+      std::size_t close = text.find("\n;", pos);
+      if (close == std::string_view::npos) return {};
+      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(pos),
+                                          text.begin() + static_cast<std::ptrdiff_t>(close + 1), '\n'));
+      end = close + 2;
+      quoted = true;
+    } else if (c == '\'' || c == '"') {
+      end = pos + 1;
+      while (end < text.size() && text[end] != '\n' &&
+             !(text[end] == c && (end + 1 == text.size() || is_blank(text[end + 1]))))
+        ++end;
+      if (end < text.size() && text[end] == c) ++end;
+      quoted = true;
+    } else {
+      while (end < text.size() && !is_blank(text[end])) ++end;
+    }
+    const std::string_view token = text.substr(pos, end - pos);
+    pos = end;
+    line_start = false;
+    if (stage == Stage::Keyword) {
+      if (lowercase(token) != "loop_") return {};
+      stage = Stage::Tags;
+      continue;
+    }
+    if (stage == Stage::Tags && !quoted && token.front() == '_') continue;
+    stage = Stage::Values;
+    lines.push_back(token_line);
+  }
+  if (lines.size() != value_count) return {};
+  return lines;
+}
+
+/// Checks Cartn_x/y/z of every _atom_site row of the first model (CIF numbers,
+/// an esd suffix "(n)" allowed) and indexes the rows like scan_pdb(). The first
+/// block is the one gemmi::make_structure() reads. Throws InputError.
+SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::cif::Block& block) {
+  SourceIndex index;
+  enum { kX, kY, kZ, kAuthAtom, kLabelAtom, kAlt, kModel };
+  gemmi::cif::Table table = block.find(
+      "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?auth_atom_id", "?label_atom_id",
+                      "?label_alt_id", "?pdbx_PDB_model_num"});
+  if (!table.ok() || table.length() == 0) return index;
+  std::vector<int> value_lines;
+  if (table.loop_item != nullptr) {
+    const gemmi::cif::Loop& loop = table.loop_item->loop;
+    value_lines = loop_value_lines(text, table.loop_item->line_number, loop.values.size());
+  }
+  const std::size_t width = table.loop_item != nullptr ? table.loop_item->loop.width() : 0;
+  auto line_of = [&](std::size_t row, int column) -> int {
+    const int pos = table.positions.at(static_cast<std::size_t>(column));
+    if (value_lines.empty() || pos < 0) return 0;
+    return value_lines.at(row * width + static_cast<std::size_t>(pos));
+  };
+  auto number = [&](std::size_t row, int column, const char* what) {
+    std::string_view v = table[static_cast<int>(row)][static_cast<std::size_t>(column)];
+    // A CIF number may carry its standard uncertainty: "12.345(6)".
+    if (v.size() > 2 && v.back() == ')') {
+      const std::size_t open = v.rfind('(');
+      if (open != std::string_view::npos && open > 0 &&
+          std::all_of(v.begin() + static_cast<std::ptrdiff_t>(open + 1), v.end() - 1,
+                      [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) != 0; }))
+        v = v.substr(0, open);
+    }
+    return parse_number(path, line_of(row, column), v, what);
+  };
+  const int name_column = table.first_of(kAuthAtom, kLabelAtom);
+  std::string first_model;
+  for (std::size_t r = 0; r < table.length(); ++r) {
+    gemmi::cif::Table::Row row = table[static_cast<int>(r)];
+    if (row.has(kModel)) {
+      const std::string model = gemmi::cif::as_string(row[kModel]);
+      if (r == 0) first_model = model;
+      if (model != first_model) continue;
+    }
+    const double x = number(r, kX, "x coordinate");
+    const double y = number(r, kY, "y coordinate");
+    const double z = number(r, kZ, "z coordinate");
+    const std::string name = row.has(static_cast<std::size_t>(name_column))
+                                 ? gemmi::cif::as_string(row[static_cast<std::size_t>(name_column)])
+                                 : std::string();
+    const char altloc = row.has(kAlt) ? gemmi::cif::as_char(row[kAlt], '\0') : '\0';
+    index.add(SourceIndex::key(x, y, z, name, altloc), {line_of(r, kX), true});
+  }
+  return index;
+}
+
+// gemmi Structure to Molecule
+
+/// The atoms of the first model of `st`, filtered and given Bondi radii.
+Molecule from_structure(const std::string& path, const gemmi::Structure& st, SourceIndex& index,
+                        const ReadOptions& opt) {
+  std::vector<Atom> atoms;
+  NoteList notes(path);
+  if (st.models.empty()) return finish(path, std::move(atoms), notes);
+  const gemmi::Model& model = st.models.front();
+
+  // First alternate location: per residue position (chain, number, insertion
+  // code) and per atom of it, the first altloc letter met.
+  using Position = std::tuple<std::string, int, char>;
+  using AtomSlot = std::tuple<std::string, int, char, std::string>;
+  std::map<Position, char> position_first;
+  std::map<AtomSlot, char> atom_first;
+  int guessed_elements = 0;
+  char fallback_buf[32];
+  std::snprintf(fallback_buf, sizeof fallback_buf, "%.2f", kFallbackRadius);
+  const std::string fallback_text = fallback_buf;
+
+  for (const gemmi::Chain& chain : model.chains) {
+    for (const gemmi::Residue& res : chain.residues) {
+      const int resnum = res.seqid.num.has_value() ? res.seqid.num.value : 0;
+      const Position position{chain.name, resnum, res.seqid.icode};
+      const bool water = res.is_water() || is_water_residue(res.name);
+
+      // A residue whose atoms all carry one altloc letter that is not the first
+      // letter of its position is an alternative residue (micro-heterogeneity).
+      char residue_letter = '\0';
+      bool single_letter = !res.atoms.empty();
+      for (const gemmi::Atom& a : res.atoms) {
+        if (a.altloc == '\0' || (residue_letter != '\0' && a.altloc != residue_letter)) {
+          single_letter = false;
+          break;
+        }
+        residue_letter = a.altloc;
+      }
+      bool skip_residue = false;
+      if (single_letter) {
+        auto [it, inserted] = position_first.emplace(position, residue_letter);
+        skip_residue = !inserted && it->second != residue_letter;
+      }
+
+      for (const gemmi::Atom& a : res.atoms) {
+        const SourceRecord src = index.take(SourceIndex::key(a.pos.x, a.pos.y, a.pos.z, a.name, a.altloc));
+        const std::string who = describe(a.name, res.name, chain.name, resnum);
+        if (skip_residue) {
+          notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who +
+                                  " skipped (alternative residue; location " +
+                                  std::string(1, position_first[position]) + " kept)");
+          continue;
+        }
+        if (a.altloc != '\0') {
+          position_first.emplace(position, a.altloc);
+          auto [it, inserted] =
+              atom_first.emplace(AtomSlot{chain.name, resnum, res.seqid.icode, a.name}, a.altloc);
+          if (!inserted && it->second != a.altloc) {
+            notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who +
+                                    " skipped (location " + std::string(1, it->second) + " kept)");
+            continue;
+          }
+        }
+        if (water && !opt.keep_water) {
+          notes.add(src.line, "water " + res.name + " " + std::to_string(resnum) +
+                                  " skipped (use --keep-water)");
+          continue;
+        }
+        if (a.element == gemmi::El::X) {
+          throw InputError(path, src.line,
+                           "unknown element for " + who +
+                               (src.element_from_column ? " (element column not recognised)"
+                                                        : " (no element column; none recognised in the atom name)"));
+        }
+        if (a.element.is_hydrogen() && !opt.keep_hydrogens) {
+          notes.add(src.line, "hydrogen " + who + " skipped (hydrogens not kept)");
+          continue;
+        }
+        Atom atom;
+        atom.centre = Vec3(a.pos.x, a.pos.y, a.pos.z);
+        atom.element = canonical_element_symbol(a.element.name());
+        const VanDerWaalsRadius r = van_der_waals_radius(atom.element);
+        atom.radius = r.radius;
+        if (!r.from_bondi)
+          notes.add(src.line, "no Bondi radius for element " + atom.element + " (" + who + "); using " +
+                                  fallback_text + " A");
+        atom.name = a.name;
+        atom.residue = res.name;
+        atom.chain = chain.name;
+        atom.residue_number = resnum;
+        atom.serial = a.serial;
+        atom.line = src.line;
+        if (!src.element_from_column) ++guessed_elements;
+        atoms.push_back(std::move(atom));
+      }
+    }
+  }
+  if (guessed_elements > 0)
+    notes.add(0, std::to_string(guessed_elements) +
+                     " atoms have no element column; elements guessed from atom names");
+  return finish(path, std::move(atoms), notes);
+}
+
+/// gemmi reports "Problem in line N: ..." for some PDB errors; recover N.
+int gemmi_line(const std::string& what) {
+  static constexpr std::string_view kPrefix = "Problem in line ";
+  const std::size_t at = what.find(kPrefix);
+  if (at == std::string::npos) return 0;
+  return leading_int(std::string_view(what).substr(at + kPrefix.size()));
+}
+
+}  // namespace
+
+Molecule read_pdb(const std::string& path, const ReadOptions& opt) {
+  std::string text = read_text(path);
+  SourceIndex index = scan_pdb(path, text);
+  if (!text.empty() && text.back() != '\n') text.push_back('\n');  // gemmi counts the newline
+  gemmi::Structure st;
+  try {
+    st = gemmi::read_pdb_string(text, path);
+  } catch (const std::exception& e) {
+    throw InputError(path, gemmi_line(e.what()), std::string("PDB: ") + e.what());
+  }
+  return from_structure(path, st, index, opt);
+}
+
+Molecule read_mmcif(const std::string& path, const ReadOptions& opt) {
+  const std::string text = read_text(path);
+  gemmi::Structure st;
+  SourceIndex index;
+  try {
+    gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
+    if (doc.blocks.empty()) throw InputError(path, 0, "no atoms found (no data block)");
+    index = scan_mmcif(path, text, doc.blocks.front());
+    st = gemmi::make_structure(doc);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, std::string("mmCIF: ") + e.what());
+  }
+  return from_structure(path, st, index, opt);
+}
+
+}  // namespace skinmesh::skin::molecule_io_detail
