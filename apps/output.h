@@ -5,38 +5,39 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <filesystem>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "geometry/errors.h"
+#include "geometry/mesh_io.h"
 
 namespace skinmesh::app {
 
-/// Writes `text` to `path` ("-": standard output) through a temporary file
-/// beside it and a rename, so that a failure leaves no partial file. Throws
-/// InputError(path, 0, "cannot write file") if it cannot write.
+/// Writes `text` to `path` ("-": standard output) atomically (no partial file
+/// on failure; geometry::write_file_atomically). Throws InputError(path, 0,
+/// "cannot write file (reason)") if it cannot write.
 inline void write_text_file(const std::string& path, const std::string& text) {
   if (path == "-") {
     std::fwrite(text.data(), 1, text.size(), stdout);
     std::fflush(stdout);
     return;
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream os(tmp, std::ios::binary);
-    if (!os) throw InputError(path, 0, "cannot write file");
-    os << text;
-    if (!os.flush()) {
-      std::remove(tmp.c_str());
-      throw InputError(path, 0, "cannot write file");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "cannot write file");
-  }
+  geometry::write_file_atomically(path, text);
+}
+
+/// Throws InputError(path, 0, "cannot write file (...)") unless the folder of
+/// `path` exists and is writable: checked before a long run, so that it does
+/// not end in a write error. "-" (standard output) always passes.
+inline void require_writable(const std::string& path) {
+  if (path == "-") return;
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::string dir = parent.empty() ? std::string(".") : parent.string();
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw InputError(path, 0, std::string("cannot write file (") + std::strerror(errno) + ")");
 }
 
 /// A one-line progress display on stderr ("skinmesh: sweep  42%"), redrawn in

@@ -222,6 +222,7 @@ struct CheckArgs {
 };
 
 int run_check(CheckArgs& a) {
+  if (!a.report.empty()) app::require_writable(a.report);
   const skin::Molecule mol = load_molecule(a.mol);
   const geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
   const skin::SkinSurface skin(skin::weighted_points(mol, a.mol.probe));
@@ -306,7 +307,10 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
 }
 
 int run_mesh(MeshArgs& a) {
-  geometry::mesh_format_from_extension(a.out);  // unknown extension: fail before the work
+  // Unknown extension or unwritable folder: fail before the work.
+  geometry::mesh_format_from_extension(a.out);
+  app::require_writable(a.out);
+  if (!a.stats.empty()) app::require_writable(a.stats);
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };

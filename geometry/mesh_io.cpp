@@ -118,9 +118,9 @@ void check_writable(const IndexedMesh& m) {
     for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
 }
 
-/// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
-/// `path`. On any failure the temporary file is removed and InputError thrown.
-void write_atomically(const std::string& path, const std::string& bytes) {
+}  // namespace
+
+void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what) {
   static std::atomic<unsigned> counter{0};
   std::string tmp;
   std::FILE* f = nullptr;
@@ -131,7 +131,7 @@ void write_atomically(const std::string& path, const std::string& bytes) {
     if (f == nullptr && errno != EEXIST) break;
   }
   if (f == nullptr)
-    throw InputError(path, 0, std::string("cannot write mesh (") + std::strerror(errno) + ")");
+    throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(errno) + ")");
   int error = 0;  // errno of the first failing step (EIO if the step left none)
   const auto failure = [] { return errno != 0 ? errno : EIO; };
   errno = 0;
@@ -140,9 +140,11 @@ void write_atomically(const std::string& path, const std::string& bytes) {
   if (error == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) error = failure();
   if (error != 0) {
     std::remove(tmp.c_str());
-    throw InputError(path, 0, std::string("cannot write mesh (") + std::strerror(error) + ")");
+    throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(error) + ")");
   }
 }
+
+namespace {
 
 /// The whole content of `path`, read in binary mode. Throws InputError(path, 0,
 /// "cannot open file (...)" or "cannot read file (...)").
@@ -177,13 +179,13 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
   check_writable(mesh);
   switch (format) {
     case MeshFormat::Ply:
-      write_atomically(path, ply_bytes(mesh, opt));
+      write_file_atomically(path, ply_bytes(mesh, opt), "mesh");
       return;
     case MeshFormat::Off:
-      write_atomically(path, off_text(mesh, opt));
+      write_file_atomically(path, off_text(mesh, opt), "mesh");
       return;
     case MeshFormat::Obj:
-      write_atomically(path, obj_text(mesh, opt));
+      write_file_atomically(path, obj_text(mesh, opt), "mesh");
       return;
   }
 }

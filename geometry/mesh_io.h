@@ -68,4 +68,10 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
 /// problem names the element index instead).
 IndexedMesh read_mesh(const std::string& path);
 
+/// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
+/// `path`, so that readers never see a partial file. On any failure the
+/// temporary file is removed and InputError(path, 0, "cannot write <what>
+/// (reason)") is thrown.
+void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what = "file");
+
 }  // namespace skinmesh::geometry

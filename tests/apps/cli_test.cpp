@@ -101,6 +101,12 @@ TEST_CASE("bad values, unknown commands and missing files: one line each, docume
   CHECK(lines(ext.err) == 1);
   CHECK_FALSE(fs::exists(s.dir / "out.ply"));
   CHECK_FALSE(fs::exists(s.dir / "out.stl"));
+  // An unwritable --stats path fails before the work: no mesh is left behind.
+  const Run stats = run(s, "mesh " + kAtom + " -o out.ply --stats no_such_dir/s.json");
+  CHECK(stats.exit_code == 1);
+  CHECK(lines(stats.err) == 1);
+  CHECK(stats.err.find("no_such_dir/s.json") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "out.ply"));
 }
 
 TEST_CASE("--stats is valid JSON even for a path with a quote and a backslash; check accepts the mesh") {
