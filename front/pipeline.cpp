@@ -33,6 +33,13 @@ geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, geometry::Surfa
   return out;
 }
 
+/// A stage's options with the size constants every stage must share.
+template <class StageOptions>
+StageOptions with_size(StageOptions stage_options, const refine::SizeConstants& size) {
+  stage_options.size = size;
+  return stage_options;
+}
+
 }  // namespace
 
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
@@ -69,8 +76,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
 
   // 3. The sweep (§4.1, §4.2).
   stage("sweep");
-  front::SweepOptions sweep_options = options.sweep;
-  sweep_options.size = options.size;
+  front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
   front::SweepResult swept = front::sweep_mesh(skin, ms, sweep_options);
   res.sweep = swept.stats;
@@ -79,9 +85,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
   // 4. The local refinement (§4.3).
   if (options.refine) {
     stage("refine");
-    refine::RefineOptions refine_options = options.refinement;
-    refine_options.size = options.size;
-    res.refinement = refine::refine_mesh(skin, swept.mesh, refine_options);
+    res.refinement = refine::refine_mesh(skin, swept.mesh, with_size(options.refinement, options.size));
     lap("refine");
   }
   res.mesh = output_mesh(skin, swept.mesh);
@@ -90,9 +94,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
   // 5. The check.
   if (options.check) {
     stage("check");
-    refine::SkinCheckOptions check_options = options.checks;
-    check_options.size = options.size;
-    res.check = refine::check_skin_mesh(skin, res.mesh, check_options);
+    res.check = refine::check_skin_mesh(skin, res.mesh, with_size(options.checks, options.size));
     res.checked = true;
     lap("check");
   }
