@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "geometry/errors.h"
+#include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh {
@@ -102,7 +103,8 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
 }
 
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options) {
-  if (!(options.probe_radius >= 0)) throw std::invalid_argument("the probe radius must be >= 0 Å");
+  if (!(options.probe_radius >= 0 && options.probe_radius <= skin::kMaxRadius))
+    throw std::invalid_argument("the probe radius must lie in [0, " + std::to_string(skin::kMaxRadius) + "] Å");
   return mesh_skin(skin::weighted_points(molecule, options.probe_radius), options);
 }
 

@@ -95,7 +95,7 @@ struct MeshResult {
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options = {});
 
 /// mesh_skin() of a molecule's atoms, weighted with options.probe_radius
-/// (std::invalid_argument if it is negative).
+/// (std::invalid_argument unless 0 <= probe_radius <= skin::kMaxRadius).
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options = {});
 
 }  // namespace skinmesh

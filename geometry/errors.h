@@ -26,9 +26,12 @@ class InputError : public std::runtime_error {
  private:
   static std::string format(const std::string& f, int line, const std::string& p) {
     std::string s;
-    s.append(f);
-    if (line > 0) s.append(":").append(std::to_string(line));
-    s.append(": ").append(p);
+    if (!f.empty()) {  // input passed by a caller, not read from a file: the problem alone
+      s.append(f);
+      if (line > 0) s.append(":").append(std::to_string(line));
+      s.append(": ");
+    }
+    s.append(p);
     return s;
   }
   std::string file_;

@@ -77,7 +77,8 @@ IndexedMesh read_off(const std::string& path, const std::string& data) {
   const std::int64_t nv = int_or_throw(path, counts_line, counts[0], "vertex count");
   const std::int64_t nf = int_or_throw(path, counts_line, counts[1], "face count");
   if (nv < 0 || nf < 0) throw InputError(path, counts_line, "negative OFF count");
-  if (records.size() - r < static_cast<std::size_t>(nv + nf))
+  const std::size_t left = records.size() - r;  // nv + nf could overflow: compare one at a time
+  if (static_cast<std::uint64_t>(nv) > left || static_cast<std::uint64_t>(nf) > left - static_cast<std::size_t>(nv))
     throw InputError(path, records.back().line,
                      "unexpected end of file: expected " + std::to_string(nv) + " vertices and " +
                          std::to_string(nf) + " faces");

@@ -54,6 +54,21 @@ std::optional<PlyType> ply_type(std::string_view s) {
   return std::nullopt;
 }
 
+/// Bytes of one value of type t in a binary body.
+std::size_t ply_type_size(PlyType t) {
+  switch (t) {
+    case PlyType::Int8:
+    case PlyType::Uint8: return 1;
+    case PlyType::Int16:
+    case PlyType::Uint16: return 2;
+    case PlyType::Int32:
+    case PlyType::Uint32:
+    case PlyType::Float32: return 4;
+    case PlyType::Float64: return 8;
+  }
+  return 1;
+}
+
 /// True for the integer types (all but float and double).
 bool is_integer(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float64; }
 
@@ -349,6 +364,26 @@ IndexedMesh read_ply(const std::string& path, const std::string& data) {
   }
   if (!ended) throw InputError(path, line, "PLY header without end_header");
   if (!encoding) throw InputError(path, line, "PLY header without format line");
+  // A header may claim more records than the file can hold (a hostile file):
+  // a binary record takes at least the bytes of its scalars and list counts,
+  // an ascii record at least one character. Refuse before allocating anything;
+  // a file merely cut short is reported where it ends, by the body readers.
+  {
+    const std::size_t body_size = data.size() - std::min(pos, data.size());
+    std::size_t budget = body_size;
+    for (const PlyElement& el : elements) {
+      std::size_t min_record = 0;
+      for (const PlyProperty& p : el.properties)
+        min_record += *encoding == Encoding::Ascii ? 0 : ply_type_size(p.is_list ? p.count_type : p.type);
+      if (*encoding == Encoding::Ascii && !el.properties.empty()) min_record = 1;
+      if (min_record == 0) continue;
+      if (el.count > budget / min_record)
+        throw InputError(path, el.header_line,
+                         "PLY element '" + el.name + "' claims " + std::to_string(el.count) +
+                             " records, more than the " + std::to_string(body_size) + " bytes after the header can hold");
+      budget -= el.count * min_record;
+    }
+  }
 
   IndexedMesh mesh;
   std::vector<int> face_lines;

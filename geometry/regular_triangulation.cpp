@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -100,6 +101,13 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
         !std::isfinite(p.w)) {
       throw_input_error("point " + std::to_string(i) +
                         " has a non-finite coordinate or weight");
+    }
+    if (p.z.cwiseAbs().maxCoeff() > kMaxCoordinate || std::abs(p.w) > kMaxWeight) {
+      std::ostringstream os;
+      os << "point " << i << " (" << p.z.x() << ", " << p.z.y() << ", " << p.z.z() << "; weight " << p.w
+         << ") is outside the supported range: coordinates within ±" << kMaxCoordinate << " Å, weights within ±"
+         << kMaxWeight << " Å²";
+      throw_input_error(os.str());
     }
   }
   n_input_ = static_cast<Index>(points.size());

@@ -15,6 +15,15 @@ struct WeightedPoint {
   double w = 0.0;
 };
 
+/// The admissible input range (papers/conventions.md §3 "Errors"): every
+/// coordinate of a centre within ±kMaxCoordinate Å (1 mm: far beyond any
+/// molecule, and double precision still resolves 2e-9 Å there) and every
+/// weight within ±kMaxWeight Å² (a radius of 1e5 Å). Inside it the exact
+/// predicates cannot overflow; outside it the readers and the regular
+/// triangulation refuse the input with an InputError.
+inline constexpr double kMaxCoordinate = 1e7;
+inline constexpr double kMaxWeight = 1e10;
+
 /// Power distance pi_b(x) = |x - z|² - w (Å²); negative inside the ball.
 /// papers/skin/skin_math.md §0.
 inline double power_distance(const WeightedPoint& b, const Vec3& x) {

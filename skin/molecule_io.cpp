@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <set>
+#include <sstream>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -24,6 +25,7 @@
 
 #include "geometry/errors.h"
 #include "geometry/text_split.h"
+#include "geometry/weighted_point.h"
 #include "skin/molecule_io_internal.h"
 
 namespace skinmesh::skin {
@@ -184,6 +186,23 @@ Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& note
     if (notes.size() > 0)
       problem += " (" + std::to_string(notes.size()) + " skipped, first: " + notes.first() + ")";
     throw InputError(path, 0, problem);
+  }
+  // The admissible range of the predicates (geometry/weighted_point.h): an
+  // atom outside it is refused here, where its line is known.
+  for (const Atom& a : atoms) {
+    const char* axis[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(a.centre[k]) > geometry::kMaxCoordinate) {
+        std::ostringstream os;
+        os << axis[k] << " coordinate " << a.centre[k] << " is outside the supported range ±"
+           << geometry::kMaxCoordinate << " Å";
+        throw InputError(path, a.line, os.str());
+      }
+    if (a.radius > kMaxRadius) {
+      std::ostringstream os;
+      os << "radius " << a.radius << " is above the supported maximum " << kMaxRadius << " Å";
+      throw InputError(path, a.line, os.str());
+    }
   }
   const bool all_lines_known =
       std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.line > 0; });

@@ -11,6 +11,11 @@
 
 namespace skinmesh::skin {
 
+/// The largest atom radius read_molecule() accepts (Å): far above any atom or
+/// coarse-grained bead, and with any probe radius well inside the weight range
+/// of geometry::kMaxWeight.
+inline constexpr double kMaxRadius = 1e4;
+
 // Molecule Reading Options
 
 /// What read_molecule() keeps and how it recognises the format.
@@ -51,8 +56,10 @@ struct ReadOptions {
 /// ("path:line: ..."). Throws InputError(path, line, problem) for: a file that
 /// cannot be opened or read ("cannot open file"), an unknown format, a malformed
 /// record, a non-numeric or non-finite coordinate ("non-numeric x coordinate
-/// 'abc'", "non-finite y coordinate 'nan'"), a radius <= 0 (except the hydrogen
-/// case above), an unknown element, and a file without atoms ("no atoms found").
+/// 'abc'", "non-finite y coordinate 'nan'"), a coordinate outside
+/// ±geometry::kMaxCoordinate, a radius <= 0 (except the hydrogen case above) or
+/// above kMaxRadius, an unknown element, and a file without atoms ("no atoms
+/// found").
 /// Line numbers are 1-based; 0 when unknown (some errors reported by gemmi
 /// itself, an mmCIF _atom_site written as tag-value pairs rather than a loop).
 Molecule read_molecule(const std::string& path, const ReadOptions& opt = {});

@@ -354,4 +354,22 @@ TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
   }
 }
 
+TEST_CASE("hostile input: a header that claims more records than the file holds is refused before allocating") {
+  // Issue #7: a PLY header claiming 10^12 vertices ended in std::bad_alloc.
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  const InputError e = read_error(scratch().write("claims.ply", header + std::string(64, '\0')));
+  CHECK(e.line() == 3);
+  CHECK(contains(e, "claims 1000000000000 records"));
+  const std::string ascii = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 99999999999\nproperty list uchar int vertex_indices\n"
+                            "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const InputError a = read_error(scratch().write("claims_ascii.ply", ascii));
+  CHECK(a.line() == 7);
+  const InputError off = read_error(scratch().write("claims.off", "OFF\n9223372036854775807 9223372036854775807 0\n"));
+  CHECK(off.line() == 2);
+  CHECK(contains(off, "unexpected end of file"));
+}
+
 }  // TEST_SUITE("geometry")

@@ -225,6 +225,12 @@ TEST_CASE("regular triangulation: bad input throws InputError") {
   std::vector<WeightedPoint> nan = {{Vec3(0, 0, 0), 1.0},
                                     {Vec3(1, std::numeric_limits<double>::quiet_NaN(), 0), 1.0}};
   CHECK_THROWS_AS(RegularTriangulation{nan}, skinmesh::InputError);
+  // Outside the admissible range of the exact predicates (issue #7: 1e300 once
+  // ended in an orient3d assertion).
+  const std::vector<WeightedPoint> far = {{Vec3(0, 0, 0), 1.0}, {Vec3(1e300, 0, 0), 1.0}};
+  CHECK_THROWS_AS(RegularTriangulation{far}, skinmesh::InputError);
+  const std::vector<WeightedPoint> heavy = {{Vec3(0, 0, 0), 1e300}};
+  CHECK_THROWS_AS(RegularTriangulation{heavy}, skinmesh::InputError);
   std::vector<WeightedPoint> inf = {{Vec3(0, 0, 0), std::numeric_limits<double>::infinity()}};
   CHECK_THROWS_AS(RegularTriangulation{inf}, skinmesh::InputError);
 }

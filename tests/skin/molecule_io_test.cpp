@@ -462,4 +462,24 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
   }
 }
 
+TEST_CASE("hostile input: coordinates and radii outside the supported range are input errors with their line") {
+  // Issue #7: a coordinate of 1e300 once reached the regular triangulation and
+  // ended in an assertion of orient3d.
+  const InputError x = error_of(scratch().write("far.xyzr", "0 0 0 1.5\n1e300 0 0 1.5\n"));
+  CHECK(x.line() == 2);
+  CHECK(x.problem().find("x coordinate") != std::string::npos);
+  CHECK(x.problem().find("outside the supported range") != std::string::npos);
+  const InputError r = error_of(scratch().write("huge_radius.xyzr", "0 0 0 1e300\n"));
+  CHECK(r.line() == 1);
+  CHECK(r.problem().find("radius") != std::string::npos);
+  const std::string pdb = pdb_atom("ATOM", 1, "CA", ' ', "ALA", "A", 1, "0.000", "1e300", "0.000", "C") +
+                          pdb_atom("ATOM", 2, "CB", ' ', "ALA", "A", 1, "1.000", "0.000", "0.000", "C");
+  const InputError p = error_of(scratch().write("far.pdb", pdb));
+  CHECK(p.line() == 1);
+  CHECK(p.problem().find("y coordinate") != std::string::npos);
+  // The edge of the range is accepted.
+  const Molecule ok = read_molecule(scratch().write("edge.xyzr", "1e7 -1e7 0 1.5\n"));
+  CHECK(ok.atoms.size() == 1);
+}
+
 }  // TEST_SUITE("skin")
