@@ -5,7 +5,9 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 MOLECULE ?= data/gramicidinA_1grm_model1.pdb
 OUT     ?= gramicidinA_1grm_model1.ply
 
-.PHONY: all deps configure build mesh test bench clean
+SANITIZE_BUILD ?= build-sanitize
+
+.PHONY: all deps configure build mesh test sanitize bench clean
 
 all: build
 
@@ -26,9 +28,17 @@ mesh: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure
 
+# The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer
+# (any report fails the run).
+sanitize: deps
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKINMESH_BUILD_BENCH=OFF \
+	  -DSKINMESH_SANITIZE=ON > /dev/null
+	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && ctest --output-on-failure
+
 # Google Benchmark: predicates, regular triangulation, the mesher (Table 1).
 bench: build
 	$(BUILD)/skinmesh_bench
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD)
