@@ -46,6 +46,12 @@ struct SweepOptions {
   /// A forced wing (a neighbour over which a fan would fold) closes angles
   /// below this (degrees): any convex corner. [measured]
   double forced_wing_angle_deg = 180;
+  /// A wing's new edge u-w may be at most this times the larger disc radius
+  /// r of u and w: forced wings chained along a front next to a held vertex
+  /// would otherwise join it to ever farther vertices (gramicidin A at probe
+  /// 0 grew such an edge to 3.7 r, and its hole could not be sealed).
+  /// [measured]
+  double wing_max_edge_factor = 2.0;
   /// Rounds of "wing a neighbour, recompute the fan" in one creep. [measured]
   int max_wing_rounds = 8;
   /// A new fan point closer than fan_clearance · r to the neighbour's other

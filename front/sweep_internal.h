@@ -189,6 +189,8 @@ class Sweep {
   const SweepStats& stats() const { return stats_; }
   VState state(Vertex v) const { return state_[v]; }
   const Vec3& normal(Vertex v) const { return normal_[v]; }
+  /// The tangent-disc radius r = disc_factor · rho at v (Å), Figure 6.
+  double disc_radius(Vertex v) const { return opt_.disc_factor * rho_[v]; }
 
  private:
   // Vertices, the queue and the holds (sweep.cpp).
@@ -198,7 +200,6 @@ class Sweep {
   /// the front moves on around it first.
   void defer(Vertex v, double r);
   double height(Vertex v) const { return e_.dot(mesh_.position(v)); }
-  double disc_radius(Vertex v) const { return opt_.disc_factor * rho_[v]; }
   /// Normal-line projection of v + r dir onto the skin (papers/skin/skin_math.md §7.2).
   Vec3 project_tangent(Vertex v, const Vec3& dir, double r);
   /// The unresolved live saddle or maximum whose protecting sphere v's tangent

@@ -31,6 +31,9 @@ const char* Sweep::wing_refusal(Vertex v, bool force) const {
   // An unforced wing leaves held neighbours alone (their front edges are what
   // the bridge joins); a forced one (Figure 7) may touch them.
   if (!force && (state_[k.u] == VState::Held || state_[k.w] == VState::Held)) return "a neighbour is held";
+  if ((mesh_.position(k.w) - mesh_.position(k.u)).norm() >
+      opt_.wing_max_edge_factor * std::max(disc_radius(k.w), disc_radius(k.u)))
+    return "the new edge u-w would be too long";
   const Vec3 nt = (mesh_.position(k.w) - mesh_.position(v)).cross(mesh_.position(k.u) - mesh_.position(v));
   if (nt.dot(normal_[v]) <= 0) return "the triangle would face inwards";
   // Triangle (v, w, u): at w it spans from u to v, at u from v to w.

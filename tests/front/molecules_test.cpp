@@ -41,6 +41,13 @@ TEST_CASE("molecules: ligand_1hvr_xk263") { mesh_and_check(kData + "/ligand_1hvr
 TEST_CASE("regression: a neighbour's narrow spike that no fan fits (Figure 7), random 50 atoms") {
   mesh_and_check(kRegression + "random50_probe1.4_figure7_stuck.xyzr");
 }
+TEST_CASE("regression: forced wings chained next to a held vertex, gramicidin A at probe 0") {
+  // Before wing_max_edge_factor: the wings of a held vertex's neighbours joined
+  // it to ever farther front vertices (an edge of 3.7 r), the small hole left
+  // there could not be sealed, and its enlargement swallowed the whole front
+  // ("seal: no ear in a hole of 190 vertices").
+  mesh_and_check(kData + "/gramicidinA_1grm_model1.pdb", 0.0);
+}
 TEST_CASE("regression: a hole tangled in every projection, random atoms with probe 0") {
   mesh_and_check(kRegression + "random_probe0_tangled_hole.xyzr", 0.0);
 }

@@ -138,6 +138,16 @@ TEST_CASE("wing closes a front angle below 90°") {
   REQUIRE(target.is_valid());
   fx.opt.wing_angle_deg = 90;
   const Sweep::Corner k = s.corner(target);
+  // The new edge u-w is bounded by wing_max_edge_factor times the larger disc
+  // radius of u and w: with the bound set just below its length the wing is
+  // refused, and at the default it is taken.
+  const double uw = (s.mesh().position(k.u) - s.mesh().position(k.w)).norm();
+  const double r_uw = std::max(s.disc_radius(k.u), s.disc_radius(k.w));
+  CHECK(uw <= fx.opt.wing_max_edge_factor * r_uw);
+  const double default_factor = fx.opt.wing_max_edge_factor;
+  fx.opt.wing_max_edge_factor = 0.99 * uw / r_uw;
+  CHECK(std::string(s.wing_refusal(target, false)) == "the new edge u-w would be too long");
+  fx.opt.wing_max_edge_factor = default_factor;
   const std::size_t faces = s.mesh().n_faces(), loops = front_loops(s);
   const long chi = euler(s);
   CHECK(s.wing(target, false));
