@@ -5,6 +5,7 @@
 // pulled back onto the skin. The same ladder (one row) joins two front parts
 // in a contact (collision_net.cpp).
 // Notes: papers/front/bridge.md
+#include <algorithm>
 #include <limits>
 
 #include "front/sweep_internal.h"
@@ -55,8 +56,11 @@ bool Sweep::try_bridge(Index c) {
   // different loops (merge), or on one loop with both connecting paths
   // leaving the hold region (split): a bowl or a front piece that straddles
   // the saddle's descending plane inside the region is one side, not two.
-  double best = std::numeric_limits<double>::infinity();
-  Halfedge ba, bc;
+  struct Candidate {
+    double dist;
+    Halfedge h0, h1;
+  };
+  std::vector<Candidate> candidates;
   for (Halfedge h0 : side[0])
     for (Halfedge h1 : side[1]) {
       const Vertex a = mesh_.from_vertex(h0), b = mesh_.to_vertex(h0);
@@ -64,7 +68,6 @@ bool Sweep::try_bridge(Index c) {
       if (a == cc || a == d || b == cc || b == d) continue;
       const double dist =
           (0.5 * (mesh_.position(a) + mesh_.position(b)) - 0.5 * (mesh_.position(cc) + mesh_.position(d))).norm();
-      if (dist >= best) continue;
       // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
       // enter the hole wedges at a, b, c, d (papers/front/open_questions.md Q6.2).
       if (!quad_fits(a, b, cc, d, cp.position, cp.sigma * e_)) continue;
@@ -74,15 +77,54 @@ bool Sweep::try_bridge(Index c) {
         bool same2 = false;
         if (!leaves1 || !path_leaves(d, a, same2)) continue;
       }
-      best = dist, ba = h0, bc = h1;
+      candidates.push_back({dist, h0, h1});
     }
-  if (!ba.is_valid()) return false;
-  const Vec3 ga = 0.5 * (mesh_.position(mesh_.from_vertex(ba)) + mesh_.position(mesh_.to_vertex(ba)));
-  const Vec3 gc = 0.5 * (mesh_.position(mesh_.from_vertex(bc)) + mesh_.position(mesh_.to_vertex(bc)));
-  // Rows about one tangent-disc radius of the saddle apart.
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return x.dist < y.dist || (x.dist == y.dist && (x.h0.idx() < y.h0.idx() ||
+                                                    (x.h0.idx() == y.h0.idx() && x.h1.idx() < y.h1.idx())));
+  });
+  // Rows about one tangent-disc radius of the saddle apart; the closest pair
+  // whose ladder, pulled back onto the skin, still fits at its four corners.
   const double ell = opt_.disc_factor * cp.rho;
-  bridge(ba, bc, c, std::max(1, static_cast<int>(std::lround((ga - gc).norm() / ell))));
-  return true;
+  for (const Candidate& cand : candidates) {
+    const int rows = std::max(1, static_cast<int>(std::lround(cand.dist / ell)));
+    if (!ladder_fits(cand.h0, cand.h1, ladder_rails(cand.h0, cand.h1, rows))) {
+      if (trace_) tracef("bridge saddle %u: the ladder of %d rows would fold at a corner\n", c, rows);
+      continue;
+    }
+    bridge(cand.h0, cand.h1, c, rows);
+    return true;
+  }
+  return false;
+}
+
+Sweep::Rails Sweep::ladder_rails(Halfedge ab, Halfedge cd, int rows) const {
+  const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
+  const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
+  const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(cv), pd = mesh_.position(d);
+  Rails rails;
+  for (int j = 1; j < rows; ++j) {
+    const double t = double(j) / rows;
+    Index cl = cell_[a], cr = cell_[b];
+    rails.left.push_back(skin_.pull_back((1 - t) * pa + t * pd, cl));
+    rails.right.push_back(skin_.pull_back((1 - t) * pb + t * pc, cr));
+    rails.left_cell.push_back(cl);
+    rails.right_cell.push_back(cr);
+  }
+  return rails;
+}
+
+bool Sweep::ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const {
+  const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
+  const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
+  if (rails.left.empty()) return fits_at(a, b, d) && fits_at(b, cv, a) && fits_at(cv, d, b) && fits_at(d, a, cv);
+  // At a the first row spans from b to the first left point, at b from the
+  // first right point to a; at c the last row spans from d to the last right
+  // point, at d from the last left point to c.
+  return fits_at(a, mesh_.position(b), rails.left.front(), b, Vertex()) &&
+         fits_at(b, rails.right.front(), mesh_.position(a), Vertex(), a) &&
+         fits_at(cv, mesh_.position(d), rails.right.back(), d, Vertex()) &&
+         fits_at(d, rails.left.back(), mesh_.position(cv), Vertex(), cv);
 }
 
 void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
@@ -91,17 +133,13 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
   // Ladder of `rows` rows across the gap (papers/front/open_questions.md Q6.2):
   // left rail a -> d, right rail b -> c, intermediate points pulled back onto
   // the skin.
-  const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(cv), pd = mesh_.position(d);
   if (trace_)
     tracef("bridge saddle %d: a v%u b v%u c v%u d v%u rows %d\n", int(c), a.idx(), b.idx(), cv.idx(), d.idx(), rows);
+  const Rails rails = ladder_rails(ab, cd, rows);
   std::vector<Vertex> L{a}, R{b};
-  for (int j = 1; j < rows; ++j) {
-    const double t = double(j) / rows;
-    Index cl = cell_[a], cr = cell_[b];
-    const Vec3 ql = skin_.pull_back((1 - t) * pa + t * pd, cl);
-    const Vec3 qr = skin_.pull_back((1 - t) * pb + t * pc, cr);
-    L.push_back(new_vertex(ql, cl));
-    R.push_back(new_vertex(qr, cr));
+  for (int j = 0; j + 1 < rows; ++j) {
+    L.push_back(new_vertex(rails.left[j], rails.left_cell[j]));
+    R.push_back(new_vertex(rails.right[j], rails.right_cell[j]));
   }
   L.push_back(d);
   R.push_back(cv);

@@ -116,6 +116,20 @@ class Sweep {
   /// bridge() at saddle c if the front has reached it from two sides; false
   /// if it is not ready (bridge.cpp, Figure 8).
   bool try_bridge(Index c);
+  /// The rails of a ladder of `rows` rows from front edge a->b to c->d: the
+  /// inner points of the left rail a -> d and of the right rail b -> c, pulled
+  /// back onto the skin (with their mixed cells); empty for one row.
+  struct Rails {
+    std::vector<Vec3> left, right;
+    std::vector<Index> left_cell, right_cell;
+  };
+  Rails ladder_rails(Halfedge ab, Halfedge cd, int rows) const;
+  /// True if the ladder's triangles fit in the hole wedges of a, b, c and d
+  /// in their own tangent planes (at a they span from b to the first left
+  /// rail point, at b from the first right rail point to a, and so on). With
+  /// rows > 1 the rail points are pulled back onto the skin and can leave a
+  /// wedge that the straight quad fits (src kinase at probe 0).
+  bool ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const;
   /// Joins front edges a->b and c->d by a ladder of `rows` rows of two
   /// triangles; c is the saddle being bridged (its held vertices are
   /// released) or kInvalidIndex for a contact.
