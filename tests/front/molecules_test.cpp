@@ -5,7 +5,10 @@
 // [L] / [U] / restricted-Delaunay violation (issue #2, "Done when" item 2).
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "front/pipeline.h"
 #include "skin/molecule_io.h"
@@ -41,6 +44,32 @@ TEST_CASE("molecules: ligand_1hvr_xk263") { mesh_and_check(kData + "/ligand_1hvr
 TEST_CASE("regression: a neighbour's narrow spike that no fan fits (Figure 7), random 50 atoms") {
   mesh_and_check(kRegression + "random50_probe1.4_figure7_stuck.xyzr");
 }
+TEST_CASE("regression: a saddle's ladder folded at a corner, src kinase near the saddle at probe 0") {
+  // The sweep alone (the full check of its 0.4 M triangles would take seconds):
+  // it must not throw, and the mesh must be closed with the expected Euler
+  // characteristic. Before ladder_fits, a 4-row ladder whose right rail,
+  // pulled back onto the skin, left the hole wedge of its corner made the
+  // mesh cover 720° there ("creep: the mesh folds at vertex …").
+  MeshOptions options;
+  options.probe_radius = 0;
+  options.refine = false;
+  options.check = false;
+  const std::string path = kRegression + "src_kinase_probe0_ladder_fold.xyzr";
+  MeshResult res;
+  REQUIRE_NOTHROW(res = mesh_skin(skin::read_molecule(path), options));
+  CHECK(res.sweep.bridges > 0);
+  const geometry::IndexedMesh& m = res.mesh;
+  std::map<std::pair<Index, Index>, int> edge_use;
+  for (const auto& t : m.triangles)
+    for (int i = 0; i < 3; ++i) ++edge_use[{std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])}];
+  std::size_t not_two = 0;
+  for (const auto& [e, n] : edge_use) not_two += n != 2;
+  CHECK(not_two == 0);  // closed and manifold along edges
+  const long chi = static_cast<long>(m.positions.size()) - static_cast<long>(edge_use.size()) +
+                   static_cast<long>(m.triangles.size());
+  CHECK(chi == res.expected_topology.euler_skin());
+}
+
 TEST_CASE("regression: forced wings chained next to a held vertex, gramicidin A at probe 0") {
   // Before wing_max_edge_factor: the wings of a held vertex's neighbours joined
   // it to ever farther front vertices (an edge of 3.7 r), the small hole left
