@@ -182,6 +182,7 @@ bool Refiner::insert(Face f) {
   std::array<Halfedge, 3> hs{};  // hs[i]: the half-edge opposite corner i
   std::array<Vertex, 3> x{};
   bool found = false;
+  Face came_from;  // the face the walk just left
   for (int step = 0; step < 64 && !found; ++step) {
     int i = 0;
     for (Halfedge h : mesh_.halfedges(t)) {
@@ -205,6 +206,15 @@ bool Refiner::insert(Face f) {
     }
     const Halfedge across = mesh_.opposite(hs[worst]);
     if (mesh_.is_boundary(across)) break;
+    if (mesh_.face(across) == came_from) {
+      // m lies outside both prisms, in the wedge between two faces that are
+      // not coplanar, next to their shared edge: the walk would go back and
+      // forth. m belongs to that edge; the edge split below takes it
+      // (lam[worst] < 0 < split_edge_barycentric).
+      found = true;
+      break;
+    }
+    came_from = t;
     t = mesh_.face(across);
   }
   if (!found) {

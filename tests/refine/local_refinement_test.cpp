@@ -80,4 +80,40 @@ TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edge
   CHECK(st.flips > 0);
 }
 
+TEST_CASE("refinement: circumcentres over a ridge (a cube on the sphere, split along the diagonals)") {
+  // Each square face of a cube inscribed in the sphere is split by a
+  // diagonal into two right triangles: their circumcentres lie on that
+  // diagonal, and their surface Delaunay centres (on the sphere, above it)
+  // project outside both faces of the slightly convex ridge. The walk that
+  // looks for the face containing the new point went back and forth between
+  // the two faces and the insertion was refused, leaving [U] violations
+  // (regression: 618 atoms of src kinase at probe 0, one triangle left).
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh m;
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1).normalized() * kRadius);
+  // Faces as quads (counter-clockwise seen from outside), split along a -> c.
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.triangles.push_back({Index(q[0]), Index(q[1]), Index(q[2])});
+    m.triangles.push_back({Index(q[0]), Index(q[2]), Index(q[3])});
+  }
+  // Tilt: push every vertex a little along the sphere so that no face is
+  // planar any more (every diagonal becomes a ridge or a valley).
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    Vec3& p = m.positions[i];
+    const Vec3 t = p.unitOrthogonal();
+    p = (p + 0.01 * double(i % 3 + 1) * t).normalized() * kRadius;
+  }
+  refine::RefineStats st;
+  const auto rep = refine_and_check(skin, m, &st);
+  // Before the fix five insertions were refused here (the walk gave up);
+  // nothing else refuses one on this mesh.
+  CHECK(st.refused_insertions == 0);
+  CHECK(st.insertions > 0);
+  CHECK(st.U_left == 0);
+  CHECK(st.L_left == 0);
+  test::check_every_property(rep);
+}
+
 }  // TEST_SUITE
