@@ -25,7 +25,8 @@ Vec3 surface_ascent(const Vec3& n, const Vec3& e) {
 
 IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
                                  const std::vector<CriticalPoint>& cps, Index s,
-                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt) {
+                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
+                                 const geometry::PointGrid* extrema) {
   IntegralLine line;
   line.saddle = s;
   line.direction = sgn;
@@ -39,14 +40,20 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
   auto find_end = [&](const Vec3& p, double h) -> Index {
     Index best = kInvalidIndex;
     double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < cps.size(); ++i) {
-      if (cps[i].kind != target) continue;
+    auto consider = [&](std::size_t i) {
+      if (cps[i].kind != target) return;
       const double d = (cps[i].position - p).norm();
       // Within arrival_steps · h, but never within half the saddle's own distance: a line
       // that starts next to an extremum must first head towards it.
       const double stop = std::min(opt.arrival_steps * h, 0.5 * (cps[i].position - sp.position).norm());
-      if (d <= stop && d < best_d) best = static_cast<Index>(i), best_d = d;
-    }
+      // Ties go to the lower index, as in a scan of cps in order.
+      if (d <= stop && (d < best_d || (d == best_d && static_cast<Index>(i) < best)))
+        best = static_cast<Index>(i), best_d = d;
+    };
+    if (extrema)
+      extrema->for_each_near(p, opt.arrival_steps * h, [&](Index i, const Vec3&) { consider(i); });
+    else
+      for (std::size_t i = 0; i < cps.size(); ++i) consider(i);
     return best;
   };
 
@@ -111,6 +118,15 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   ms.replaced_by.assign(n, kInvalidIndex);
   ms.arcs.assign(n, {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
 
+  // The extrema in a grid for the arrival test of the lines: its queries reach
+  // arrival_steps · step_factor · rho at most, so cells of that size for the
+  // largest rho.
+  double max_rho = 0;
+  for (const CriticalPoint& c : ms.critical) max_rho = std::max(max_rho, c.rho);
+  geometry::PointGrid extrema(std::max(opt.arrival_steps * opt.step_factor * max_rho,
+                                       std::numeric_limits<double>::min()));
+  for (Index i = 0; i < n; ++i)
+    if (ms.critical[i].kind != CriticalKind::Saddle) extrema.insert(i, ms.critical[i].position);
   // Four integral lines per saddle: ±ascent (ascending), ±descent (descending).
   for (Index s = 0; s < n; ++s) {
     const CriticalPoint& c = ms.critical[s];
@@ -119,7 +135,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     for (int k = 0; k < 4; ++k) {
       ms.arcs[s][k] = static_cast<Index>(ms.lines.size());
       ms.lines.push_back(
-          trace_integral_line(skin, e, ms.critical, s, dirs[k], k < 2 ? +1 : -1, opt));
+          trace_integral_line(skin, e, ms.critical, s, dirs[k], k < 2 ? +1 : -1, opt, &extrema));
     }
   }
 

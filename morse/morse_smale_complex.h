@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/point_grid.h"
 #include "geometry/types.h"
 #include "morse/critical_points.h"
 #include "skin/skin_surface.h"
@@ -96,10 +97,14 @@ struct MorseSmaleComplex {
 /// Heun predictor–corrector steps with re-projection (papers/skin/skin_math.md
 /// §6), until it comes within min(3h, |c - s| / 2) of an extremum c of the
 /// right kind (not within its protecting sphere, which may contain the saddle
-/// itself when the two are close).
+/// itself when the two are close). `extrema`, if given, is a grid of the
+/// indices of the extrema of `cps` (build_morse_smale_complex passes one so
+/// that the arrival test looks at nearby extrema only, not at all of them at
+/// every step); without it the arrival test scans `cps`.
 IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
                                  const std::vector<CriticalPoint>& cps, Index s,
-                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt);
+                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
+                                 const geometry::PointGrid* extrema = nullptr);
 
 /// Builds the Morse–Smale complex of h(x) = e·x on the skin: critical points,
 /// four integral lines per saddle, protecting spheres; then contracts arcs
