@@ -114,17 +114,53 @@ Sweep::Rails Sweep::ladder_rails(Halfedge ab, Halfedge cd, int rows) const {
   return rails;
 }
 
+namespace {
+
+/// The diagonal of the ladder quad l0 r0 r1 l1 (counter-clockwise): true for
+/// l0-r1 (triangles l0 r0 r1, r1 l1 l0), false for r0-l1 (triangles
+/// l0 r0 l1, r0 r1 l1) — the split with the larger minimum angle.
+bool split_l0_r1(const Vec3& l0, const Vec3& r0, const Vec3& r1, const Vec3& l1) {
+  const double d1 = std::min(min_angle(l0, r0, r1), min_angle(r1, l1, l0));
+  const double d2 = std::min(min_angle(l0, r0, l1), min_angle(r0, r1, l1));
+  return d1 >= d2;
+}
+
+}  // namespace
+
 bool Sweep::ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const {
   const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
   const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
-  if (rails.left.empty()) return fits_at(a, b, d) && fits_at(b, cv, a) && fits_at(cv, d, b) && fits_at(d, a, cv);
-  // At a the first row spans from b to the first left point, at b from the
-  // first right point to a; at c the last row spans from d to the last right
-  // point, at d from the last left point to c.
-  return fits_at(a, mesh_.position(b), rails.left.front(), b, Vertex()) &&
-         fits_at(b, rails.right.front(), mesh_.position(a), Vertex(), a) &&
-         fits_at(cv, mesh_.position(d), rails.right.back(), d, Vertex()) &&
-         fits_at(d, rails.left.back(), mesh_.position(cv), Vertex(), cv);
+  // The rails with their existing end vertices; inner points have no vertex yet.
+  std::vector<Vec3> L{mesh_.position(a)}, R{mesh_.position(b)};
+  std::vector<Vertex> LV{a}, RV{b};
+  for (std::size_t j = 0; j < rails.left.size(); ++j) {
+    L.push_back(rails.left[j]), LV.push_back(Vertex());
+    R.push_back(rails.right[j]), RV.push_back(Vertex());
+  }
+  L.push_back(mesh_.position(d)), LV.push_back(d);
+  R.push_back(mesh_.position(cv)), RV.push_back(cv);
+  // Every triangle of the ladder, with the diagonals bridge() will choose,
+  // must fit in the hole wedge of each of its corners that is on the front
+  // already (a, b, c, d), in that corner's own tangent plane: at corner x of
+  // the counter-clockwise triangle (x, y, z) it spans from y to z.
+  auto fits_tri = [&](const Vec3& px, Vertex x, const Vec3& py, Vertex y, const Vec3& pz, Vertex z) {
+    (void)px;
+    return !x.is_valid() || fits_at(x, py, pz, y, z);
+  };
+  auto tri_fits = [&](const Vec3& p0, Vertex v0, const Vec3& p1, Vertex v1, const Vec3& p2, Vertex v2) {
+    return fits_tri(p0, v0, p1, v1, p2, v2) && fits_tri(p1, v1, p2, v2, p0, v0) && fits_tri(p2, v2, p0, v0, p1, v1);
+  };
+  const std::size_t rows = L.size() - 1;
+  for (std::size_t j = 1; j <= rows; ++j) {
+    const Vec3 &l0 = L[j - 1], &r0 = R[j - 1], &r1 = R[j], &l1 = L[j];
+    const Vertex vl0 = LV[j - 1], vr0 = RV[j - 1], vr1 = RV[j], vl1 = LV[j];
+    if (split_l0_r1(l0, r0, r1, l1)) {
+      if (!tri_fits(l0, vl0, r0, vr0, r1, vr1) || !tri_fits(r1, vr1, l1, vl1, l0, vl0)) return false;
+    } else {
+      if (!tri_fits(l0, vl0, r0, vr0, l1, vl1) || !tri_fits(r0, vr0, r1, vr1, l1, vl1)) return false;
+    }
+  }
+  return true;
 }
 
 void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
@@ -147,11 +183,7 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
     const Vertex l0 = L[j - 1], r0 = R[j - 1], r1 = R[j], l1 = L[j];
     // Quad l0 r0 r1 l1 (counter-clockwise): split by the diagonal with the
     // better minimum angle.
-    const double d1 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(r1)),
-                               min_angle(mesh_.position(r1), mesh_.position(l1), mesh_.position(l0)));
-    const double d2 = std::min(min_angle(mesh_.position(l0), mesh_.position(r0), mesh_.position(l1)),
-                               min_angle(mesh_.position(r0), mesh_.position(r1), mesh_.position(l1)));
-    if (d1 >= d2) {
+    if (split_l0_r1(mesh_.position(l0), mesh_.position(r0), mesh_.position(r1), mesh_.position(l1))) {
       add_triangle(l0, r0, r1);
       add_triangle(r1, l1, l0);
     } else {

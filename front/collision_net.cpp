@@ -77,7 +77,7 @@ bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
     if (mesh_.find_halfedge(b, c).is_valid() || mesh_.find_halfedge(d, a).is_valid() ||
         mesh_.find_halfedge(a, c).is_valid() || mesh_.find_halfedge(b, d).is_valid())
       continue;
-    if (!quad_fits(a, b, c, d, pv, n)) continue;
+    if (!quad_fits(a, b, c, d, pv, n) || !ladder_fits(cand[o][0], cand[o][1], Rails{})) continue;
     const Vec3 pa = mesh_.position(a), pb = mesh_.position(b), pc = mesh_.position(c), pd = mesh_.position(d);
     const double qual = std::max(std::min(min_angle(pa, pb, pc), min_angle(pc, pd, pa)),
                                  std::min(min_angle(pa, pb, pd), min_angle(pb, pc, pd)));
