@@ -224,8 +224,12 @@ struct CheckArgs {
 int run_check(CheckArgs& a) {
   if (!a.report.empty()) app::require_writable(a.report);
   const skin::Molecule mol = load_molecule(a.mol);
-  const geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
-  const skin::SkinSurface skin(skin::weighted_points(mol, a.mol.probe));
+  geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
+  // The check works in the molecule's local frame, as the mesher does.
+  const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
+  const Vec3 centre = skin::local_frame_centre(points);
+  for (Vec3& p : mesh.positions) p -= centre;
+  const skin::SkinSurface skin(skin::translated(points, centre));
   a.opt.check_self_intersections = !a.no_self_intersections;
   a.opt.check_restricted_delaunay = !a.no_rdt;
   const refine::SkinCheckReport rep = refine::check_skin_mesh(skin, mesh, a.opt);

@@ -5,6 +5,8 @@
 #include "front/pipeline.h"
 
 #include <chrono>
+#include <cstdio>
+#include <string>
 #include <stdexcept>
 
 #include "geometry/errors.h"
@@ -34,6 +36,18 @@ geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, geometry::Surfa
   return out;
 }
 
+/// mesh_skin() on points already in their local frame.
+MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options);
+
+/// An error message that names positions, with the frame they are given in.
+std::string in_frame(const std::string& what, const Vec3& centre) {
+  if (centre == Vec3::Zero() || what.find('(') == std::string::npos) return what;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, " [positions relative to the frame centre (%.10g %.10g %.10g) Å]", centre.x(),
+                centre.y(), centre.z());
+  return what + buf;
+}
+
 /// A stage's options with the size constants every stage must share.
 template <class StageOptions>
 StageOptions with_size(StageOptions stage_options, const refine::SizeConstants& size) {
@@ -43,7 +57,25 @@ StageOptions with_size(StageOptions stage_options, const refine::SizeConstants& 
 
 }  // namespace
 
-MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
+MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, const MeshOptions& options) {
+  // Every stage works in the local frame of the points (their bounding-box
+  // centre at the origin); the output mesh is translated back at the end.
+  const Vec3 centre = skin::local_frame_centre(input_points);
+  try {
+    MeshResult res = mesh_skin_local(skin::translated(input_points, centre), options);
+    res.frame_centre = centre;
+    for (Vec3& p : res.mesh.positions) p += centre;
+    return res;
+  } catch (const TopologyError& e) {
+    throw TopologyError(in_frame(e.what(), centre));
+  } catch (const GeometryError& e) {
+    throw GeometryError(in_frame(e.what(), centre));
+  }
+}
+
+namespace {
+
+MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
   using Clock = std::chrono::steady_clock;
   MeshResult res;
   auto t0 = Clock::now();
@@ -101,6 +133,8 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
   }
   return res;
 }
+
+}  // namespace
 
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options) {
   if (!(options.probe_radius >= 0 && options.probe_radius <= skin::kMaxRadius))

@@ -80,6 +80,11 @@ struct MeshResult {
   /// did not run are absent).
   std::vector<std::pair<std::string, double>> seconds;
 
+  /// Centre of the local frame (Å, skin::local_frame_centre): every stage ran
+  /// on the points translated by -frame_centre, and `mesh` was translated
+  /// back. The check's report refers to the local frame.
+  Vec3 frame_centre = Vec3::Zero();
+
   /// True unless the check ran and failed.
   bool ok() const { return !checked || check.ok(); }
 };
@@ -91,7 +96,9 @@ struct MeshResult {
 /// the sweep cannot close the front, GeometryError if a projection fails,
 /// std::invalid_argument for options out of range (a tangent-disc factor
 /// outside the window of C and Q). A mesh that fails its check is returned
-/// with the report (ok() false), never silently.
+/// with the report (ok() false), never silently. Every stage works in the
+/// local frame of the points (skin::local_frame_centre at the origin); when
+/// that centre is not the origin, an error that names positions says so.
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options = {});
 
 /// mesh_skin() of a molecule's atoms, weighted with options.probe_radius

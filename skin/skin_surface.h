@@ -5,6 +5,8 @@
 // Notes: papers/skin/skin_surface.md
 #pragma once
 
+#include <cmath>
+
 #include <memory>
 #include <utility>
 #include <vector>
@@ -32,6 +34,32 @@ inline std::vector<geometry::WeightedPoint> weighted_points(const Molecule& mole
   std::vector<geometry::WeightedPoint> points;
   points.reserve(molecule.atoms.size());
   for (const Atom& a : molecule.atoms) points.push_back({a.centre, atom_weight(a.radius, probe)});
+  return points;
+}
+
+/// The centre of the local frame of a set of weighted points: the midpoint of
+/// their bounding box (Å), rounded to a multiple of 2^-10 Å so that a point
+/// list translated by a vector of such multiples gets the same local
+/// coordinates. The mesher and the checker work in coordinates relative to
+/// it, so that a molecule far from the origin (1e6 Å) is meshed like the same
+/// molecule at the origin: the geometry's floating-point tolerances are
+/// relative to the molecule's size, not to its distance from the origin.
+/// Zero for an empty list.
+inline Vec3 local_frame_centre(const std::vector<geometry::WeightedPoint>& points) {
+  if (points.empty()) return Vec3::Zero();
+  Vec3 lo = points.front().z, hi = lo;
+  for (const auto& p : points) lo = lo.cwiseMin(p.z), hi = hi.cwiseMax(p.z);
+  Vec3 c = 0.5 * (lo + hi);
+  // floor(v + 1/2), not round(v): round() takes halves away from zero, which
+  // does not commute with a translation.
+  for (int i = 0; i < 3; ++i) c[i] = std::ldexp(std::floor(std::ldexp(c[i], 10) + 0.5), -10);
+  return c;
+}
+
+/// The points translated by -centre (weights unchanged).
+inline std::vector<geometry::WeightedPoint> translated(std::vector<geometry::WeightedPoint> points,
+                                                       const Vec3& centre) {
+  for (auto& p : points) p.z -= centre;
   return points;
 }
 

@@ -7,7 +7,9 @@
 // violations, with every angle above 21.5°, for several height directions.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "front/pipeline.h"
 #include "tests/refine/check_expectations.h"
@@ -80,6 +82,33 @@ TEST_CASE("sweep + refinement: every check passes, for several height directions
       CHECK(res.refinement.L_left == 0);
       CHECK(res.refinement.U_left == 0);
     }
+}
+
+TEST_CASE("translation by 1e6 Å changes nothing but the coordinates") {
+  // Centres on a grid of 2^-10 Å, so that adding the translation is exact:
+  // the mesher works in the local frame of the points, hence the same
+  // triangles, and positions that differ by the translation up to the
+  // rounding of adding it back (half an ulp at 1e6 Å, 6e-11 Å).
+  const Vec3 t(1e6, 1e6, -1e6);
+  for (const Case& c : cases()) {
+    INFO(c.name);
+    std::vector<geometry::WeightedPoint> at_origin = c.pts, far = c.pts;
+    for (std::size_t i = 0; i < at_origin.size(); ++i) {
+      for (int k = 0; k < 3; ++k) at_origin[i].z[k] = std::ldexp(std::round(std::ldexp(c.pts[i].z[k], 10)), -10);
+      far[i].z = at_origin[i].z + t;
+      REQUIRE(far[i].z - t == at_origin[i].z);  // exact
+    }
+    const MeshResult a = sweep_and_check(at_origin), b = sweep_and_check(far);
+    test::check_every_property(b.check);
+    INFO("frame " << a.frame_centre.transpose() << " / " << b.frame_centre.transpose() << " tris " << a.mesh.triangles.size() << " " << b.mesh.triangles.size());
+    REQUIRE(a.mesh.triangles == b.mesh.triangles);
+    REQUIRE(a.mesh.positions.size() == b.mesh.positions.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < a.mesh.positions.size(); ++i)
+      worst = std::max(worst, (b.mesh.positions[i] - t - a.mesh.positions[i]).cwiseAbs().maxCoeff());
+    CHECK(worst <= 1.2e-10);
+    CHECK(b.frame_centre - a.frame_centre == t);
+  }
 }
 
 }  // TEST_SUITE
