@@ -43,8 +43,13 @@ void Sweep::creep(Vertex v) {
     // "fan" is the single triangle (v, w, u). Triangle (v, w, p1) spans from
     // p1 to v at w; (v, p_{m-1}, u) from v to p_{m-1} at u.
     auto test_fan = [&](int mm, bool& bw, bool& bu) {
-      const Vec3 p1 = mm == 1 ? mesh_.position(k.u) : Vec3(pv + r * rotate(k.dw, n, k.angle / mm));
-      const Vec3 pm = mm == 1 ? mesh_.position(k.w) : Vec3(pv + r * rotate(k.dw, n, k.angle * (mm - 1) / mm));
+      // The new points where they will be: projected onto the skin along
+      // v's normal. That keeps their direction in T_v but not in T_w or T_u,
+      // where a point just inside the wedge on the tangent circle can fall
+      // just outside it on the skin (src kinase at probe 0: 0.3° inside, then
+      // a fold at w).
+      const Vec3 p1 = mm == 1 ? mesh_.position(k.u) : project_tangent(v, rotate(k.dw, n, k.angle / mm), r);
+      const Vec3 pm = mm == 1 ? mesh_.position(k.w) : project_tangent(v, rotate(k.dw, n, k.angle * (mm - 1) / mm), r);
       const Vertex p1v = mm == 1 ? k.u : Vertex(), pmv = mm == 1 ? k.w : Vertex();
       const double clearance = opt_.fan_clearance * r;
       bw = w2 != k.u && ((mm > 1 && (p1 - pw2).norm() < clearance) || !fits_at(k.w, p1, pv, p1v, v));
