@@ -7,7 +7,7 @@ OUT     ?= gramicidinA_1grm_model1.ply
 
 SANITIZE_BUILD ?= build-sanitize
 
-.PHONY: all deps configure build mesh test sanitize bench clean
+.PHONY: all deps configure build mesh test sanitize bench stress clean
 
 all: build
 
@@ -39,6 +39,12 @@ sanitize: deps
 # Google Benchmark: predicates, regular triangulation, the mesher (Table 1).
 bench: build
 	$(BUILD)/skinmesh_bench
+
+# The seeded stress suite (tests/stress): a few hundred generated inputs through
+# the whole pipeline, each checked against an independently computed topology.
+# Failing cases can be written out with e.g. STRESS_ARGS="--dump /tmp/stress-fail".
+stress: build
+	$(BUILD)/skinmesh_stress $(STRESS_ARGS)
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD)
