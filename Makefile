@@ -6,8 +6,11 @@ MOLECULE ?= data/gramicidinA_1grm_model1.pdb
 OUT     ?= gramicidinA_1grm_model1.ply
 
 SANITIZE_BUILD ?= build-sanitize
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 20
+FUZZ_CXX ?= clang++-14
 
-.PHONY: all deps configure build mesh test sanitize bench stress clean
+.PHONY: all deps configure build mesh test sanitize fuzz bench stress clean
 
 all: build
 
@@ -29,12 +32,24 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure
 
 # The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer
-# (any report fails the run).
+# (any report fails the run), then the input readers under libFuzzer (make fuzz).
 sanitize: deps
 	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKINMESH_BUILD_BENCH=OFF \
 	  -DSKINMESH_SANITIZE=ON > /dev/null
 	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && ctest --output-on-failure
+	@$(MAKE) --no-print-directory fuzz
+
+# libFuzzer on every input reader (tests/fuzz): the targets built with clang++,
+# AddressSanitizer and UndefinedBehaviorSanitizer, then each run FUZZ_SECONDS on a
+# scratch copy of its seed corpus. Any crash, sanitizer report, hang (> 10 s on one
+# input) or memory above 2 GB fails; the input is kept in $(FUZZ_BUILD)/fuzz-artifacts.
+fuzz:
+	@bash .ci/install-deps --fuzz
+	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=$(FUZZ_CXX) \
+	  -DSKINMESH_BUILD_BENCH=OFF -DSKINMESH_FUZZ=ON > /dev/null
+	@cmake --build $(FUZZ_BUILD) --target skinmesh_fuzz -j $(JOBS)
+	@bash tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # Google Benchmark: predicates, regular triangulation, the mesher (Table 1).
 bench: build
@@ -47,4 +62,4 @@ stress: build
 	$(BUILD)/skinmesh_stress $(STRESS_ARGS)
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)

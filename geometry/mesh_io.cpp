@@ -192,14 +192,17 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
 
 IndexedMesh read_mesh(const std::string& path) {
   const MeshFormat format = mesh_format_from_extension(path);
-  const std::string data = read_bytes(path);
+  return read_mesh_from_bytes(read_bytes(path), format, path);
+}
+
+IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name) {
   switch (format) {
     case MeshFormat::Ply:
-      return read_ply(path, data);
+      return read_ply(name, data);
     case MeshFormat::Off:
-      return read_off(path, data);
+      return read_off(name, data);
     case MeshFormat::Obj:
-      return read_obj(path, data);
+      return read_obj(name, data);
   }
   return {};
 }

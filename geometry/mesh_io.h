@@ -68,6 +68,12 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
 /// problem names the element index instead).
 IndexedMesh read_mesh(const std::string& path);
 
+/// Reads a triangle mesh from `data`, the whole content of a mesh file in
+/// `format`, exactly as read_mesh() reads a file; `name` stands for the path in
+/// every InputError(name, line, problem) (empty: the problem alone). The
+/// in-memory entry point of read_mesh(), which reads the file and calls it.
+IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name = "");
+
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
 /// `path`, so that readers never see a partial file. On any failure the
 /// temporary file is removed and InputError(path, 0, "cannot write <what>

@@ -227,6 +227,10 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
       role[static_cast<std::size_t>(list)] = 7;
       mesh.triangles.reserve(el.count);
     }
+    // A record without properties holds no data: nothing to read, however
+    // many records the header claims (a count the size check before the body
+    // cannot bound, so the loop below must not run it).
+    if (el.properties.empty()) continue;
     const std::string element_name = "element '" + el.name + "' ";
     for (std::size_t i = 0; i < el.count; ++i) {
       const std::string context = element_name + std::to_string(i);

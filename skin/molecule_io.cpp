@@ -191,13 +191,19 @@ Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& note
   // atom outside it is refused here, where its line is known.
   for (const Atom& a : atoms) {
     const char* axis[3] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(a.centre[k])) {  // the readers check their numbers: a safety net
+        std::ostringstream os;
+        os << "non-finite " << axis[k] << " coordinate '" << a.centre[k] << "'";
+        throw InputError(path, a.line, os.str());
+      }
       if (std::abs(a.centre[k]) > geometry::kMaxCoordinate) {
         std::ostringstream os;
         os << axis[k] << " coordinate " << a.centre[k] << " is outside the supported range ±"
            << geometry::kMaxCoordinate << " Å";
         throw InputError(path, a.line, os.str());
       }
+    }
     if (a.radius > kMaxRadius) {
       std::ostringstream os;
       os << "radius " << a.radius << " is above the supported maximum " << kMaxRadius << " Å";
@@ -243,21 +249,27 @@ ReadOptions::Format format_from_extension(const std::string& path) {
 }
 
 Molecule read_molecule(const std::string& path, const ReadOptions& opt) {
+  ReadOptions resolved = opt;
+  if (resolved.format == ReadOptions::Format::Auto) resolved.format = format_from_extension(path);
+  return read_molecule_from_string(molecule_io_detail::read_text(path), path, resolved);
+}
+
+Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt) {
   const ReadOptions::Format format =
-      opt.format == ReadOptions::Format::Auto ? format_from_extension(path) : opt.format;
+      opt.format == ReadOptions::Format::Auto ? format_from_extension(name) : opt.format;
   switch (format) {
     case ReadOptions::Format::Pdb:
-      return read_pdb(path, opt);
+      return read_pdb(name, text, opt);
     case ReadOptions::Format::Mmcif:
-      return read_mmcif(path, opt);
+      return read_mmcif(name, text, opt);
     case ReadOptions::Format::Pqr:
-      return read_pqr(path, opt);
+      return read_pqr(name, text, opt);
     case ReadOptions::Format::Xyzr:
-      return read_xyzr(path);
+      return read_xyzr(name, text);
     case ReadOptions::Format::Auto:
       break;
   }
-  throw InputError(path, 0, "unknown format (expected .pdb, .cif, .pqr or .xyzr)");
+  throw InputError(name, 0, "unknown format (expected .pdb, .cif, .pqr or .xyzr)");
 }
 
 }  // namespace skinmesh::skin

@@ -43,7 +43,11 @@ struct ReadOptions {
 ///   `!opt.keep_hydrogens`. The element comes from the element column (PDB columns
 ///   77-78, mmCIF type_symbol), else is guessed by gemmi from the atom name (one
 ///   summary note). The radius is Bondi's (bondi_radius); an element Bondi does
-///   not list gets kFallbackRadius and a note.
+///   not list gets kFallbackRadius and a note. PDB: only the ATOM, HETATM, MODEL,
+///   ENDMDL, TER and END records are read, nothing after the first model, a line
+///   up to column 120 (gemmi's limit), NUL and CR bytes as blanks; mmCIF: only
+///   the _atom_site items, an integer there (serial, residue number) beyond
+///   ±INT_MAX as absent (0).
 /// - PQR: whitespace separated `ATOM|HETATM serial name resName [chain] resSeq x y
 ///   z charge radius`; x, y, z, charge, radius are the last five fields. The
 ///   radius is the file's. A hydrogen with radius 0 is skipped with a note. The
@@ -63,6 +67,13 @@ struct ReadOptions {
 /// Line numbers are 1-based; 0 when unknown (some errors reported by gemmi
 /// itself, an mmCIF _atom_site written as tag-value pairs rather than a loop).
 Molecule read_molecule(const std::string& path, const ReadOptions& opt = {});
+
+/// Reads the atoms of `text`, the whole content of a molecule file (not gzipped),
+/// exactly as read_molecule() reads a file: `name` stands for the path in
+/// Molecule::source, the notes and every InputError(name, line, problem), and
+/// chooses the format by its extension when opt.format is Auto. The in-memory
+/// entry point of read_molecule(), which reads the file and calls it.
+Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt = {});
 
 /// The format read_molecule() would choose for `path` by its extension (case
 /// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr or Xyzr. Throws InputError(path, 0, "unknown

@@ -9,20 +9,25 @@
 // model must hold three complete, finite numbers in columns 31-38, 39-46, 47-54,
 // else InputError with the line number. The same scan records each record's line,
 // so atoms coming back from gemmi (regrouped by chain and residue) find their
-// source line again by (x, y, z, name, altloc). The scan also blanks columns
-// 79-80 (formal charge) of the copy handed to gemmi, which otherwise rejects
-// files with old-style identifiers there ("Wrong format for charge", bundled
-// 1GRM). mmCIF is handled the same way
-// through gemmi's cif::Document and a small tokenizer that finds the line of each
-// value of the _atom_site loop.
+// source line again by (x, y, z, name, altloc). gemmi reads a text the scan
+// writes (scan_pdb()): the lines the scan checked, one for one, up to the end
+// of the first model, with columns 79-80 (formal charge) blanked, which gemmi
+// otherwise rejects in files with old-style identifiers there ("Wrong format
+// for charge", bundled 1GRM), and with only the records that hold or group the
+// atoms (gemmi 0.5.7 reads some others past their end, or into an overflowing int).
+// mmCIF is handled the same way through gemmi's cif::Document and a small
+// tokenizer that finds the line of each value of the _atom_site loop; gemmi
+// then sees the _atom_site items alone (see keep_atom_site_only()).
 #include <algorithm>
-#include <bit>
 #include <cctype>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <string_view>
+#include <system_error>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -62,8 +67,7 @@ class SourceIndex {
   using Key = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, std::string, char>;
 
   static Key key(double x, double y, double z, std::string name, char altloc) {
-    return {std::bit_cast<std::uint64_t>(x), std::bit_cast<std::uint64_t>(y),
-            std::bit_cast<std::uint64_t>(z), std::move(name), altloc};
+    return {bits(x), bits(y), bits(z), std::move(name), altloc};
   }
   void add(Key k, SourceRecord r) { records_[std::move(k)].push_back(r); }
   /// The record of `k` not handed out yet, or {0, true} if there is none.
@@ -76,6 +80,15 @@ class SourceIndex {
   }
 
  private:
+  /// The bits of `v` (std::bit_cast, spelled for C++17: this file is also built
+  /// as C++17 by clang, whose C++20 mode rejects gemmi's cif headers; see
+  /// tests/fuzz/CMakeLists.txt).
+  static std::uint64_t bits(double v) {
+    static_assert(sizeof(double) == sizeof(std::uint64_t));
+    std::uint64_t b = 0;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  }
   std::map<Key, std::deque<SourceRecord>> records_;
 };
 
@@ -89,42 +102,76 @@ bool record_is(std::string_view line, std::string_view rec) {
   return true;
 }
 
-/// Checks the coordinate columns of every ATOM/HETATM record of the first model
-/// and indexes the records by (x, y, z, name, altloc). Blanks columns 79-80 (the
-/// formal charge, unused here) of every ATOM/HETATM record in `text`: gemmi
-/// rejects the whole file when they hold anything but a charge, and old-style
-/// files keep identifiers there (1GRM: columns 73-80 read "1GRM 125").
-/// Throws InputError.
-SourceIndex scan_pdb(const std::string& path, std::string& text) {
+/// The longest line gemmi 0.5.7 reads whole (PdbReadOptions::max_line_length):
+/// it drops the rest of a longer line up to a newline, a NUL or a byte >= 0x80,
+/// and starts its next line there.
+constexpr std::size_t kGemmiLineLength = 120;
+
+/// The PDB pre-scan: the records of the first model, and the text gemmi reads.
+struct PdbScan {
   SourceIndex index;
+  std::string gemmi_text;
+};
+
+/// Checks the coordinate columns of every ATOM/HETATM record of the first model
+/// and indexes the records by (x, y, z, name, altloc). Writes the text handed to
+/// gemmi, line by line (split_lines(): one gemmi line per line of `text`, so
+/// gemmi reads exactly the records checked here, and its line numbers are the
+/// file's):
+/// - every line cut to kGemmiLineLength columns, NUL and CR bytes made blanks
+///   (gemmi ends a line, or an atom name, at them);
+/// - nothing after the first model (the first ENDMDL after an atom record, or
+///   END): gemmi would put the atoms of a later "MODEL n" into its first model
+///   when that one was empty and numbered n;
+/// - columns 79-80 (the formal charge, unused here) of every ATOM/HETATM record
+///   blanked: gemmi rejects the whole file when they hold anything but a
+///   charge, and old-style files keep identifiers there (1GRM: columns 73-80
+///   read "1GRM 125");
+/// - every other record emptied but MODEL, ENDMDL, TER and END, which gemmi
+///   needs to group the atoms, and data_ (an mmCIF file, which gemmi names as
+///   such): the reader uses nothing else, and gemmi 0.5.7 parses the rest
+///   without care — fixed columns past the end of a short LINK record (columns
+///   74-78 of an exact-length copy), DBREF2 numbers of 10 digits into an int
+///   (a signed overflow) — and the headers of big files are long.
+/// Throws InputError.
+PdbScan scan_pdb(const std::string& path, std::string_view text) {
+  PdbScan scan;
+  scan.gemmi_text.reserve(text.size() + 1);
   bool seen_atom = false;
   const std::vector<std::string_view> lines = split_lines(text);
-  for (const std::string_view line : lines)  // every model: gemmi reads them all
-    if (record_is(line, "ATOM") || record_is(line, "HETA"))
-      for (std::size_t c = 78; c < std::min<std::size_t>(line.size(), 80); ++c)
-        text[static_cast<std::size_t>(line.data() - text.data()) + c] = ' ';
   for (std::size_t k = 0; k < lines.size(); ++k) {
-    const std::string_view line = lines[k];
     const int line_no = static_cast<int>(k + 1);
-    if (record_is(line, "ENDMDL") && seen_atom) break;  // gemmi starts model 2 here
-    if (record_is(line, "END") && (line.size() == 3 || is_blank(line[3]))) break;  // gemmi stops
-    if (!record_is(line, "ATOM") && !record_is(line, "HETA")) continue;
-    seen_atom = true;
-    if (line.size() < 54)
-      throw InputError(path, line_no,
-                       "ATOM/HETATM record too short: x, y, z must fill columns 31-54 (" +
-                           std::to_string(line.size()) + " columns found)");
-    const double x = parse_number(path, line_no, line.substr(30, 8), "x coordinate");
-    const double y = parse_number(path, line_no, line.substr(38, 8), "y coordinate");
-    const double z = parse_number(path, line_no, line.substr(46, 8), "z coordinate");
-    const std::string name(trim(line.substr(12, 4)));
-    const char altloc = line[16] == ' ' ? '\0' : line[16];
-    const bool element_column =
-        line.size() > 76 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
-                             (line.size() > 77 && std::isalpha(static_cast<unsigned char>(line[77]))));
-    index.add(SourceIndex::key(x, y, z, name, altloc), {line_no, element_column});
+    std::string line(lines[k].substr(0, kGemmiLineLength));
+    std::replace_if(line.begin(), line.end(), [](char c) { return c == '\0' || c == '\r'; }, ' ');
+    const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                      // gemmi starts model 2
+                      (record_is(line, "END") && (line.size() == 3 || is_blank(line[3])));  // gemmi stops
+    const bool atom = record_is(line, "ATOM") || record_is(line, "HETA");
+    if (!atom && !record_is(line, "MODE") && !record_is(line, "END") && !record_is(line, "TER") &&
+        !record_is(line, "DATA")) {
+      line.clear();
+    } else if (atom) {
+      seen_atom = true;
+      for (std::size_t c = 78; c < std::min<std::size_t>(line.size(), 80); ++c) line[c] = ' ';
+      if (line.size() < 54)
+        throw InputError(path, line_no,
+                         "ATOM/HETATM record too short: x, y, z must fill columns 31-54 (" +
+                             std::to_string(lines[k].size()) + " columns found)");
+      const std::string_view record = line;
+      const double x = parse_number(path, line_no, record.substr(30, 8), "x coordinate");
+      const double y = parse_number(path, line_no, record.substr(38, 8), "y coordinate");
+      const double z = parse_number(path, line_no, record.substr(46, 8), "z coordinate");
+      const std::string name(trim(record.substr(12, 4)));
+      const char altloc = line[16] == ' ' ? '\0' : line[16];
+      const bool element_column =
+          line.size() > 76 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
+                               (line.size() > 77 && std::isalpha(static_cast<unsigned char>(line[77]))));
+      scan.index.add(SourceIndex::key(x, y, z, name, altloc), {line_no, element_column});
+    }
+    scan.gemmi_text += line;
+    scan.gemmi_text += '\n';  // gemmi counts the newline in a record's length
+    if (last) break;
   }
-  return index;
+  return scan;
 }
 
 // mmCIF Pre-scan
@@ -198,6 +245,41 @@ std::vector<int> loop_value_lines(std::string_view text, int loop_line, std::siz
   }
   if (lines.size() != value_count) return {};
   return lines;
+}
+
+/// True if the leading integer of `v` — after white space and a sign, as gemmi's
+/// string_to_int() and no_sign_atoi() read it — has a magnitude above INT_MAX.
+bool leading_int_overflows(std::string_view v) {
+  std::size_t i = 0;
+  while (i < v.size() && gemmi::is_space(v[i])) ++i;
+  if (i < v.size() && (v[i] == '-' || v[i] == '+')) ++i;
+  std::size_t end = i;
+  while (end < v.size() && gemmi::is_digit(v[end])) ++end;
+  int magnitude = 0;
+  return std::from_chars(v.data() + i, v.data() + end, magnitude).ec == std::errc::result_out_of_range;
+}
+
+/// Prepares `block` for gemmi::make_structure(), which reads all of it: erases
+/// every item but the _atom_site ones (the only category read_molecule() uses;
+/// gemmi 0.5.7 parses the integers of the others without overflow checks,
+/// undefined behaviour on a long digit string), and replaces by '?' (absent,
+/// read as 0) every value of the _atom_site integer items gemmi reads (id,
+/// label_seq_id, auth_seq_id, pdbx_formal_charge, pdbx_tls_group_id) whose
+/// leading integer is beyond ±INT_MAX — as leading_int() reads such serials and
+/// residue numbers in PQR.
+void keep_atom_site_only(gemmi::cif::Block& block) {
+  for (gemmi::cif::Item& item : block.items)
+    if (!item.has_prefix("_atom_site.")) item.erase();
+  // The table gemmi reads atoms from: the item of _atom_site.id (a tag appears
+  // once per block: gemmi's parser rejects duplicates).
+  gemmi::cif::Table table = block.find(
+      "_atom_site.", {"id", "?label_seq_id", "?auth_seq_id", "?pdbx_formal_charge", "?pdbx_tls_group_id"});
+  if (!table.ok()) return;
+  for (std::size_t r = 0; r < table.length(); ++r) {
+    gemmi::cif::Table::Row row = table[static_cast<int>(r)];
+    for (std::size_t c = 0; c < row.size(); ++c)
+      if (row.has(c) && leading_int_overflows(row[c])) row[c] = "?";
+  }
 }
 
 /// Checks Cartn_x/y/z of every _atom_site row of the first model (CIF numbers,
@@ -367,26 +449,24 @@ int gemmi_line(const std::string& what) {
 
 }  // namespace
 
-Molecule read_pdb(const std::string& path, const ReadOptions& opt) {
-  std::string text = read_text(path);
-  SourceIndex index = scan_pdb(path, text);
-  if (!text.empty() && text.back() != '\n') text.push_back('\n');  // gemmi counts the newline
+Molecule read_pdb(const std::string& path, const std::string& text, const ReadOptions& opt) {
+  PdbScan scan = scan_pdb(path, text);
   gemmi::Structure st;
   try {
-    st = gemmi::read_pdb_string(text, path);
+    st = gemmi::read_pdb_string(scan.gemmi_text, path);
   } catch (const std::exception& e) {
     throw InputError(path, gemmi_line(e.what()), std::string("PDB: ") + e.what());
   }
-  return from_structure(path, st, index, opt);
+  return from_structure(path, st, scan.index, opt);
 }
 
-Molecule read_mmcif(const std::string& path, const ReadOptions& opt) {
-  const std::string text = read_text(path);
+Molecule read_mmcif(const std::string& path, const std::string& text, const ReadOptions& opt) {
   gemmi::Structure st;
   SourceIndex index;
   try {
     gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
     if (doc.blocks.empty()) throw InputError(path, 0, "no atoms found (no data block)");
+    keep_atom_site_only(doc.blocks.front());
     index = scan_mmcif(path, text, doc.blocks.front());
     st = gemmi::make_structure(doc);
   } catch (const InputError&) {

@@ -72,22 +72,25 @@ class NoteList {
 
 /// The Molecule of `path` with atoms and notes in file order (atoms sorted by
 /// line when every line is known), or InputError(path, 0, "no atoms found")
-/// naming the number of skipped atoms and the first note.
+/// naming the number of skipped atoms and the first note, or InputError(path,
+/// atom line, ...) for a non-finite coordinate, a coordinate outside
+/// ±geometry::kMaxCoordinate or a radius above kMaxRadius.
 Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& notes);
 
-// Readers: each reads `path` as read_molecule() documents for its format and
-// throws InputError(path, line, problem).
+// Readers: each reads `text`, the content of the file `path` (the name used in
+// notes and errors), as read_molecule() documents for its format and throws
+// InputError(path, line, problem).
 
 /// PDB through gemmi, after the column pre-scan (molecule_io_gemmi.cpp).
-Molecule read_pdb(const std::string& path, const ReadOptions& opt);
+Molecule read_pdb(const std::string& path, const std::string& text, const ReadOptions& opt);
 
 /// mmCIF through gemmi, after the _atom_site pre-scan (molecule_io_gemmi.cpp).
-Molecule read_mmcif(const std::string& path, const ReadOptions& opt);
+Molecule read_mmcif(const std::string& path, const std::string& text, const ReadOptions& opt);
 
 /// PQR: radii from the file (molecule_io_pqr.cpp).
-Molecule read_pqr(const std::string& path, const ReadOptions& opt);
+Molecule read_pqr(const std::string& path, const std::string& text, const ReadOptions& opt);
 
 /// XYZR (MSMS): `x y z r` per line (molecule_io_xyzr.cpp).
-Molecule read_xyzr(const std::string& path);
+Molecule read_xyzr(const std::string& path, const std::string& text);
 
 }  // namespace skinmesh::skin::molecule_io_detail

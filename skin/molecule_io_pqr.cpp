@@ -33,8 +33,7 @@ std::string pqr_element(std::string_view name, std::string_view residue) {
 
 }  // namespace
 
-Molecule read_pqr(const std::string& path, const ReadOptions& opt) {
-  const std::string text = read_text(path);
+Molecule read_pqr(const std::string& path, const std::string& text, const ReadOptions& opt) {
   const std::vector<std::string_view> lines = split_lines(text);
   std::vector<Atom> atoms;
   NoteList notes(path);

@@ -14,8 +14,7 @@ namespace skinmesh::skin::molecule_io_detail {
 using geometry::split_blanks;
 using geometry::split_lines;
 
-Molecule read_xyzr(const std::string& path) {
-  const std::string text = read_text(path);
+Molecule read_xyzr(const std::string& path, const std::string& text) {
   const std::vector<std::string_view> lines = split_lines(text);
   std::vector<Atom> atoms;
   NoteList notes(path);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <set>
@@ -23,6 +24,7 @@ namespace {
 using skinmesh::InputError;
 using skinmesh::skin::Molecule;
 using skinmesh::skin::read_molecule;
+using skinmesh::skin::read_molecule_from_string;
 using skinmesh::skin::ReadOptions;
 
 std::string data_file(const std::string& name) { return std::string(SKINMESH_DATA) + "/" + name; }
@@ -70,6 +72,17 @@ InputError error_of(const std::string& path, const ReadOptions& opt = {}) {
   }
   FAIL("no InputError for " << path);
   return InputError(path, 0, "unreachable");
+}
+
+/// The InputError thrown by read_molecule_from_string(text, name); fails the test if none.
+InputError string_error_of(const std::string& text, const std::string& name) {
+  try {
+    read_molecule_from_string(text, name);
+  } catch (const InputError& e) {
+    return e;
+  }
+  FAIL("no InputError for " << name);
+  return InputError(name, 0, "unreachable");
 }
 
 std::size_t count_notes_containing(const Molecule& m, const std::string& s) {
@@ -480,6 +493,177 @@ TEST_CASE("hostile input: coordinates and radii outside the supported range are 
   // The edge of the range is accepted.
   const Molecule ok = read_molecule(scratch().write("edge.xyzr", "1e7 -1e7 0 1.5\n"));
   CHECK(ok.atoms.size() == 1);
+}
+
+TEST_CASE("read_molecule_from_string: the reader of read_molecule() on text in memory") {
+  // The same atoms, notes and source as the file read.
+  const std::string path = data_file("crambin_1crn.pdb");
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Molecule from_file = read_molecule(path);
+  const Molecule from_text = read_molecule_from_string(text, path);
+  CHECK(from_text.source == path);
+  REQUIRE(from_text.atoms.size() == from_file.atoms.size());
+  for (std::size_t i = 0; i < from_text.atoms.size(); ++i) {
+    CHECK(from_text.atoms[i].centre == from_file.atoms[i].centre);
+    CHECK(from_text.atoms[i].radius == from_file.atoms[i].radius);
+    CHECK(from_text.atoms[i].line == from_file.atoms[i].line);
+  }
+  CHECK(from_text.notes == from_file.notes);
+  // The name chooses the format unless the options do, and names the errors.
+  CHECK(read_molecule_from_string("1 2 3 1.5\n", "memory.xyzr").atoms.size() == 1);
+  ReadOptions opt;
+  opt.format = ReadOptions::Format::Pqr;
+  CHECK(read_molecule_from_string("ATOM 1 CA ALA 1 1.0 2.0 3.0 0.1 1.9\n", "memory", opt).atoms.size() == 1);
+  const InputError e = string_error_of("1 2 3\n", "memory.xyzr");
+  CHECK(e.file() == "memory.xyzr");
+  CHECK(e.line() == 1);
+  CHECK(std::string(e.what()).find("memory.xyzr:1: expected 'x y z r'") != std::string::npos);
+  CHECK(std::string(string_error_of("1 2 3 1.5\n", "memory.txt").what()).find("unknown format") != std::string::npos);
+}
+
+// Inputs found by the libFuzzer targets of tests/fuzz (make fuzz), each of which
+// once crashed a sanitizer build or let a wrong value through.
+TEST_CASE("fuzzing regressions: PDB") {
+  SUBCASE("a LINK record of 74-77 columns is not read past its end") {
+    // fuzz_pdb: heap-buffer-overflow in gemmi 0.5.7 pdb_impl::process_conn,
+    // which reads the LINK distance (columns 74-78) from an exact-length copy of
+    // the record. Records other than ATOM, HETATM, MODEL, ENDMDL, TER and END
+    // no longer reach gemmi.
+    const std::string found =
+        "CtMAP\n"
+        "LINK CCCCCCCCC1GZMCCCCCCCCCCCCCCCCCCCCCCCCCCCCCCC\010CCCCCCCCCCCCCCCCCCCCCC ";
+    CHECK(std::string(string_error_of(found, "link.pdb").what()).find("no atoms found") != std::string::npos);
+    // A zinc site whose LINK record ends in a blank at column 74.
+    const std::string link = "LINK         SG  CYS A   1                 ZN    ZN A   2     1555   1555 \n";
+    REQUIRE(link.size() == 75);
+    const std::string text = pdb_atom("ATOM", 1, " SG", ' ', "CYS", "A", 1, "1.000", "2.000", "3.000", " S") +
+                             pdb_atom("HETATM", 2, "ZN", ' ', " ZN", "A", 2, "3.000", "2.000", "3.000", "ZN") + link +
+                             "SSBOND   1 CYS A    1    CYS A    1\nCISPEP   1 CYS A    1    ZN A    2\n";
+    const Molecule m = read_molecule_from_string(text, "zinc.pdb");
+    REQUIRE(m.atoms.size() == 2);
+    CHECK(m.atoms[1].element == "Zn");
+    CHECK(m.atoms[1].line == 2);
+  }
+  SUBCASE("gemmi reads the lines the pre-scan checked, no others") {
+    // fuzz_pdb (after the fix above): heap-buffer-overflow again, on a LINK
+    // record the pre-scan never saw. gemmi reads at most 120 columns of a line
+    // and drops the rest up to a newline, a NUL or a byte >= 0x80, where it
+    // starts its next line: mid-line for the pre-scan. gemmi now reads the
+    // lines of the pre-scan (cut to 120 columns, NUL and CR made blanks).
+    using namespace std::string_literals;
+    const std::string found =
+        ";;;.02APR;;3;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;;\017\000\000\000\000\000\000\000;;;;;;;;;;;;;;;;;;;;;;;;;;;;"
+        ";;;;;;;;;;;;;+;;;;; 0;;;;;;;;;;;;0\351LINK ;;;;;;;;;;;T4P;;;;;;;;;;;;;;;;;;;;;APR;;;;;;;;; 1;;;;;;;;;;;;0\351LINK "s;
+    CHECK(std::string(string_error_of(found, "resync.pdb").what()).find("no atoms found") != std::string::npos);
+    // The same way, an atom record hidden after column 120 reached gemmi
+    // unchecked: "nan" came back as NaN, "abc" as 0.
+    const std::string atom = pdb_atom("ATOM", 2, " CB", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C");
+    for (const char* hidden : {"nan", "abc"}) {
+      CAPTURE(hidden);
+      std::string record = pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, hidden, "0.0", "0.0", "C");
+      record.pop_back();  // its newline
+      for (const std::string& separator : {"\351"s, "\000"s}) {
+        const std::string text = "REMARK" + std::string(114, ' ') + "x" + separator + record + "\n" + atom;
+        const Molecule m = read_molecule_from_string(text, "hidden.pdb");
+        REQUIRE(m.atoms.size() == 1);
+        CHECK(m.atoms[0].centre == skinmesh::Vec3(1.0, 2.0, 3.0));
+        CHECK(m.atoms[0].line == 2);
+      }
+    }
+  }
+  SUBCASE("records the reader does not use do not reach gemmi") {
+    // fuzz_pdb (after the fixes above): signed integer overflow (undefined
+    // behaviour) in gemmi 0.5.7, which reads the DBREF2 numbers, columns 46-55
+    // and 58-67, into an int without overflow check; a short DBREF2 record even
+    // has them read from the previous, longer line. gemmi now gets only the
+    // ATOM, HETATM, MODEL, ENDMDL, TER and END records.
+    const std::string found =
+        "ATOM      9 SE   MSE A  48       0.40999999999999999999\n"
+        "DBREF1\n"
+        "DBREF2";
+    CHECK(string_error_of(found, "dbref.pdb").problem().find("outside the supported range") != std::string::npos);
+    const std::string dbref2 = "DBREF1 1ABC A    1    10  UNP                  ABC_HUMAN\n"
+                               "DBREF2 1ABC A     P12345                     9999999999  9999999999\n";
+    const Molecule m = read_molecule_from_string(
+        dbref2 + "HELIX    1   1 GLY A    1  GLY A    1  1 99999999999\n" +
+            pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C"),
+        "dbref.pdb");
+    REQUIRE(m.atoms.size() == 1);
+    CHECK(m.atoms[0].line == 4);
+  }
+  SUBCASE("a later MODEL re-entering an empty first model is not read unchecked") {
+    // gemmi puts the atoms of the second "MODEL 1" into its first model, which
+    // the pre-scan had closed at the first ENDMDL: x = "nan" came back as NaN.
+    // gemmi now sees the text up to the end of the first model only.
+    const std::string text = "MODEL        1\nENDMDL\nMODEL        2\n" +
+                             pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C") +
+                             "ENDMDL\nMODEL        1\n" +
+                             pdb_atom("ATOM", 2, " CA", ' ', "GLY", "A", 1, "nan", "0.0", "0.0", "C") + "ENDMDL\n";
+    const InputError e = string_error_of(text, "reenter.pdb");
+    CHECK(std::string(e.what()).find("no atoms found") != std::string::npos);
+    // The first model with atoms is read as before; later models are not looked at.
+    const std::string two = "MODEL        1\n" +
+                            pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C") +
+                            "ENDMDL\nMODEL        2\n" +
+                            pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "nan", "2.0", "3.0", "C") + "ENDMDL\n";
+    const Molecule m = read_molecule_from_string(two, "two_models.pdb");
+    REQUIRE(m.atoms.size() == 1);
+    CHECK(m.atoms[0].centre == skinmesh::Vec3(1.0, 2.0, 3.0));
+    CHECK(m.atoms[0].line == 2);
+  }
+}
+
+TEST_CASE("fuzzing regressions: mmCIF integers beyond int") {
+  // fuzz_cif: signed integer overflow (undefined behaviour) in gemmi 0.5.7
+  // string_to_int(), which reads _atom_site.id and every integer of the other
+  // categories without overflow checks. gemmi now sees the _atom_site items
+  // only, with integers beyond int read as absent (0).
+  const std::string loop =
+      "loop_\n"
+      "_atom_site.group_PDB\n"
+      "_atom_site.id\n"
+      "_atom_site.type_symbol\n"
+      "_atom_site.label_atom_id\n"
+      "_atom_site.label_alt_id\n"
+      "_atom_site.label_comp_id\n"
+      "_atom_site.label_asym_id\n"
+      "_atom_site.label_entity_id\n"
+      "_atom_site.label_seq_id\n"
+      "_atom_site.pdbx_PDB_ins_code\n"
+      "_atom_site.Cartn_x\n"
+      "_atom_site.Cartn_y\n"
+      "_atom_site.Cartn_z\n"
+      "_atom_site.occupancy\n"
+      "_atom_site.B_iso_or_equiv\n"
+      "_atom_site.pdbx_formal_charge\n"
+      "_atom_site.auth_seq_id\n"
+      "_atom_site.auth_comp_id\n"
+      "_atom_site.auth_asym_id\n"
+      "_atom_site.auth_atom_id\n"
+      "_atom_site.pdbx_PDB_model_num\n";
+  SUBCASE("the input found: _atom_site.id 318446744073709551616") {
+    const std::string found = "data_1CRN\n" + loop +
+                              "ATOM 318446744073709551616 C C . THR A 1 1 ? 15.685 12.755 5.133 1.00 9.19 ? 1 THR A C 1\n";
+    const Molecule m = read_molecule_from_string(found, "serial.cif");
+    REQUIRE(m.atoms.size() == 1);
+    CHECK(m.atoms[0].serial == 0);
+    CHECK(m.atoms[0].centre == skinmesh::Vec3(15.685, 12.755, 5.133));
+    CHECK(m.atoms[0].line == 24);
+  }
+  SUBCASE("residue numbers, charges; other categories") {
+    const std::string text = "data_x\n" + loop +
+                             "ATOM 1 C CA . GLY A 1 99999999999 ? 1.0 2.0 3.0 1 0 -2147483649 99999999999 GLY A CA 1\n"
+                             "ATOM 2 C C . GLY A 1 1 ? 4.0 5.0 6.0 1 0 ? 7 GLY A C 1\n"
+                             "loop_\n_entity.id\n_entity.type\n1 polymer\n"
+                             "loop_\n_entity_poly_seq.entity_id\n_entity_poly_seq.num\n_entity_poly_seq.mon_id\n"
+                             "1 99999999999 GLY\n";
+    const Molecule m = read_molecule_from_string(text, "numbers.cif");
+    REQUIRE(m.atoms.size() == 2);
+    CHECK(m.atoms[0].residue_number == 0);
+    CHECK(m.atoms[1].residue_number == 7);
+    CHECK(m.atoms[1].serial == 2);
+  }
 }
 
 }  // TEST_SUITE("skin")

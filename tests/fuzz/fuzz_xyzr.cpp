@@ -1,0 +1,8 @@
+// tests/fuzz/fuzz_xyzr.cpp: libFuzzer target — every input is read as a XYZR file by
+// skin::read_molecule_from_string() (tests/fuzz/fuzz_readers.h says what counts as a bug).
+#include "tests/fuzz/fuzz_readers.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  skinmesh::fuzz::molecule_input(data, size, skinmesh::skin::ReadOptions::Format::Xyzr, /*check=*/false);
+  return 0;
+}
