@@ -88,11 +88,12 @@ bool Sweep::try_bridge(Index c) {
   const double ell = opt_.disc_factor * cp.rho;
   for (const Candidate& cand : candidates) {
     const int rows = std::max(1, static_cast<int>(std::lround(cand.dist / ell)));
-    if (!ladder_fits(cand.h0, cand.h1, ladder_rails(cand.h0, cand.h1, rows))) {
+    const Rails rails = ladder_rails(cand.h0, cand.h1, rows);
+    if (!ladder_fits(cand.h0, cand.h1, rails)) {
       if (trace_) tracef("bridge saddle %u: the ladder of %d rows would fold at a corner\n", c, rows);
       continue;
     }
-    bridge(cand.h0, cand.h1, c, rows);
+    bridge(cand.h0, cand.h1, c, rails);
     return true;
   }
   return false;
@@ -143,12 +144,11 @@ bool Sweep::ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const {
   // must fit in the hole wedge of each of its corners that is on the front
   // already (a, b, c, d), in that corner's own tangent plane: at corner x of
   // the counter-clockwise triangle (x, y, z) it spans from y to z.
-  auto fits_tri = [&](const Vec3& px, Vertex x, const Vec3& py, Vertex y, const Vec3& pz, Vertex z) {
-    (void)px;
+  auto fits_corner = [&](Vertex x, const Vec3& py, Vertex y, const Vec3& pz, Vertex z) {
     return !x.is_valid() || fits_at(x, py, pz, y, z);
   };
   auto tri_fits = [&](const Vec3& p0, Vertex v0, const Vec3& p1, Vertex v1, const Vec3& p2, Vertex v2) {
-    return fits_tri(p0, v0, p1, v1, p2, v2) && fits_tri(p1, v1, p2, v2, p0, v0) && fits_tri(p2, v2, p0, v0, p1, v1);
+    return fits_corner(v0, p1, v1, p2, v2) && fits_corner(v1, p2, v2, p0, v0) && fits_corner(v2, p0, v0, p1, v1);
   };
   const std::size_t rows = L.size() - 1;
   for (std::size_t j = 1; j <= rows; ++j) {
@@ -163,7 +163,8 @@ bool Sweep::ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const {
   return true;
 }
 
-void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
+void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
+  const int rows = static_cast<int>(rails.left.size()) + 1;
   const Vertex a = mesh_.from_vertex(ab), b = mesh_.to_vertex(ab);
   const Vertex cv = mesh_.from_vertex(cd), d = mesh_.to_vertex(cd);
   // Ladder of `rows` rows across the gap (papers/front/open_questions.md Q6.2):
@@ -171,7 +172,6 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, int rows) {
   // the skin.
   if (trace_)
     tracef("bridge saddle %d: a v%u b v%u c v%u d v%u rows %d\n", int(c), a.idx(), b.idx(), cv.idx(), d.idx(), rows);
-  const Rails rails = ladder_rails(ab, cd, rows);
   std::vector<Vertex> L{a}, R{b};
   for (int j = 0; j + 1 < rows; ++j) {
     L.push_back(new_vertex(rails.left[j], rails.left_cell[j]));

@@ -85,7 +85,7 @@ bool Sweep::contact_with(Vertex v, const Corner& k, Vertex best) {
   }
   if (pick < 0) return false;
   if (trace_) tracef("contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (mesh_.position(best) - pv).norm());
-  bridge(cand[pick][0], cand[pick][1], kInvalidIndex, 1);
+  bridge(cand[pick][0], cand[pick][1], kInvalidIndex, Rails{});
   ++stats_.contacts;
   return true;
 }

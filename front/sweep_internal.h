@@ -130,10 +130,11 @@ class Sweep {
   /// rows > 1 the rail points are pulled back onto the skin and can leave a
   /// wedge that the straight quad fits (src kinase at probe 0).
   bool ladder_fits(Halfedge ab, Halfedge cd, const Rails& rails) const;
-  /// Joins front edges a->b and c->d by a ladder of `rows` rows of two
-  /// triangles; c is the saddle being bridged (its held vertices are
-  /// released) or kInvalidIndex for a contact.
-  void bridge(Halfedge ab, Halfedge cd, Index c, int rows);
+  /// Joins front edges a->b and c->d by a ladder of two triangles per row
+  /// whose inner rail points are `rails` (ladder_rails; empty for one row);
+  /// c is the saddle being bridged (its held vertices are released) or
+  /// kInvalidIndex for a contact.
+  void bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails);
   /// seal(): closes every remaining hole (seal.cpp).
   void seal_all();
   /// Closes the hole of boundary loop h (DP fill, else ear clipping); a hole
