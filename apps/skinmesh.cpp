@@ -293,6 +293,8 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                      {"collisions", s.collisions},
                      {"stuck", s.stuck},
                      {"enlarged_holes", s.enlarged_holes},
+                     {"reopened_holes", s.reopened_holes},
+                     {"merged_minima", s.merged_minima},
                      {"released_saddles", s.released},
                      {"flips", r.flips},
                      {"contractions", r.contractions},

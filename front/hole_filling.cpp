@@ -110,7 +110,6 @@ Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
     return n;
   };
   delete_faces_around(poly);
-  ++stats_.enlarged_holes;
   // A pinched vertex (two boundary gaps) cannot be handled by the front:
   // delete its remaining faces too, a few times at most.
   for (int round = 0; round < opt_.max_pinch_rounds; ++round) {
@@ -128,6 +127,64 @@ Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
     start = mesh_.halfedge(x);
   }
   return start;
+}
+
+bool Sweep::reopen_hole(const std::vector<Vertex>& poly) {
+  // Bound the re-meshing: a vertex on the rim of too many re-opened regions
+  // means the sweep keeps tangling there.
+  for (Vertex v : poly)
+    if (reopenings_[v] >= opt_.max_reopenings) return false;
+  // The region: the faces around the hole's vertices, grown at every corner
+  // that would be pinched (two separate gaps in its fan) until none is, so
+  // that the rim is a plain front (it may join the front around it: the sweep
+  // goes on from there). Decided before anything is deleted.
+  std::vector<Face> region;
+  auto add_faces_around = [&](Vertex v) {
+    for (Face f : mesh_.faces(v))
+      if (std::find(region.begin(), region.end(), f) == region.end()) region.push_back(f);
+  };
+  for (Vertex v : poly) add_faces_around(v);
+  std::sort(region.begin(), region.end());
+  auto open = [&](Halfedge h) {  // the slot of h in its vertex's fan: a gap or a deleted face
+    return mesh_.is_boundary(h) || std::binary_search(region.begin(), region.end(), mesh_.face(h));
+  };
+  const std::size_t max_faces = 64 * std::max<std::size_t>(region.size(), 1);
+  std::vector<Vertex> rim;
+  for (int round = 0;; ++round) {
+    rim.clear();
+    for (Face f : region)
+      for (Vertex x : mesh_.vertices(f)) rim.push_back(x);
+    std::sort(rim.begin(), rim.end());
+    rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
+    std::vector<Vertex> pinched;
+    for (Vertex x : rim) {
+      int runs = 0, slots = 0, open_slots = 0;
+      bool prev = false, first = false;
+      for (Halfedge h : mesh_.halfedges(x)) {
+        const bool o = open(h);
+        if (slots == 0) first = o;
+        else if (o && !prev) ++runs;
+        prev = o, ++slots, open_slots += o;
+      }
+      if (first && !prev) ++runs;  // the circular wrap closes a run that starts the fan
+      if (open_slots < slots && runs > 1) pinched.push_back(x);
+    }
+    if (pinched.empty()) break;
+    if (round >= opt_.max_pinch_rounds || region.size() > max_faces) return false;
+    for (Vertex x : pinched) add_faces_around(x);
+    std::sort(region.begin(), region.end());
+  }
+  for (Face f : region) mesh_.delete_face(f);
+  ++stats_.reopened_holes;
+  for (Vertex x : rim) {
+    if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
+    if (reopenings_[x] < 255) ++reopenings_[x];
+    if (held_by_[x] != kInvalidIndex && !resolved_[held_by_[x]] && state_[x] == VState::Held) continue;
+    state_[x] = VState::Front;
+    push(x);
+  }
+  if (trace_) tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
+  return true;
 }
 
 }  // namespace skinmesh::front::detail

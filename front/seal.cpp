@@ -67,7 +67,9 @@ void Sweep::seal_all() {
   }
 }
 
-void Sweep::seal_loop(Halfedge start, int enlargements_left) {
+void Sweep::close_small_hole(Vertex v) { seal_loop(mesh_.halfedge(v), 0, /*in_sweep=*/true); }
+
+void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
   std::vector<Halfedge> loop = mesh_.boundary_loop(start);
   std::vector<Vertex> poly;
   for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
@@ -109,9 +111,14 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left) {
     std::ostringstream os;
     os << "seal: the hole of " << poly.size() << " vertices near (" << plane.centre.transpose()
        << ") is not a simple polygon in any plane tried";
-    if (enlargements_left > 0) {
+    if (in_sweep) {
+      if (trace_) tracef("%s: re-opening it\n", os.str().c_str());
+      if (reopen_hole(poly)) return;
+      os << "; re-opening it pinched the front";
+    } else if (enlargements_left > 0) {
       if (trace_) tracef("%s: enlarging it\n", os.str().c_str());
       const Halfedge h = enlarge_hole(poly);
+      ++stats_.enlarged_holes;
       if (h.is_valid()) {
         seal_loop(h, enlargements_left - 1);
         return;

@@ -34,6 +34,7 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   held_by_ = mesh_.add_vertex_property<Index>("v:held_by", kInvalidIndex);
   stamp_ = mesh_.add_vertex_property<std::uint32_t>("v:stamp", 0);
   deferrals_ = mesh_.add_vertex_property<std::uint8_t>("v:deferrals", 0);
+  reopenings_ = mesh_.add_vertex_property<std::uint8_t>("v:reopenings", 0);
   const std::size_t nc = ms.critical.size();
   resolved_.assign(nc, 0);
   held_.resize(nc);
@@ -48,9 +49,12 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   for (const auto& wp : skin.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
   vertex_grid_ = std::make_unique<geometry::PointGrid>(std::max(opt.disc_factor * rho_max, 1e-6));
   // A generous bound on the vertex count: 8 times what a separate sphere per
-  // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere).
+  // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
+  // factor for the scales below the atoms' that the front has met (new_vertex).
   const double per_atom = 4 * kPi / (opt.disc_factor * opt.disc_factor * 0.866);
-  vertex_budget_ = static_cast<std::size_t>(1e5 + 8 * per_atom * skin.points().size());
+  base_vertex_budget_ = 1e5 + 8 * per_atom * static_cast<double>(skin.points().size());
+  rho_max_ = rho_max;
+  vertex_budget_ = static_cast<std::size_t>(base_vertex_budget_);
   // Height range for progress reports.
   h_min_ = std::numeric_limits<double>::infinity();
   h_max_ = -h_min_;
@@ -64,12 +68,22 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
 
 Vertex Sweep::new_vertex(const Vec3& p, Index cell) {
   if (mesh_.vertices_size() >= vertex_budget_) {
+    // Near a thin neck or a narrow gap rho falls to the neck's scale and the
+    // vertex density grows like 1/rho²; since rho is 1-Lipschitz, each halving
+    // of the scale adds about as many vertices as the atom scale needs: allow
+    // 2 log2(rho_max / rho_min) more times the base budget, rho_min the
+    // smallest rho the front has met.
+    const double octaves = std::log2(std::max(1.0, rho_max_ / rho_min_seen_));
+    vertex_budget_ = static_cast<std::size_t>(base_vertex_budget_ * (1 + 2 * octaves));
+  }
+  if (mesh_.vertices_size() >= vertex_budget_) {
     std::ostringstream os;
     os << "the front created more than " << vertex_budget_
        << " vertices without closing: it is running away (a bug; please report the input)";
     throw TopologyError(os.str());
   }
   const skin::SkinSample s = skin_.sample(p, cell);
+  if (s.rho > 0) rho_min_seen_ = std::min(rho_min_seen_, s.rho);
   const Vertex v = mesh_.add_vertex(p);
   vertex_grid_->insert(v.idx(), p);
   normal_[v] = s.gradient.normalized();
@@ -172,9 +186,40 @@ bool Sweep::release_saddles() {
 // Algorithm 1
 
 void Sweep::create_initial_front() {
-  // "Initial front": a bowl at every live minimum (Figure 5).
+  // "Initial front": a bowl at every live minimum (Figure 5), lowest first.
+  // Not in the paper: a minimum whose bowl would overlap a bowl already made
+  // (two minima closer than the sum of their bowl radii, on a flat patch the
+  // arc contraction left alone) gets none: the two bowls would overlap from
+  // the start, and no front operation can undo that. The neighbouring bowl's
+  // front sweeps its basin, and the saddles the missing bowl would have
+  // touched are resolved with it (papers/front/creation.md, "Overlapping bowls").
+  std::vector<Index> minima;
   for (std::size_t c = 0; c < ms_.critical.size(); ++c)
-    if (ms_.live[c] && ms_.critical[c].kind == CriticalKind::Minimum) creation(static_cast<Index>(c));
+    if (ms_.live[c] && ms_.critical[c].kind == CriticalKind::Minimum) minima.push_back(static_cast<Index>(c));
+  std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
+    return ms_.critical[a].position.dot(e_) < ms_.critical[b].position.dot(e_);
+  });
+  // rho never exceeds the largest sphere radius sqrt(w/2) (as for vertex_grid_).
+  double rho_max = 0;
+  for (const auto& wp : skin_.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
+  for (Index c : minima) {
+    const morse::CriticalPoint& cp = ms_.critical[c];
+    const double r = opt_.disc_factor * cp.rho;
+    bool overlaps = false;
+    vertex_grid_->for_each_near(cp.position, r + opt_.disc_factor * rho_max, [&](Index xi, const Vec3& q) {
+      if ((q - cp.position).norm() < r + disc_radius(Vertex(xi))) overlaps = true;
+    });
+    if (!overlaps) {
+      creation(c);
+      continue;
+    }
+    ++stats_.merged_minima;
+    if (trace_) tracef("creation: no bowl at minimum %u, it would overlap a bowl already made\n", c);
+    hold_grid_->for_each_near(cp.position, r + max_hold_radius_, [&](Index s, const Vec3& q) {
+      if (ms_.critical[s].kind == CriticalKind::Saddle && (q - cp.position).norm() < r + ms_.protect_radius[s])
+        resolved_[s] = 1;
+    });
+  }
 }
 
 void Sweep::report_progress(double h) {
@@ -214,7 +259,7 @@ bool Sweep::departure_step() {
       // Not in the paper: the fronts around v have met in a small hole; close
       // it now, as seal() would, instead of creeping new vertices into it
       // (papers/front/hole_filling.md).
-      seal_loop(mesh_.halfedge(v), opt_.max_hole_enlargements);
+      close_small_hole(v);
       paranoid_check(f0, "closing a small hole");
       return true;
     }
@@ -249,6 +294,7 @@ SweepResult Sweep::run() {
   mesh_.remove_vertex_property(held_by_);
   mesh_.remove_vertex_property(stamp_);
   mesh_.remove_vertex_property(deferrals_);
+  mesh_.remove_vertex_property(reopenings_);
   SweepResult res;
   res.mesh = std::move(mesh_);
   res.stats = stats_;

@@ -109,6 +109,11 @@ struct SweepOptions {
   /// A hole tangled in every projection is enlarged (its faces deleted) at
   /// most this many times. [measured]
   int max_hole_enlargements = 2;
+  /// A small hole tangled in every projection during the sweep is re-opened
+  /// (the faces around it deleted, their corners back on the front); each
+  /// vertex may be on the rim of at most this many re-opened regions.
+  /// [measured]
+  int max_reopenings = 3;
   /// Rounds of deleting the faces at pinched vertices while enlarging a hole.
   /// [measured]
   int max_pinch_rounds = 4;
@@ -142,9 +147,11 @@ struct SweepStats {
   std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
   std::size_t contacts = 0;       ///< front parts joined by the safety net (not in the paper)
   std::size_t stuck = 0;          ///< departure vertices left for the seal (no fan fits, Figure 7)
-  std::size_t enlarged_holes = 0;  ///< tangled holes re-opened by deleting the faces around them
+  std::size_t enlarged_holes = 0;  ///< tangled holes at the seal enlarged by deleting the faces around them
+  std::size_t reopened_holes = 0;  ///< tangled small holes during the sweep whose region went back to the front
   std::size_t collisions = 0;     ///< fans that would have come within collision_radius · r of another vertex
   std::size_t released = 0;       ///< saddles whose holds were released unbridged
+  std::size_t merged_minima = 0;  ///< minima left without a bowl: it would have overlapped a neighbouring bowl
 };
 
 /// The closed mesh produced by the sweep, before the local refinement.

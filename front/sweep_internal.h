@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -139,8 +140,20 @@ class Sweep {
   void seal_all();
   /// Closes the hole of boundary loop h (DP fill, else ear clipping); a hole
   /// that is tangled in every projection is first enlarged by deleting the
-  /// faces around it (at most `enlargements_left` times).
-  void seal_loop(Halfedge h, int enlargements_left);
+  /// faces around it (at most `enlargements_left` times); with `in_sweep`
+  /// (a small hole met during the sweep) it is re-opened instead.
+  void seal_loop(Halfedge h, int enlargements_left, bool in_sweep = false);
+  /// Closes the small hole of the front loop through v during the sweep (DP
+  /// fill, else ear clipping in a plane where it is simple). A small hole
+  /// tangled in every plane is not enlarged into the rest of the front (that
+  /// would seal a front the sweep has not finished): the faces around it are
+  /// deleted and their surviving corners go back on the front (reopen_hole).
+  void close_small_hole(Vertex v);
+  /// Deletes the faces around `poly`, grown until no corner is pinched, and
+  /// puts the corners that keep a face back on the front and in the queue, so
+  /// that the sweep re-meshes the region. False (nothing changed) if the
+  /// region would not stop pinching or a vertex was re-opened too often.
+  bool reopen_hole(const std::vector<Vertex>& poly);
 
   // The collision safety net (collision_net.cpp), not in the paper.
   /// Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
@@ -262,6 +275,7 @@ class Sweep {
   geometry::VertexProperty<Index> held_by_;
   geometry::VertexProperty<std::uint32_t> stamp_;
   geometry::VertexProperty<std::uint8_t> deferrals_;
+  geometry::VertexProperty<std::uint8_t> reopenings_;  ///< re-opened regions whose rim held the vertex
   /// Departure queue: a min-heap on height with lazy deletion by stamp
   /// (papers/front/open_questions.md Q1.2).
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
@@ -275,7 +289,10 @@ class Sweep {
   double h_min_ = 0, h_max_ = 0;    ///< height range of the critical points (progress)
   double next_progress_ = 0;        ///< next fraction to report
   const bool trace_ = static_cast<bool>(opt_.trace);
-  std::size_t vertex_budget_ = 0;
+  std::size_t vertex_budget_ = 0;     ///< runaway guard (new_vertex)
+  double base_vertex_budget_ = 0;     ///< the budget at the atoms' scale
+  double rho_max_ = 0;                ///< largest sphere radius sqrt(w/2) (Å)
+  double rho_min_seen_ = std::numeric_limits<double>::infinity();  ///< smallest rho of a vertex so far (Å)
   SweepStats stats_;
 };
 

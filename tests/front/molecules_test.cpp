@@ -18,13 +18,14 @@ using namespace skinmesh;
 
 namespace {
 
-void mesh_and_check(const std::string& path, double probe = 1.4) {
+MeshResult mesh_and_check(const std::string& path, double probe = 1.4) {
   INFO(path);
   MeshOptions options;
   options.probe_radius = probe;
-  const MeshResult res = mesh_skin(skin::read_molecule(path), options);
+  MeshResult res = mesh_skin(skin::read_molecule(path), options);
   REQUIRE(res.checked);
   test::check_every_property(res.check);
+  return res;
 }
 
 }  // namespace
@@ -76,6 +77,13 @@ TEST_CASE("regression: forced wings chained next to a held vertex, gramicidin A 
   // there could not be sealed, and its enlargement swallowed the whole front
   // ("seal: no ear in a hole of 190 vertices").
   mesh_and_check(kData + "/gramicidinA_1grm_model1.pdb", 0.0);
+}
+TEST_CASE("regression: two minima whose bowls overlap, maltoporin at probe 0") {
+  // Two live minima 0.34 Å apart (bowl radii 0.18 and 0.21 Å) on a flat patch:
+  // both bowls were made, overlapped from the start, and the seal met a
+  // tangled hole. Now the second minimum gets no bowl (merged_minima).
+  const MeshResult res = mesh_and_check(kRegression + "maltoporin_probe0_overlapping_bowls.xyzr", 0.0);
+  CHECK(res.sweep.merged_minima >= 1);
 }
 TEST_CASE("regression: a hole tangled in every projection, random atoms with probe 0") {
   mesh_and_check(kRegression + "random_probe0_tangled_hole.xyzr", 0.0);
