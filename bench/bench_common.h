@@ -31,8 +31,8 @@ skin::Molecule load_molecule(const std::string& file);
 std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& molecule,
                                                      double probe = kProbeRadius);
 
-/// load_molecule() then weighted_points() with kProbeRadius.
-std::vector<geometry::WeightedPoint> molecule_points(const std::string& file);
+/// load_molecule() then weighted_points() with probe radius `probe` (Å).
+std::vector<geometry::WeightedPoint> molecule_points(const std::string& file, double probe = kProbeRadius);
 
 /// Structural check of a finished triangulation, O(#tetrahedra): every
 /// tetrahedron positively oriented (orient3d), neighbours symmetric, exactly

@@ -32,8 +32,8 @@ std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& molec
   return points;
 }
 
-std::vector<geometry::WeightedPoint> molecule_points(const std::string& file) {
-  return weighted_points(load_molecule(file));
+std::vector<geometry::WeightedPoint> molecule_points(const std::string& file, double probe) {
+  return bench::weighted_points(load_molecule(file), probe);
 }
 
 std::string check_triangulation(const geometry::RegularTriangulation& rt) {

