@@ -23,4 +23,14 @@ Vec3 circumcentre(const Vec3& a, const Vec3& b, const Vec3& c);
 bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const Vec3& b,
                              const Vec3& c, Vec3& m, Index& cell);
 
+/// Exact-answer filter for the surface Delaunay ball test: true if point d
+/// lies outside (or on) every ball through a, b, c whose centre is
+/// cc + t n with |t| <= 2R + 1e-12 L (cc, R: circumcentre and circumradius, n
+/// the unit normal, L = `length_scale`, Å) — the range surface_delaunay_centre
+/// searches, its fallback t = 0 included. Then d is outside the surface
+/// Delaunay ball whatever its centre, without projecting onto the skin.
+/// Uses |d - m|² - |a - m|² = |d - cc|² - R² - 2t (d - cc)·n, with a relative
+/// margin of 1e-9. False for a degenerate triangle (decide by projecting).
+bool outside_every_surface_ball(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double length_scale);
+
 }  // namespace skinmesh::refine

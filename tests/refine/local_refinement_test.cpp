@@ -9,6 +9,7 @@
 #include <random>
 
 #include "refine/local_refinement.h"
+#include "refine/restricted_delaunay.h"
 #include "refine/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
 #include "tests/refine/check_expectations.h"
@@ -117,3 +118,38 @@ TEST_CASE("refinement: circumcentres over a ridge (a cube on the sphere, split a
 }
 
 }  // TEST_SUITE
+
+TEST_CASE("refinement: the ball filter never calls outside a point inside some candidate ball") {
+  // outside_every_surface_ball(a, b, c, d) must imply |d - m| >= |a - m| for
+  // every centre m = cc + t n, |t| <= 2R, that surface_delaunay_centre could
+  // return; brute force over t on random triangles and points, with points on
+  // the circumsphere's neighbourhood and near the triangle's plane (the cases
+  // a Lawson pass meets), and at scales from 1e-4 to 1e2 Å.
+  std::mt19937_64 rng(20261122);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int said_outside = 0, checked = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double scale = std::pow(10.0, -4 + 6 * (u(rng) + 1) / 2);
+    const Vec3 a(u(rng), u(rng), 0.1 * u(rng)), b(u(rng), u(rng), 0.1 * u(rng)), c(u(rng), u(rng), 0.1 * u(rng));
+    const Vec3 d(1.5 * u(rng), 1.5 * u(rng), 0.3 * u(rng));
+    const Vec3 A = scale * a, B = scale * b, C = scale * c, D = scale * d;
+    if ((B - A).cross(C - A).norm() < 1e-3 * scale * scale) continue;
+    const double L = 100.0;
+    if (!refine::outside_every_surface_ball(A, B, C, D, L)) continue;
+    ++said_outside;
+    const Vec3 cc = refine::circumcentre(A, B, C);
+    const double R = (A - cc).norm();
+    const Vec3 n = (B - A).cross(C - A).normalized();
+    for (int k = -200; k <= 200; ++k) {
+      const double t = (2 * R + 1e-12 * L) * k / 200.0;
+      const Vec3 m = cc + t * n;
+      ++checked;
+      if ((m - D).norm() < (m - A).norm() * (1 - 1e-9)) {
+        FAIL_CHECK("filter said outside, but d is inside the ball centred at t = " << t << " (scale " << scale << ")");
+        break;
+      }
+    }
+  }
+  CHECK(said_outside > 500);  // the filter does decide most cases
+  CHECK(checked > 0);
+}
