@@ -12,6 +12,7 @@
 
 #include "geometry/assert.h"
 #include "geometry/errors.h"
+#include "geometry/predicates.h"
 
 namespace skinmesh::skin {
 
@@ -40,14 +41,15 @@ void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w) {
   // Triangle or tetrahedron: 2 E E^T beta = r, z = z0 + E^T beta.
   Vec3 off;
   if (k == 2) {
+    // With n = e1 x e2, the offset d = (r1 (e2 x n) + r2 (n x e1)) / (2 |n|²)
+    // satisfies 2 e_j·d = r_j and lies in lin X. |n|² is computed from the
+    // cross product, not as |e1|²|e2|² - (e1·e2)², which cancels
+    // catastrophically for a needle triangle (two nearly coincident centres).
     const Vec3 e1 = pts[1].z - z0, e2 = pts[2].z - z0;
     const double r1 = e1.squaredNorm() + w0 - pts[1].w;
     const double r2 = e2.squaredNorm() + w0 - pts[2].w;
-    const double g11 = 2 * e1.dot(e1), g12 = 2 * e1.dot(e2), g22 = 2 * e2.dot(e2);
-    const double det = g11 * g22 - g12 * g12;
-    const double b1 = (r1 * g22 - r2 * g12) / det;
-    const double b2 = (g11 * r2 - g12 * r1) / det;
-    off = b1 * e1 + b2 * e2;
+    const Vec3 n = e1.cross(e2);
+    off = (r1 * e2.cross(n) + r2 * n.cross(e1)) / (2.0 * n.squaredNorm());
   } else {
     Mat3 E;
     Vec3 r;
@@ -74,6 +76,35 @@ std::uint64_t simplex_key(const std::array<Index, 4>& v, int dim) {
 }
 
 constexpr Index kMaxPoints = (1u << 21) - 1;
+
+/// Unit normal of the plane shared by mu_X and mu_Y, Y = X ∪ {k}: the unit
+/// vector of lin Y orthogonal to lin X, pointing from aff X towards z_k (the
+/// direction of P_perp^X (z_k - z_X), papers/skin/skin_math.md §2.3), computed
+/// from the input centres in coordinates relative to a vertex of X. For a
+/// triangle X the side of z_k is the exact orient3d sign: Y is a non-flat
+/// tetrahedron of the triangulation (SoS), so it is never zero, even when z_k
+/// is within rounding of aff X.
+Vec3 facet_coface_normal(const geometry::RegularTriangulation& rt, const MixedCell& X, Index k) {
+  const Vec3& za = rt.point(X.vertices[0]).z;
+  const Vec3 v = rt.point(k).z - za;
+  switch (X.dim) {
+    case 0:
+      return v.normalized();
+    case 1: {
+      // (e x v) x e = |e|² v - (e·v) e: the part of v orthogonal to the edge.
+      const Vec3 e = rt.point(X.vertices[1]).z - za;
+      return e.cross(v).cross(e).normalized();
+    }
+    default: {
+      const Vec3& zb = rt.point(X.vertices[1]).z;
+      const Vec3& zc = rt.point(X.vertices[2]).z;
+      const Vec3 n = (zb - za).cross(zc - za).normalized();
+      const Sign side = geometry::orient3d(za, zb, zc, rt.point(k).z);
+      SKINMESH_ASSERT_MSG(side != Sign::Zero, "flat tetrahedron in the regular triangulation");
+      return side == Sign::Positive ? n : Vec3(-n);
+    }
+  }
+}
 
 }  // namespace
 
@@ -162,9 +193,22 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
   }
 
-  // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k},
-  // m = P_perp^X (z_k - z_X); mu_X ⊆ {m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X)},
-  // mu_Y on the other side.
+  // The walk bound of locate() (computed here: a cube root per query was 4 %
+  // of the sweep).
+  max_walk_steps_ = 64 + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * 8);
+
+  // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k}, the face
+  // mu_X ∩ mu_Y = (1-s) delta_X + s nu_Y lies in the plane with unit normal n
+  // in lin Y, orthogonal to lin X and pointing from aff X towards z_k, through
+  // (1-s) z_a + s z_Y for any vertex a of X; mu_X lies on the side n·x <= offset.
+  // n comes from the input centres alone (its orientation, for a triangle, from
+  // the exact orient3d of the coface), and the offset from an input centre and
+  // the coface's focus z_Y, the same z_Y for every plane of mu_Y. This is the
+  // bisector form m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X), m = P_perp^X (z_k - z_X),
+  // of papers/skin/skin_math.md §2.3 without its division by |m|: for a nearly
+  // flat coface (coplanar atoms, a rotated lattice) |m| and pi_k(z_X) - w_X both
+  // vanish, z_Y may coincide with z_X, and the quotient is 0/0, while n, z_a and
+  // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
   constexpr double s = 0.5;
   std::vector<Index> count(cells_.size(), 0);
   for (const Pair& pr : pairs) {
@@ -181,18 +225,12 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
   std::vector<Index> fill(cells_.size(), 0);
   for (const Pair& pr : pairs) {
     const MixedCell& X = cells_[pr.x];
-    const WeightedPoint& pk = rt.point(pr.k);
-    Vec3 m = pk.z - X.focus;
-    if (X.dim == 1) m -= m.dot(X.axis) * X.axis;
-    if (X.dim == 2) m = m.dot(X.axis) * X.axis;
-    const double pi_k = (X.focus - pk.z).squaredNorm() - pk.w;
-    const double rhs = 0.5 * s * (pi_k - X.focus_weight);
-    const double len = m.norm();
-    SKINMESH_ASSERT_MSG(len > 0, "degenerate facet/coface pair in the mixed complex");
-    const Vec3 n = m / len;
-    const double off = (m.dot(X.focus) + rhs) / len;
-    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y};
     const MixedCell& Y = cells_[pr.y];
+    const Vec3& za = rt.point(X.vertices[0]).z;
+    const Vec3 n = facet_coface_normal(rt, X, pr.k);
+    const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
+    SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
+    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y};
     planes_[Y.first_plane + fill[pr.y]++] = {-n, -off, pr.x};
   }
 }
@@ -233,8 +271,7 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
     c = vertex_cell_[best];
   }
   // Visibility walk: cross the most violated plane. Bounded number of steps.
-  const std::size_t max_steps = 64 + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * 8);
-  for (std::size_t step = 0; step < max_steps; ++step) {
+  for (std::size_t step = 0; step < max_walk_steps_; ++step) {
     double worst = tol;
     Index next = kInvalidIndex;
     for (const CellPlane& p : planes(c)) {
