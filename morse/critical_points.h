@@ -37,10 +37,23 @@ struct CriticalPoint {
   Vec3 ascent = Vec3::Zero(), descent = Vec3::Zero();
 };
 
+/// Distance (Å, 0 inside) by which p lies outside the mixed cell c, the test
+/// critical_points() uses to keep a candidate. Triangle and tetrahedron cells
+/// are tested in their dual form mu_X = (X + V_X) / 2 (s = 1/2): p = (x + v) / 2
+/// with x in the simplex X and v in its Voronoi face, measured against the
+/// simplex itself (exact orientation tests) and the foci of the adjacent
+/// tetrahedra. The half-space form (MixedComplex::violation) is ill-conditioned
+/// for a sliver tetrahedron: its facet planes are almost parallel and their
+/// offsets are ratios of rounding errors, so the widened cell is an unbounded
+/// slab (papers/morse/critical_points.md "Slivers"). Vertex and edge cells use
+/// the half-space form.
+double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p);
+
 /// All critical points of h(x) = e·x (e unit) on the skin, sorted by height.
 /// For each non-bounding mixed cell X the candidates are
 /// p = z_X ± |mu| A e with mu² = -w_X / (2 e^T A e), A = P_perp - P_par
-/// (papers/skin/skin_math.md §5, s = 1/2), kept if p lies in the cell (within 1e-9 L);
+/// (papers/skin/skin_math.md §5, s = 1/2), kept if p lies in the cell (within 1e-9 L,
+/// cell_distance);
 /// points found in two cells (on a shared face) are merged. The index comes
 /// from the Gauss curvature sign and sigma (papers/skin/skin_math.md §5 "Index rule").
 std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e);

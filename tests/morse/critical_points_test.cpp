@@ -3,6 +3,7 @@
 // §5, §10), against the test vectors of tests/data/skin_vectors.txt.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
 
 #include "morse/critical_points.h"
@@ -102,6 +103,60 @@ TEST_CASE("Morse count equals 2 chi(K0) for several directions and configuration
       CHECK(m.maxima >= topo.components());
     }
   }
+}
+
+// Regression (stress cases ring/torus/n30/p0/rt, ring/beads/n12/p1.4/rt,
+// ring/neck-overlap1e-4/n8/p3/rt): the atoms of a rotated planar ring are
+// coplanar only up to rounding, so the regular triangulation holds sliver
+// tetrahedra spanning the hole, with their focus z_T far off the ring and
+// w_T larger than the atoms' weights. Such a cell mu_T = (T + z_T)/2 lies
+// within max_i |z_i - z_T| / 2 of z_T, closer than the cavity sphere
+// |x - z_T| = sqrt(w_T / 2): it holds no skin. Its four facet planes are
+// parallel up to rounding, so tested against them with a tolerance the cell
+// is an unbounded slab, and a height direction that puts a candidate
+// z_T ± sqrt(w_T/2) e into that slab made it a (spurious) extremum.
+TEST_CASE("rotated planar rings: no critical point on the cavity sphere of a sliver tetrahedron") {
+  std::mt19937 rng(2004);
+  int slivers = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    INFO("trial = " << trial);
+    const int n = trial % 2 ? 8 : 12;
+    const double r = 1.7, probe = trial % 3 == 0 ? 0.0 : 1.4;
+    const double rw = r + probe;  // neighbours 1.5 r apart: a torus for probe 0
+    const double ring = 1.5 * r / (2 * std::sin(M_PI / n));
+    const Mat3 rot = test::random_rotation(rng);
+    std::vector<geometry::WeightedPoint> pts;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * i / n;
+      pts.push_back({rot * Vec3(ring * std::cos(a), ring * std::sin(a), 0), 2 * rw * rw});
+    }
+    skin::SkinSurface skin(pts);
+    const skin::MixedComplex& mc = skin.mixed_complex();
+    const int chi = skin::dual_complex_topology(mc).euler_skin();
+    const Vec3 axis = rot * Vec3::UnitZ();
+    for (Index c = 0; c < mc.num_cells(); ++c) {
+      const skin::MixedCell& T = mc.cell(c);
+      if (T.dim != 3 || T.bounding || !(T.focus_weight > 2 * rw * rw)) continue;
+      ++slivers;
+      // The direction whose candidate z_T + sqrt(w_T/2) e lies in the plane
+      // of the flat cell (the midpoints (z_i + z_T)/2, all at one height along
+      // the ring axis): inside the slab of the facet planes.
+      const Vec3 za = mc.triangulation().point(T.vertices[0]).z;
+      const double rad = std::sqrt(T.focus_weight / 2);
+      const double along = axis.dot(za - T.focus) / 2 / rad;  // |along| < 1 since w_T > w_a
+      REQUIRE(std::abs(along) < 1);
+      const Vec3 side = axis.cross(Vec3(0.3, 0.5, 0.8)).normalized();
+      const Vec3 e = along * axis + std::sqrt(1 - along * along) * side;
+      const auto cps = morse::critical_points(skin, e);
+      double reach = 0;  // max_i |z_i - z_T| / 2: the cell lies in this ball
+      for (int i = 0; i < 4; ++i) reach = std::max(reach, (mc.triangulation().point(T.vertices[i]).z - T.focus).norm() / 2);
+      for (const auto& cp : cps)
+        if (cp.cell == c) CHECK((cp.position - T.focus).norm() <= reach * (1 + 1e-9));
+      CHECK(morse::count_critical_points(cps).euler() == chi);
+    }
+    CHECK(morse::count_critical_points(morse::critical_points(skin, morse::default_height_direction())).euler() == chi);
+  }
+  CHECK(slivers > 0);  // the rotations did produce sliver tetrahedra
 }
 
 TEST_CASE("three-ball ring, e = (0, .6, .8): 3 minima, 6 saddles, 3 maxima") {
