@@ -109,6 +109,7 @@ class MixedComplex {
   std::vector<CellPlane> planes_;
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
+  std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
 };
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices
