@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "front/pipeline.h"
+#include "geometry/errors.h"
 #include "tests/refine/check_expectations.h"
 #include "tests/skin/skin_test_util.h"
 
@@ -112,3 +113,35 @@ TEST_CASE("translation by 1e6 Å changes nothing but the coordinates") {
 }
 
 }  // TEST_SUITE
+
+TEST_CASE("singular skins are refused with the atoms named; a gap of 2e-4 Å still meshes") {
+  // Two balls of radius sqrt(8) Å (r = 1.5, probe 0.5) at distance sqrt(32) Å
+  // touch exactly: the skin is a double cone there. With a third atom far away
+  // (so that the touching pair is not atoms #1 and #2 by accident of order).
+  const double w = skin::atom_weight(1.5, 0.5);
+  const std::vector<geometry::WeightedPoint> touching = {
+      {Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
+  MeshOptions options;
+  try {
+    (void)mesh_skin(touching, options);
+    FAIL("a skin with a cone point was meshed");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("singular skin") != std::string::npos);
+    CHECK(what.find("#2 and #3") != std::string::npos);
+  }
+  // The same, rotated by an arbitrary rotation (the tie is then broken by
+  // rounding only): still refused.
+  const Mat3 rot = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<geometry::WeightedPoint> rotated = touching;
+  for (auto& p : rotated) p.z = rot * p.z + Vec3(13.25, -7.5, 101.0);
+  CHECK_THROWS_AS((void)mesh_skin(rotated, options), InputError);
+  // Moved apart by 0.05 Å in z (a gap of about 2e-4 Å between the balls): two
+  // spheres, every check passed.
+  std::vector<geometry::WeightedPoint> gap = touching;
+  gap[2].z.z() = 0.05;
+  const MeshResult res = mesh_skin(gap, options);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+  CHECK(res.expected_topology.components() == 3);
+}
