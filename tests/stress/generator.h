@@ -84,7 +84,7 @@ struct StressCase {
   /// Exactly on a topology threshold (two unshrunk balls tangent, a lattice
   /// or ring whose holes or voids close exactly, ...), exactly in floating
   /// point or up to the rounding of the weights: either a mesh that passes
-  /// every check or a clean error is acceptable.
+  /// every check or the "singular skin" InputError is acceptable.
   bool singular = false;
   /// Rotated by a random rotation and translated by up to 1e6 Å.
   bool transformed = false;
