@@ -145,7 +145,10 @@ struct InfoArgs {
 
 int run_info(const InfoArgs& a) {
   const skin::Molecule mol = load_molecule(a.mol);
-  const skin::SkinSurface skin(skin::weighted_points(mol, a.mol.probe));
+  // In the molecule's local frame, as the mesher works: the same triangulation,
+  // critical points and expected topology as `skinmesh mesh` sees.
+  const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
+  const skin::SkinSurface skin(skin::translated(points, skin::local_frame_centre(points)));
   const auto& rt = skin.triangulation();
   const auto& mc = skin.mixed_complex();
   const skin::SkinTopology topo = skin::dual_complex_topology(mc);
