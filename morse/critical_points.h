@@ -42,7 +42,10 @@ struct CriticalPoint {
 /// are tested in their dual form mu_X = (X + V_X) / 2 (s = 1/2): p = (x + v) / 2
 /// with x in the simplex X and v in its Voronoi face, measured against the
 /// simplex itself (exact orientation tests) and the foci of the adjacent
-/// tetrahedra. The half-space form (MixedComplex::violation) is ill-conditioned
+/// tetrahedra; a triangle's Voronoi edge is oriented (each coface bounds it on
+/// the side of its apex) and a flat (sliver) coface's focus is first moved into
+/// the slab its neighbours allow (papers/morse/critical_points.md "Flat
+/// tetrahedra"). The half-space form (MixedComplex::violation) is ill-conditioned
 /// for a sliver tetrahedron: its facet planes are almost parallel and their
 /// offsets are ratios of rounding errors, so the widened cell is an unbounded
 /// slab (papers/morse/critical_points.md "Slivers"). Vertex and edge cells use

@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/dual_complex.h"
+#include "skin/molecule_io.h"
 #include "tests/skin/skin_test_util.h"
 #include "tests/skin/skin_vectors.h"
 
@@ -157,6 +159,51 @@ TEST_CASE("rotated planar rings: no critical point on the cavity sphere of a sli
     CHECK(morse::count_critical_points(morse::critical_points(skin, morse::default_height_direction())).euler() == chi);
   }
   CHECK(slivers > 0);  // the rotations did produce sliver tetrahedra
+}
+
+// Regression (papers/morse/critical_points.md "Flat tetrahedra"): a rotated
+// bcc lattice whose square face carries a sliver tetrahedron with a focus on
+// the wrong side of the face. The triangle cells of the face, tested against
+// the interval between their two cofaces' foci in either order, kept the two
+// saddles of the face's hyperboloid (Morse sum 0 instead of chi = 2).
+TEST_CASE("rotated bcc lattice: a cocircular sliver's focus adds no saddles") {
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_TEST_DATA) +
+                                                 "/regression/bcc3_probe0.5_rotated_square_sliver.xyzr");
+  REQUIRE(mol.atoms.size() == 91);
+  const auto pts = skin::weighted_points(mol, 0.5);
+  for (const bool local : {false, true}) {  // as read (145 Å off) and in the local frame
+    INFO("local frame = " << local);
+    skin::SkinSurface skin(local ? skin::translated(pts, skin::local_frame_centre(pts)) : pts);
+    const skin::MixedComplex& mc = skin.mixed_complex();
+    const skin::SkinTopology topo = skin::dual_complex_topology(mc);
+    REQUIRE(topo.euler_skin() == 2);
+    // The case is still there: a flat tetrahedron (all four facet normals
+    // parallel) whose focus breaks the order of a Voronoi edge through a facet.
+    int inverted = 0;
+    for (Index t = 0; t < mc.num_cells(); ++t) {
+      const skin::MixedCell& T = mc.cell(t);
+      if (T.dim != 3 || T.bounding) continue;
+      for (const skin::CellPlane& f : mc.planes(t)) {
+        if (mc.cell(f.neighbor).dim != 2) continue;
+        for (const skin::CellPlane& g : mc.planes(f.neighbor))
+          if (g.neighbor != t && mc.cell(g.neighbor).dim == 3 &&
+              f.normal.dot(mc.cell(g.neighbor).focus - T.focus) < -0.1)
+            ++inverted;  // outward normal of T at f points away from the other focus
+      }
+    }
+    CHECK(inverted > 0);
+    const Vec3 dirs[] = {morse::default_height_direction(), Vec3(0.3, 1, 0.2), Vec3(1, 0.2, -0.4),
+                         Vec3(-0.5, 0.3, 0.9)};
+    for (const Vec3& e : dirs) {
+      INFO("e = " << e.transpose());
+      const auto m = morse::count_critical_points(morse::critical_points(skin, e));
+      CHECK(m.euler() == topo.euler_skin());
+    }
+    const auto m = morse::count_critical_points(morse::critical_points(skin, morse::default_height_direction()));
+    CHECK(m.minima == 25);  // the unrotated lattice in the same relative direction: 25/48/25
+    CHECK(m.saddles == 48);
+    CHECK(m.maxima == 25);
+  }
 }
 
 TEST_CASE("three-ball ring, e = (0, .6, .8): 3 minima, 6 saddles, 3 maxima") {
