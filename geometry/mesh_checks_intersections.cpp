@@ -103,40 +103,71 @@ void for_each_box_pair(const std::vector<Index>& tris, const std::vector<std::ar
   auto key = [&](std::uint64_t x, std::uint64_t y, std::uint64_t z) {
     return (z * dims[1] + y) * dims[0] + x;
   };
+  const int key_bits = std::bit_width(dims[0] * dims[1] * dims[2] - 1);
+  // Renumber the triangles in the order of the cell of their box's lower corner
+  // (stable), so that the triangles of one cell lie close together in memory:
+  // the sweeps below then read the boxes and ranges mostly from the cache.
   std::vector<std::pair<std::uint64_t, Index>> entries;
   entries.reserve(4 * n);
+  for (std::size_t i = 0; i < n; ++i) entries.emplace_back(key(range[i][0], range[i][1], range[i][2]), Index(i));
+  radix_sort(entries, key_bits);
+  std::vector<Index> tri(n);                      // renumbered -> input triangle
+  std::vector<std::array<double, 6>> sbox(n);     // renumbered boxes
+  std::vector<std::array<Index, 6>> srange(n);    // renumbered cell ranges
+  for (std::size_t k = 0; k < n; ++k) {
+    const Index i = entries[k].second;
+    tri[k] = tris[i];
+    sbox[k] = box[i];
+    srange[k] = range[i];
+  }
+  range = std::vector<std::array<Index, 6>>();
+  entries.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& r = range[i];
+    const auto& r = srange[i];
     for (Index z = r[2]; z <= r[5]; ++z)
       for (Index y = r[1]; y <= r[4]; ++y)
         for (Index x = r[0]; x <= r[3]; ++x) entries.emplace_back(key(x, y, z), Index(i));
   }
-  radix_sort(entries, std::bit_width(dims[0] * dims[1] * dims[2] - 1));
-  // In each cell, sweep along x: sort the cell's triangles by their box's lower
-  // x and pair each one only with those starting before it ends.
-  std::vector<Index> cell_tris;
+  radix_sort(entries, key_bits);
+  // In each cell, sweep along x: copy the cell's boxes into one contiguous
+  // array, sort it by the boxes' lower x and pair each box only with those
+  // starting before it ends.
+  struct Item {
+    double lo[3], hi[3];  // the box
+    Index first[3];       // its lowest cell per axis
+    Index id;             // renumbered triangle
+  };
+  std::vector<Item> items;
   for (std::size_t s = 0; s < entries.size();) {
     std::size_t e = s + 1;
     while (e < entries.size() && entries[e].first == entries[s].first) ++e;
-    cell_tris.clear();
-    for (std::size_t a = s; a < e; ++a) cell_tris.push_back(entries[a].second);
-    std::sort(cell_tris.begin(), cell_tris.end(),
-              [&](Index i, Index j) { return box[i][0] < box[j][0] || (box[i][0] == box[j][0] && i < j); });
-    for (std::size_t a = 0; a < cell_tris.size(); ++a) {
-      const Index i = cell_tris[a];
-      const auto& bi = box[i];
-      const auto& ri = range[i];
-      for (std::size_t b = a + 1; b < cell_tris.size(); ++b) {
-        const Index j = cell_tris[b];
-        const auto& bj = box[j];
-        if (bj[0] > bi[3]) break;  // this and all later ones start after i ends
-        if (bi[1] > bj[4] || bj[1] > bi[4] || bi[2] > bj[5] || bj[2] > bi[5]) continue;
-        // Test the pair only in the first cell the two ranges share.
-        const auto& rj = range[j];
-        if (key(std::max(ri[0], rj[0]), std::max(ri[1], rj[1]), std::max(ri[2], rj[2])) !=
-            entries[s].first)
-          continue;
-        test(tris[std::min(i, j)], tris[std::max(i, j)]);
+    items.clear();
+    for (std::size_t a = s; a < e; ++a) {
+      const Index i = entries[a].second;
+      const auto& b = sbox[i];
+      const auto& r = srange[i];
+      items.push_back({{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {r[0], r[1], r[2]}, i});
+    }
+    std::sort(items.begin(), items.end(), [](const Item& p, const Item& q) {
+      return p.lo[0] < q.lo[0] || (p.lo[0] == q.lo[0] && p.id < q.id);
+    });
+    // The cell's coordinates: a pair is tested only in the first cell both
+    // ranges share, the cell of the componentwise maximum of their lowest cells.
+    const std::uint64_t cx = entries[s].first % dims[0], cy = entries[s].first / dims[0] % dims[1],
+                        cz = entries[s].first / dims[0] / dims[1];
+    for (std::size_t a = 0; a < items.size(); ++a) {
+      const Item& p = items[a];
+      for (std::size_t b = a + 1; b < items.size(); ++b) {
+        const Item& q = items[b];
+        if (q.lo[0] > p.hi[0]) break;  // this and all later ones start after p ends
+        // Non-short-circuit: these outcomes are hard to predict, the loads are cheap.
+        const bool overlap = (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]) & (p.lo[2] <= q.hi[2]) &
+                             (q.lo[2] <= p.hi[2]);
+        const bool first_cell = (std::max(p.first[0], q.first[0]) == cx) &
+                                (std::max(p.first[1], q.first[1]) == cy) &
+                                (std::max(p.first[2], q.first[2]) == cz);
+        if (!(overlap & first_cell)) continue;
+        test(std::min(tri[p.id], tri[q.id]), std::max(tri[p.id], tri[q.id]));
       }
     }
     s = e;

@@ -43,26 +43,6 @@ class UnionFind {
   std::vector<Index> size_;
 };
 
-/// The number of triangles in the topology whose vertex set (in any order) is
-/// that of an earlier one: MeshCheckReport::num_duplicate_triangles.
-std::size_t count_duplicate_triangles(const IndexedMesh& mesh, const TriangleClasses& classes) {
-  const auto& T = mesh.triangles;
-  const std::size_t nt = T.size();
-  std::vector<std::pair<std::array<Index, 3>, Index>> sorted;
-  sorted.reserve(nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (!classes.in_topology(t)) continue;
-    std::array<Index, 3> s = T[t];
-    std::sort(s.begin(), s.end());
-    sorted.emplace_back(s, Index(t));
-  }
-  std::sort(sorted.begin(), sorted.end());
-  std::size_t duplicates = 0;
-  for (std::size_t i = 1; i < sorted.size(); ++i)
-    if (sorted[i].first == sorted[i - 1].first) ++duplicates;
-  return duplicates;
-}
-
 /// Vertex -> triangle incidence in compressed (CSR) form, over the triangles in
 /// the topology: the triangles of vertex v are incident[start[v] .. start[v + 1]),
 /// in increasing order.
@@ -88,6 +68,30 @@ VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& 
     if (classes.in_topology(t))
       for (Index v : T[t]) in.incident[fill[v]++] = Index(t);
   return in;
+}
+
+/// The number of triangles in the topology whose vertex set (in any order) is
+/// that of an earlier one: MeshCheckReport::num_duplicate_triangles. Equal
+/// vertex sets have the same lowest vertex, so the triangles are grouped by
+/// their lowest vertex (through `in`) and only each group's (middle, highest)
+/// vertex pairs are sorted and compared: O(n) for bounded vertex degrees.
+std::size_t count_duplicate_triangles(const IndexedMesh& mesh, const VertexIncidence& in) {
+  const auto& T = mesh.triangles;
+  const std::size_t nv = mesh.positions.size();
+  std::size_t duplicates = 0;
+  std::vector<std::uint64_t> rest;  // (middle << 32) | highest, of the triangles whose lowest vertex is v
+  for (std::size_t v = 0; v < nv; ++v) {
+    rest.clear();
+    for (Index k = in.start[v]; k < in.start[v + 1]; ++k) {
+      std::array<Index, 3> s = T[in.incident[k]];
+      std::sort(s.begin(), s.end());
+      if (s[0] == v) rest.push_back((std::uint64_t(s[1]) << 32) | s[2]);
+    }
+    std::sort(rest.begin(), rest.end());
+    for (std::size_t i = 1; i < rest.size(); ++i)
+      if (rest[i] == rest[i - 1]) ++duplicates;
+  }
+  return duplicates;
 }
 
 /// What is wrong with an edge (bit flags of EdgeRecord::flags).
@@ -307,8 +311,8 @@ std::size_t count_vertex_components(const IndexedMesh& mesh, const TriangleClass
 
 std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses& classes,
                                   std::size_t max_examples, MeshCheckReport& r) {
-  r.num_duplicate_triangles = count_duplicate_triangles(mesh, classes);
   const VertexIncidence incidence = build_incidence(mesh, classes);
+  r.num_duplicate_triangles = count_duplicate_triangles(mesh, incidence);
   UnionFind faces_uf(mesh.triangles.size());  // triangles joined through shared edges
   const std::vector<EdgeRecord> edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
   std::vector<Index> component = label_components(classes, faces_uf, r);

@@ -1,10 +1,14 @@
-// geometry/point_grid.h: a uniform hash grid over points for fixed-radius
-// neighbour queries (critical-point lookup, front proximity, verifier).
+// geometry/point_grid.h: uniform grids over points for fixed-radius neighbour
+// queries: PointGrid, a hash grid that grows point by point (critical-point
+// lookup, front proximity), and FlatPointGrid, a grid over a fixed point set
+// stored in flat arrays (the verifier's restricted-Delaunay test).
 #pragma once
 
-#include <cmath>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -59,6 +63,112 @@ class PointGrid {
   }
   double h_;
   std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+};
+
+/// Uniform grid of cubic cells over a fixed set of points, built once: the
+/// points sorted by cell (counting sort, stable in the point index) and one
+/// offset per cell of the bounding box, cells numbered with z fastest so that
+/// a query reads one contiguous run of points per (x, y) column of its box.
+/// The cell side is the requested size, doubled until the grid has at most
+/// kMaxCellsPerPoint cells per point (plus 4096), so memory stays O(n).
+/// Queries report exactly the points a linear scan with the same distance test
+/// reports (tests/geometry/point_grid_test.cpp).
+class FlatPointGrid {
+ public:
+  /// Bound on the number of cells per point (see the class comment).
+  static constexpr double kMaxCellsPerPoint = 8.0;
+
+  /// Grid over points[i], with id i, for every point with finite coordinates
+  /// (the others are left out). Pre: cell_size > 0 (Å).
+  FlatPointGrid(const std::vector<Vec3>& points, double cell_size) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    std::size_t n = 0;
+    for (const Vec3& p : points)
+      if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), ++n;
+    if (n == 0) {
+      offsets_.assign(2, 0);
+      return;
+    }
+    lo_ = lo;
+    h_ = cell_size;
+    const double max_cells = kMaxCellsPerPoint * double(n) + 4096.0;
+    for (;;) {
+      double total = 1.0;
+      for (int k = 0; k < 3; ++k) total *= std::floor((hi[k] - lo[k]) / h_) + 1.0;
+      if (total <= max_cells) break;
+      h_ *= 2.0;
+    }
+    inv_ = 1.0 / h_;
+    for (int k = 0; k < 3; ++k) dims_[k] = std::int64_t(std::floor((hi[k] - lo[k]) / h_)) + 1;
+    std::vector<std::uint32_t> cell_of_point(points.size());
+    offsets_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]) + 1, 0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!points[i].allFinite()) continue;
+      const std::int64_t x = cell(points[i].x(), 0), y = cell(points[i].y(), 1), z = cell(points[i].z(), 2);
+      cell_of_point[i] = std::uint32_t((x * dims_[1] + y) * dims_[2] + z);
+      ++offsets_[cell_of_point[i] + 1];
+    }
+    for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+    entries_.resize(n);
+    std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].allFinite()) entries_[fill[cell_of_point[i]]++] = {points[i], Index(i)};
+  }
+
+  /// Calls fn(id, position) for every point p with |p - q|² <= r² (squared
+  /// norms in double precision, as PointGrid::for_each_near()).
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+    any_near(q, r, [&](Index id, const Vec3& p) {
+      fn(id, p);
+      return false;
+    });
+  }
+
+  /// Calls pred(id, position) for the points p with |p - q|² <= r² until it
+  /// returns true; returns whether it did (false if no point satisfied it).
+  template <class Pred>
+  bool any_near(const Vec3& q, double r, Pred&& pred) const {
+    if (entries_.empty() || !q.allFinite() || !(r >= 0.0) || !std::isfinite(r)) return false;
+    // Pad the box by a relative 1e-12 (and against underflow) so that it holds
+    // every point passing the rounded distance test below.
+    const double rb = r * (1.0 + 1e-12) + 1e-150;
+    std::int64_t a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = cell(q[k] - rb, k);
+      b[k] = cell(q[k] + rb, k);
+    }
+    const double r2 = r * r;
+    for (std::int64_t x = a[0]; x <= b[0]; ++x)
+      for (std::int64_t y = a[1]; y <= b[1]; ++y) {
+        const std::int64_t column = (x * dims_[1] + y) * dims_[2];
+        const std::uint32_t end = offsets_[std::size_t(column + b[2]) + 1];
+        for (std::uint32_t e = offsets_[std::size_t(column + a[2])]; e < end; ++e)
+          if ((entries_[e].p - q).squaredNorm() <= r2 && pred(entries_[e].id, entries_[e].p)) return true;
+      }
+    return false;
+  }
+
+  /// Side of the cells actually used (Å): the requested size or a power-of-two multiple.
+  double cell_size() const { return h_; }
+  /// Number of cells of the grid (its bounding box, empty cells included).
+  std::size_t num_cells() const { return offsets_.size() - 1; }
+
+ private:
+  struct Entry {
+    Vec3 p;
+    Index id;
+  };
+  /// Cell coordinate along axis k, clamped to the grid: monotone in x.
+  std::int64_t cell(double x, int k) const {
+    const double t = std::floor((x - lo_[k]) * inv_);
+    return std::int64_t(std::clamp(t, 0.0, double(dims_[k] - 1)));
+  }
+  Vec3 lo_ = Vec3::Zero();
+  double h_ = 1.0, inv_ = 1.0;
+  std::int64_t dims_[3] = {1, 1, 1};
+  std::vector<std::uint32_t> offsets_;  ///< points of cell c: entries_[offsets_[c] .. offsets_[c + 1])
+  std::vector<Entry> entries_;
 };
 
 }  // namespace skinmesh::geometry

@@ -165,8 +165,16 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 
 bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3& a2,
                                        const Vec3& b1, const Vec3& b2) {
-  return segment_intersects_triangle(a1, a2, s, b1, b2) ||
-         segment_intersects_triangle(b1, b2, s, a1, a2);
+  // If a1 and a2 lie strictly on one side of the plane of B = (s, b1, b2), every
+  // point of A = (s, a1, a2) but s does too (orient3d is affine in its last
+  // point and vanishes at s), so A and B meet only at s; likewise with A and B
+  // exchanged. This settles most pairs of a mesh's fan with two orient3d.
+  const int sa1 = o3(s, b1, b2, a1), sa2 = o3(s, b1, b2, a2);
+  if (sa1 == sa2 && sa1 != 0) return false;
+  const int sb1 = o3(s, a1, a2, b1), sb2 = o3(s, a1, a2, b2);
+  if (sb1 == sb2 && sb1 != 0) return false;
+  return segment_triangle_with_sides(a1, a2, sa1, sa2, s, b1, b2) ||
+         segment_triangle_with_sides(b1, b2, sb1, sb2, s, a1, a2);
 }
 
 bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a,

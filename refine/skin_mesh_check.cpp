@@ -5,7 +5,6 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
-#include <unordered_set>
 
 #include <nlohmann/json.hpp>
 
@@ -36,6 +35,36 @@ std::string list_text(const std::vector<std::int64_t>& v) {
 /// A finite number, or null.
 nlohmann::ordered_json finite_or_null(double x) {
   return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+/// The number of distinct undirected edges {u, w} of the triangles accepted by
+/// `valid` that violate [L]. `start` holds, at start[v + 1], how many triangle
+/// edges have v as their lower vertex; it becomes the offsets of a compressed
+/// list of the higher ends, which is sorted per vertex to visit each edge once.
+/// satisfies_L() is symmetric in its two ends, so the order of u, w is irrelevant.
+template <class Valid>
+std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid, std::vector<Index>& start,
+                               const std::vector<double>& rho, const SizeConstants& size) {
+  const auto& P = mesh.positions;
+  const std::size_t nv = P.size();
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Index> higher(start[nv]);
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (const auto& t : mesh.triangles) {
+    if (!valid(t)) continue;
+    for (int i = 0; i < 3; ++i) {
+      const Index u = t[i], w = t[(i + 1) % 3];
+      higher[fill[std::min(u, w)]++] = std::max(u, w);
+    }
+  }
+  std::size_t violations = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto b = higher.begin() + start[v], e = higher.begin() + start[v + 1];
+    std::sort(b, e);
+    for (auto it = b; it != e; ++it)
+      if ((it == b || *it != it[-1]) && !satisfies_L(P[v], P[*it], rho[v], rho[*it], size)) ++violations;
+  }
+  return violations;
 }
 
 }  // namespace
@@ -107,19 +136,15 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   auto valid = [&](const std::array<Index, 3>& t) {
     return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
   };
-  std::unordered_set<std::uint64_t> edges;
-  edges.reserve(mesh.triangles.size() * 2);
+  std::vector<Index> edge_start(nv + 1, 0);  // edges listed at their lower vertex (CSR)
   for (const auto& t : mesh.triangles) {
     if (!valid(t)) continue;
     const Vec3 &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
     if ((b - a).cross(c - a).dot(normal[t[0]] + normal[t[1]] + normal[t[2]]) <= 0) ++rep.num_inward_triangles;
     if (!satisfies_U(a, b, c, rho[t[0]], rho[t[1]], rho[t[2]], opt.size)) ++rep.num_U_violations;
-    for (int i = 0; i < 3; ++i) {
-      const Index u = t[i], w = t[(i + 1) % 3];
-      const std::uint64_t key = (std::uint64_t(std::min(u, w)) << 32) | std::max(u, w);
-      if (edges.insert(key).second && !satisfies_L(P[u], P[w], rho[u], rho[w], opt.size)) ++rep.num_L_violations;
-    }
+    for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
   }
+  rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
   if (rep.num_inward_triangles)
     rep.problems.push_back(std::to_string(rep.num_inward_triangles) +
                            " triangles face inwards (against the skin normal)");
@@ -139,9 +164,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (const auto& t : mesh.triangles)
       if (valid(t)) mean_edge += (P[t[0]] - P[t[1]]).norm(), ++ne;
     mean_edge = ne ? mean_edge / ne : 1.0;
-    geometry::PointGrid grid(std::max(mean_edge, 1e-9));
-    for (std::size_t v = 0; v < nv; ++v)
-      if (P[v].allFinite()) grid.insert(static_cast<Index>(v), P[v]);
+    const geometry::FlatPointGrid grid(P, std::max(mean_edge, 1e-9));
     for (std::size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
       const auto& t = mesh.triangles[ti];
       if (!valid(t)) continue;
@@ -150,9 +173,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
       bool bad = !surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], m, c);
       if (!bad) {
         const double r = (m - P[t[0]]).norm() * (1 - 1e-9);
-        grid.for_each_near(m, r, [&](Index v, const Vec3&) {
-          if (v != t[0] && v != t[1] && v != t[2]) bad = true;
-        });
+        bad = grid.any_near(m, r, [&](Index v, const Vec3&) { return v != t[0] && v != t[1] && v != t[2]; });
       }
       if (bad) {
         ++rep.num_rdt_violations;

@@ -450,4 +450,59 @@ TEST_CASE("check_mesh: empty mesh and lone vertices") {
   CHECK(r.num_vertex_components == 0);
 }
 
+
+TEST_CASE("check_mesh: candidate pairs and duplicates equal brute force on a coarse random soup") {
+  // Points on a coarse integer grid, so that boxes touch exactly, triangles are
+  // often coplanar and vertex sets repeat (as permutations and reflections).
+  const unsigned seed = 20261122;
+  INFO("seed = " << seed);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> coord(0, 4);
+  IndexedMesh m;
+  for (int i = 0; i < 60; ++i) m.positions.emplace_back(coord(rng), coord(rng), coord(rng));
+  std::uniform_int_distribution<Index> pick(0, 59);
+  for (int i = 0; i < 400; ++i) {
+    std::array<Index, 3> t{pick(rng), pick(rng), pick(rng)};
+    if (i % 9 == 0 && !m.triangles.empty()) {  // a duplicate of an earlier triangle, permuted
+      t = m.triangles[std::uniform_int_distribution<std::size_t>(0, m.triangles.size() - 1)(rng)];
+      std::shuffle(t.begin(), t.end(), rng);
+    }
+    m.triangles.push_back(t);
+  }
+  MeshCheckOptions opt;
+  opt.max_examples = 1000000;
+  const MeshCheckReport r = check_mesh(m, opt);
+  const auto& P = m.positions;
+  const auto& T = m.triangles;
+  auto good = [&](const std::array<Index, 3>& t) {
+    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && !is_degenerate_triangle(P[t[0]], P[t[1]], P[t[2]]);
+  };
+  auto box_overlap = [&](const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
+    for (int k = 0; k < 3; ++k) {
+      const double alo = std::min({P[a[0]][k], P[a[1]][k], P[a[2]][k]}), ahi = std::max({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+      const double blo = std::min({P[b[0]][k], P[b[1]][k], P[b[2]][k]}), bhi = std::max({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+      if (alo > bhi || blo > ahi) return false;
+    }
+    return true;
+  };
+  auto sorted = [](std::array<Index, 3> t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::size_t pairs = 0, duplicates = 0;
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    const bool distinct = T[i][0] != T[i][1] && T[i][1] != T[i][2] && T[i][2] != T[i][0];
+    bool earlier = false;
+    for (std::size_t j = 0; j < i && distinct; ++j) earlier = earlier || sorted(T[j]) == sorted(T[i]);
+    duplicates += earlier;
+    if (!good(T[i])) continue;
+    for (std::size_t j = i + 1; j < T.size(); ++j)
+      if (good(T[j]) && sorted(T[i]) != sorted(T[j]) && box_overlap(T[i], T[j])) ++pairs;
+  }
+  CHECK(duplicates > 20);
+  CHECK(r.num_duplicate_triangles == duplicates);
+  CHECK(r.num_pairs_tested == pairs);
+  CHECK(r.self_intersection_examples == brute_force_intersections(m));
+}
+
 }  // TEST_SUITE

@@ -171,4 +171,25 @@ TEST_CASE("triangle_intersection: mesh triangles by index") {
   CHECK_FALSE(mesh_triangles_intersect(T{0, 1, 2}, T{0, 4, 5}, Q));
 }
 
+
+TEST_CASE("triangle_intersection: beyond-vertex test equals the two segment tests on random grid inputs") {
+  // Integer coordinates in a small range: many coplanar and touching cases.
+  std::mt19937_64 rng(20261122);
+  std::uniform_int_distribution<int> c(-2, 2);
+  auto point = [&] { return Vec3(c(rng), c(rng), c(rng)); };
+  int tested = 0, hits = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 s = point(), a1 = point(), a2 = point(), b1 = point(), b2 = point();
+    if (is_degenerate_triangle(s, a1, a2) || is_degenerate_triangle(s, b1, b2)) continue;
+    const bool want = segment_intersects_triangle(a1, a2, s, b1, b2) || segment_intersects_triangle(b1, b2, s, a1, a2);
+    CHECK(triangles_intersect_beyond_vertex(s, a1, a2, b1, b2) == want);
+    CHECK(triangles_intersect_beyond_vertex(s, b1, b2, a1, a2) == want);
+    ++tested;
+    hits += want;
+  }
+  CHECK(tested > 5000);
+  CHECK(hits > 500);
+  CHECK(tested - hits > 500);
+}
+
 }  // TEST_SUITE

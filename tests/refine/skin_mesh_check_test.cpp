@@ -3,7 +3,10 @@
 // Delaunay triangulation of points on a sphere is their convex hull).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <set>
 
 #include "refine/restricted_delaunay.h"
 #include "refine/skin_mesh_check.h"
@@ -118,6 +121,58 @@ TEST_CASE("the verifier finds each kind of defect") {
     CHECK(!rep.topology_matches);
     CHECK(rep.expected.components() == 2);
   }
+}
+
+
+TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, flipped, duplicated meshes") {
+  // Reference: a std::set of undirected edges for [L]; a scan of every vertex for
+  // the surface Delaunay balls (same centre, same radius, same distance test).
+  const Vec3 c(0.3, -0.2, 0.1);
+  const double R = 2.0;
+  skin::SkinSurface skin({{c, 2 * R * R}});
+  std::mt19937_64 rng(20261122);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int level = 2; level <= 4; ++level)
+    for (int variant = 0; variant < 3; ++variant) {
+      geometry::IndexedMesh m = icosphere(c, R, level);
+      // Move vertices along the sphere by a fraction of the edge length (keeps
+      // them on the skin, breaks RDT).
+      const double amp = 0.05 * R * double(1 << (4 - level));
+      for (Vec3& p : m.positions)
+        if (u(rng) > 0.2 * variant) p = c + R * (p - c + amp * Vec3(u(rng), u(rng), u(rng))).normalized();
+      if (variant == 2) {  // a duplicate, a reversed triangle and a degenerate one
+        m.triangles.push_back(m.triangles[3]);
+        m.triangles.push_back({m.triangles[5][0], m.triangles[5][2], m.triangles[5][1]});
+        m.triangles.push_back({0, 0, 1});
+      }
+      refine::SkinCheckOptions opt;
+      opt.size.C = 0.08 * (0.5 + variant);  // more or fewer [L] violations
+      const auto rep = refine::check_skin_mesh(skin, m, opt);
+      const auto& P = m.positions;
+      std::set<std::pair<Index, Index>> edges;
+      std::size_t want_L = 0, want_rdt = 0;
+      auto rho = [&](Index v) { return skin.sample(P[v]).rho; };
+      for (const auto& t : m.triangles) {
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+        for (int i = 0; i < 3; ++i) {
+          const Index a = std::min(t[i], t[(i + 1) % 3]), b = std::max(t[i], t[(i + 1) % 3]);
+          if (edges.insert({a, b}).second && !refine::satisfies_L(P[a], P[b], rho(a), rho(b), opt.size)) ++want_L;
+        }
+        Vec3 mc;
+        Index cell = skin.sample(P[t[0]]).cell;
+        bool bad = !refine::surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], mc, cell);
+        if (!bad) {
+          const double r = (mc - P[t[0]]).norm() * (1 - 1e-9);
+          for (Index v = 0; v < P.size(); ++v)
+            if (v != t[0] && v != t[1] && v != t[2] && (P[v] - mc).squaredNorm() <= r * r) bad = true;
+        }
+        want_rdt += bad;
+      }
+      INFO("level " << level << " variant " << variant);
+      CHECK(rep.num_L_violations == want_L);
+      CHECK(rep.num_rdt_violations == want_rdt);
+      CHECK(want_rdt > 0);
+    }
 }
 
 }  // TEST_SUITE

@@ -1,0 +1,106 @@
+// tests/geometry/point_grid_test.cpp: geometry/point_grid — FlatPointGrid and
+// PointGrid report exactly the points a linear scan with the same distance
+// test reports, on random clouds (clustered, flat, with duplicates and
+// non-finite points) and random query balls, including balls outside the cloud.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "geometry/point_grid.h"
+
+using skinmesh::Index;
+using skinmesh::Vec3;
+using namespace skinmesh::geometry;
+
+namespace {
+
+/// The ids of the finite points p with |p - q|² <= r², increasing.
+std::vector<Index> scan(const std::vector<Vec3>& pts, const Vec3& q, double r) {
+  std::vector<Index> out;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (pts[i].allFinite() && (pts[i] - q).squaredNorm() <= r * r) out.push_back(Index(i));
+  return out;
+}
+
+/// A random cloud: a box, a thin slab (flat grid axis), or clusters; with
+/// exact duplicates and some non-finite points.
+std::vector<Vec3> cloud(std::mt19937_64& rng, int kind, std::size_t n) {
+  std::uniform_real_distribution<double> u(-10, 10);
+  std::vector<Vec3> pts;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 p(u(rng), u(rng), u(rng));
+    if (kind == 1) p.z() = 1e-3 * p.z();                        // a slab
+    if (kind == 2) p = Vec3(std::round(p.x()), 0.5, 0) + 1e-2 * p;  // clusters on a line
+    pts.push_back(p);
+    if (i % 17 == 0) pts.push_back(p);  // duplicate
+    if (i % 53 == 0) pts.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+    if (i % 71 == 0) pts.push_back(Vec3(0, std::numeric_limits<double>::infinity(), 0));
+  }
+  return pts;
+}
+
+}  // namespace
+
+TEST_SUITE("geometry") {
+
+TEST_CASE("point_grid: FlatPointGrid and PointGrid queries equal a linear scan") {
+  std::mt19937_64 rng(20261122);
+  std::uniform_real_distribution<double> u(-12, 12), ur(0, 3);
+  for (int kind = 0; kind < 3; ++kind)
+    for (double cell : {1e-3, 0.05, 0.7, 5.0, 100.0}) {
+      const std::vector<Vec3> pts = cloud(rng, kind, 600);
+      const FlatPointGrid flat(pts, cell);
+      CHECK(flat.cell_size() >= cell);
+      CHECK(double(flat.num_cells()) <= FlatPointGrid::kMaxCellsPerPoint * double(pts.size()) + 4096.0);
+      PointGrid hashed(cell);
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        if (pts[i].allFinite()) hashed.insert(Index(i), pts[i]);
+      for (int k = 0; k < 300; ++k) {
+        // Queries at random places, at cloud points (r = 0 included) and far away.
+        Vec3 q(u(rng), u(rng), u(rng));
+        if (k % 3 == 1) q = pts[std::size_t(k) % pts.size()].allFinite() ? pts[std::size_t(k) % pts.size()] : q;
+        if (k % 10 == 9) q *= 100;
+        const double r = k % 7 == 0 ? 0.0 : ur(rng) * (k % 5 == 0 ? 10 : 1);
+        const std::vector<Index> want = scan(pts, q, r);
+        std::vector<Index> got_flat, got_hashed;
+        flat.for_each_near(q, r, [&](Index id, const Vec3& p) {
+          CHECK(p == pts[id]);
+          got_flat.push_back(id);
+        });
+        // PointGrid visits every cell of the query box: only for boxes of few cells.
+        const bool small_box = std::pow(2 * r / cell + 2, 3) < 1e5;
+        if (small_box) hashed.for_each_near(q, r, [&](Index id, const Vec3&) { got_hashed.push_back(id); });
+        std::sort(got_flat.begin(), got_flat.end());
+        std::sort(got_hashed.begin(), got_hashed.end());
+        CHECK(got_flat == want);
+        if (small_box) CHECK(got_hashed == want);
+        // any_near stops at the first point accepted by the predicate.
+        if (!want.empty()) {
+          int calls = 0;
+          CHECK(flat.any_near(q, r, [&](Index, const Vec3&) { return ++calls == 1; }));
+          CHECK(calls == 1);
+          const Index last = want.back();
+          CHECK(flat.any_near(q, r, [&](Index id, const Vec3&) { return id == last; }));
+        }
+        CHECK_FALSE(flat.any_near(q, r, [](Index, const Vec3&) { return false; }));
+      }
+    }
+}
+
+TEST_CASE("point_grid: FlatPointGrid on empty, all-non-finite and single-point inputs") {
+  const FlatPointGrid empty(std::vector<Vec3>{}, 1.0);
+  CHECK_FALSE(empty.any_near(Vec3::Zero(), 1e9, [](Index, const Vec3&) { return true; }));
+  const FlatPointGrid nan({Vec3(std::nan(""), 0, 0)}, 1.0);
+  CHECK_FALSE(nan.any_near(Vec3::Zero(), 1e9, [](Index, const Vec3&) { return true; }));
+  const FlatPointGrid one({Vec3(1, 2, 3)}, 1e-9);
+  CHECK(one.num_cells() == 1);
+  CHECK(one.any_near(Vec3(1, 2, 3), 0.0, [](Index id, const Vec3&) { return id == 0; }));
+  CHECK_FALSE(one.any_near(Vec3(1, 2, 3.5), 0.49, [](Index, const Vec3&) { return true; }));
+  CHECK_FALSE(one.any_near(Vec3(std::nan(""), 2, 3), 1.0, [](Index, const Vec3&) { return true; }));
+}
+
+}  // TEST_SUITE
