@@ -3,9 +3,12 @@
 #include "skin/dual_complex.h"
 
 #include <algorithm>
-#include <limits>
+#include <array>
 #include <numeric>
+#include <span>
 #include <vector>
+
+#include "geometry/orthosphere_predicates.h"
 
 namespace skinmesh::skin {
 
@@ -38,43 +41,59 @@ Index extra_vertex(const MixedCell& X, const MixedCell& Y) {
 SkinTopology dual_complex_topology(const MixedComplex& mc) {
   const auto& rt = mc.triangulation();
   const Index n = mc.num_cells();
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  std::vector<double> value(n, kInf);
-  // Filtration values, tetrahedra first (they have no cofaces).
+  SkinTopology topo;
+  // Membership in K0, tetrahedra first (they have no cofaces). Only the sign
+  // of a filtration value matters, and the value of X is either w_X (X
+  // unattached) or the minimum over its cofaces, so "value <= 0" propagates as
+  // a boolean: attached X is in K0 iff some coface is. Both decisions are
+  // exact predicates (papers/skin/dual_complex.md "Exact filtration signs").
+  std::vector<char> in_k0(n, 0);
   for (int dim = 3; dim >= 0; --dim) {
     for (Index c = 0; c < n; ++c) {
       const MixedCell& X = mc.cell(c);
       if (X.dim != dim || X.bounding) continue;
-      bool attached = false;
-      double coface_min = kInf;
+      std::array<WeightedPoint, 4> pts;
+      for (int i = 0; i <= dim; ++i) pts[i] = rt.point(X.vertices[i]);
+      const std::span<const WeightedPoint> xs(pts.data(), dim + 1);
+      bool attached = false, tie = false, coface_in = false;
       for (const CellPlane& p : mc.planes(c)) {
         const MixedCell& Y = mc.cell(p.neighbor);
         if (Y.dim != dim + 1) continue;
-        coface_min = std::min(coface_min, value[p.neighbor]);
-        const Index k = extra_vertex(X, Y);
-        if (geometry::power_distance(rt.point(k), X.focus) < X.focus_weight) attached = true;
+        coface_in = coface_in || in_k0[p.neighbor];
+        const Sign s = geometry::orthosphere_power_sign(xs, rt.point(extra_vertex(X, Y)));
+        attached = attached || s == Sign::Negative;
+        tie = tie || s == Sign::Zero;
       }
-      value[c] = attached ? coface_min : X.focus_weight;
+      // A tie (some k orthogonal to the orthosphere, no strict attachment)
+      // counts as unattached: z_X then lies on the boundary of nu_X and both
+      // readings give the same value w_X (papers/skin/dual_complex.md).
+      if (tie && !attached) ++topo.orthogonal_ties;
+      if (attached) {
+        in_k0[c] = coface_in;
+      } else {
+        const Sign w = geometry::focus_weight_sign(xs);
+        in_k0[c] = w != Sign::Positive;  // closed balls: w_X = 0 is in K0
+        if (w == Sign::Zero) topo.singular_simplices.push_back(X.vertices);
+      }
     }
   }
-  auto in_k0 = [&](Index c) { return value[c] <= 0.0; };
+  auto in_k0_fn = [&](Index c) { return in_k0[c] != 0; };
 
-  SkinTopology topo;
   for (Index c = 0; c < n; ++c)
-    if (in_k0(c)) ++topo.k0_simplices[mc.cell(c).dim];
+    if (in_k0_fn(c)) ++topo.k0_simplices[mc.cell(c).dim];
   topo.euler_k0 = topo.k0_simplices[0] - topo.k0_simplices[1] + topo.k0_simplices[2] -
                   topo.k0_simplices[3];
 
   // betti0: K0 vertices joined by K0 edges.
   DisjointSets comp(n);
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 1 || !in_k0(c)) continue;
+    if (mc.cell(c).dim != 1 || !in_k0_fn(c)) continue;
     for (const CellPlane& p : mc.planes(c))
       if (mc.cell(p.neighbor).dim == 0) comp.unite(p.neighbor, c);
   }
   std::vector<char> seen(n, 0);
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 0 || !in_k0(c)) continue;
+    if (mc.cell(c).dim != 0 || !in_k0_fn(c)) continue;
     const Index r = comp.find(c);
     if (!seen[r]) seen[r] = 1, ++topo.betti0;
   }
@@ -89,7 +108,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc) {
       if (any_outer == kInvalidIndex) any_outer = c;
       outside.unite(c, any_outer);
     }
-    if (X.dim != 2 || in_k0(c)) continue;
+    if (X.dim != 2 || in_k0_fn(c)) continue;
     Index first = kInvalidIndex;
     for (const CellPlane& p : mc.planes(c)) {
       if (mc.cell(p.neighbor).dim != 3) continue;
@@ -102,7 +121,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc) {
   std::fill(seen.begin(), seen.end(), 0);
   int complement = 0;
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 3 || in_k0(c)) continue;
+    if (mc.cell(c).dim != 3 || in_k0_fn(c)) continue;
     const Index r = outside.find(c);
     if (!seen[r]) seen[r] = 1, ++complement;
   }
