@@ -131,6 +131,17 @@ struct Suite {
     c.name += "/p" + num(c.probe);
     cases.push_back(std::move(c));
   }
+  /// begin() then add() for a case given by its atoms, probe radius (Å),
+  /// singularity flag and note.
+  void add(const std::string& family, const std::string& key, double probe, std::vector<StressAtom> atoms,
+           bool singular, const std::string& note) {
+    StressCase c = begin(family, key);
+    c.probe = probe;
+    c.atoms = std::move(atoms);
+    c.singular = singular;
+    c.note = note;
+    add(std::move(c));
+  }
 };
 
 /// Points on a sphere of radius `rs` about the origin, n of them on a
@@ -490,14 +501,7 @@ void rings(Suite& s) {
   auto next_probe = [&]() { return kProbes[turn++ % 4]; };
   const double r = 1.7;
   auto add = [&](const std::string& key, double p, std::vector<StressAtom> atoms, bool singular,
-                 const std::string& note) {
-    StressCase c = s.begin("ring", key);
-    c.probe = p;
-    c.atoms = std::move(atoms);
-    c.singular = singular;
-    c.note = note;
-    s.add(std::move(c));
-  };
+                 const std::string& note) { s.add("ring", key, p, std::move(atoms), singular, note); };
   for (int n : {5, 8, 12, 20, 30}) {  // tori: neighbours 1.5 R apart, hole open
     const double p = next_probe(), R = unshrunk(r, p);
     add("torus/n" + std::to_string(n), p, ring(n, 1.5 * R / (2 * std::sin(kPi / n)), r), false,
@@ -537,11 +541,7 @@ void helices(Suite& s) {
   int turn = 1;
   auto next_probe = [&]() { return kProbes[turn++ % 4]; };
   auto add = [&](const std::string& key, double p, std::vector<StressAtom> atoms, const std::string& note) {
-    StressCase c = s.begin("helix", key);
-    c.probe = p;
-    c.atoms = std::move(atoms);
-    c.note = note;
-    s.add(std::move(c));
+    s.add("helix", key, p, std::move(atoms), false, note);
   };
   for (int n : {20, 40, 80}) {  // alpha-helix-like rod
     std::vector<StressAtom> atoms;
@@ -598,14 +598,7 @@ void thresholds(Suite& s) {
   int turn = 2;
   auto next_probe = [&]() { return kProbes[turn++ % 4]; };
   auto add = [&](const std::string& key, double p, std::vector<StressAtom> atoms, bool singular,
-                 const std::string& note) {
-    StressCase c = s.begin("threshold", key);
-    c.probe = p;
-    c.atoms = std::move(atoms);
-    c.singular = singular;
-    c.note = note;
-    s.add(std::move(c));
-  };
+                 const std::string& note) { s.add("threshold", key, p, std::move(atoms), singular, note); };
   // Pairs whose unshrunk balls are |d| apart (d > 0) or overlap by |d| (d < 0):
   // a thin gap or a thin neck of the skin.
   const double radii[3][2] = {{1.5, 1.5}, {1.5, 1.9}, {1.7, 1.52}};
