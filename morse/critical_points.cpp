@@ -66,42 +66,6 @@ double distance_to_tetrahedron(const Vec3& x, const std::array<Vec3, 4>& v) {
   return d;
 }
 
-/// Offset (Å) along the unit vector n by which the focus of the tetrahedron
-/// cell T has to move to agree with its neighbours, or 0 unless T is flat
-/// (all four facet normals within about 1.4e-6 rad of ±n, a sliver).
-///
-/// For a tetrahedron T and the tetrahedron T_f across its facet f, the Voronoi
-/// edge dual to f runs from z_T to z_Tf along the outward normal m_f of T at f,
-/// so m_f·(z_Tf - z_T) >= 0 (papers/morse/critical_points.md "Flat
-/// tetrahedra"). The focus of a sliver with four nearly cocircular corners (a
-/// square face of a rotated lattice) is the ratio of two rounding errors and
-/// may violate these inequalities by ångströms; its true position lies in the
-/// slab they define. The returned delta puts z_T + delta n into that slab
-/// (delta = 0 when z_T already lies in it, as it does for every tetrahedron
-/// that is not flat).
-double flat_focus_shift(const skin::MixedComplex& mc, Index t, const Vec3& n) {
-  constexpr double kParallel = 1e-12;  // 1 - |cos|: about 1.4e-6 rad
-  const skin::MixedCell& T = mc.cell(t);
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  for (const skin::CellPlane& pl : mc.planes(t)) {
-    if (mc.cell(pl.neighbor).dim != 2) continue;
-    // pl.normal is the outward normal of T at the facet pl.neighbor, from the
-    // input centres and the exact orientation of the corners.
-    const double c = pl.normal.dot(n);
-    if (1.0 - std::abs(c) > kParallel) return 0.0;  // not a sliver: focus well conditioned
-    Index other = kInvalidIndex;
-    for (const skin::CellPlane& q : mc.planes(pl.neighbor))
-      if (q.neighbor != t && mc.cell(q.neighbor).dim == 3) other = q.neighbor;
-    if (other == kInvalidIndex) continue;
-    // m·(z_other - z_T - delta n) >= 0.
-    const double bound = pl.normal.dot(mc.cell(other).focus - T.focus) / c;
-    if (c > 0) hi = std::min(hi, bound);
-    else lo = std::max(lo, bound);
-  }
-  if (lo <= hi) return std::clamp(0.0, lo, hi);
-  return 0.5 * (lo + hi);  // neighbours inconsistent too: the middle of the two bounds
-}
-
 }  // namespace
 
 double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
@@ -118,8 +82,8 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
     // t - z_t (the plane of t), z_t + s n on the Voronoi edge V_t. V_t is
     // oriented: it ends at the focus of the coface T on the side of T's apex
     // (sigma = ±1, the side of the plane's normal, from exact orientation), so
-    // sigma s <= sigma n·(z_T - z_t) for both cofaces; a flat coface's focus
-    // is first moved into the slab its neighbours allow (flat_focus_shift).
+    // sigma s <= sigma n·(z_T - z_t) for both cofaces (the mixed complex has
+    // put the focus of a flat coface in the order its neighbours require).
     // With the two foci in the wrong order V_t is empty: every s is outside.
     std::array<const skin::CellPlane*, 2> tets{nullptr, nullptr};
     int nt = 0;
@@ -132,7 +96,7 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
     double out_s = 0.0;
     for (const skin::CellPlane* pl : tets) {
       const double sigma = pl->normal.dot(n) >= 0 ? 1.0 : -1.0;
-      const double sT = n.dot(mc.cell(pl->neighbor).focus - X.focus) + flat_focus_shift(mc, pl->neighbor, n);
+      const double sT = n.dot(mc.cell(pl->neighbor).focus - X.focus);
       out_s = std::max(out_s, sigma * (s - sT));
     }
     const Vec3 x = X.focus + 2.0 * (y - n.dot(y) * n);

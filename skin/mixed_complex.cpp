@@ -106,7 +106,78 @@ Vec3 facet_coface_normal(const geometry::RegularTriangulation& rt, const MixedCe
   }
 }
 
+/// Outward unit normals of tetrahedron t of rt at its four facets (normal i
+/// at the facet opposite local vertex i), from the input centres, each
+/// oriented away from vertex i by the exact orient3d.
+std::array<Vec3, 4> facet_normals(const geometry::RegularTriangulation& rt, Index t) {
+  using RT = geometry::RegularTriangulation;
+  const std::array<Index, 4>& tv = rt.tet(t);
+  std::array<Vec3, 4> m;
+  for (int i = 0; i < 4; ++i) {
+    const std::array<int, 3>& f = RT::kFaceVertices[i];
+    const Vec3 &a = rt.point(tv[f[0]]).z, &b = rt.point(tv[f[1]]).z, &c = rt.point(tv[f[2]]).z;
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    const Sign side = geometry::orient3d(a, b, c, rt.point(tv[i]).z);
+    m[i] = side == Sign::Positive ? Vec3(-n) : n;
+  }
+  return m;
+}
+
 }  // namespace
+
+void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
+  const geometry::RegularTriangulation& rt = *rt_;
+  constexpr double kParallel = 1e-12;  // 1 - |cos|: about 1.4e-6 rad
+  // Candidates: 6 |vol| <= 1e-5 diam³ (every flat tetrahedron, as defined
+  // below, passes; the exact normal test then decides).
+  struct Flat {
+    Index t;
+    Vec3 n;                   // reference normal: the outward normal at facet 0
+    std::array<Vec3, 4> m;    // outward facet normals
+  };
+  std::vector<Flat> flat;
+  for (Index t = 0; t < rt.num_tets(); ++t) {
+    const std::array<Index, 4>& tv = rt.tet(t);
+    const Vec3& p0 = rt.point(tv[0]).z;
+    const Vec3 e1 = rt.point(tv[1]).z - p0, e2 = rt.point(tv[2]).z - p0, e3 = rt.point(tv[3]).z - p0;
+    const double d2 = std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (e2 - e1).squaredNorm(),
+                                (e3 - e1).squaredNorm(), (e3 - e2).squaredNorm()});
+    const double vol6 = std::abs(e1.dot(e2.cross(e3)));
+    if (!(vol6 <= 1e-5 * d2 * std::sqrt(d2))) continue;
+    const std::array<Vec3, 4> m = facet_normals(rt, t);
+    bool is_flat = true;
+    for (int i = 1; i < 4 && is_flat; ++i) is_flat = 1.0 - std::abs(m[i].dot(m[0])) <= kParallel;
+    if (is_flat) flat.push_back({t, m[0], m});
+  }
+  // For the facet i of T with outward normal m_i and the tetrahedron T_i across
+  // it, the Voronoi edge dual to the facet runs from z_T to z_{T_i} along m_i:
+  // m_i·(z_{T_i} - z_T) >= 0. Move z_T along n by the smallest delta that
+  // satisfies the four (a slab, as every m_i is ±n); neighbours that are flat
+  // themselves use their current focus, so a few passes settle chains of them.
+  for (int pass = 0; pass < 4; ++pass) {
+    bool moved = false;
+    for (const Flat& F : flat) {
+      MixedCell& T = cells_[tet_cell[F.t]];
+      double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 4; ++i) {
+        const Index nb = rt.neighbor(F.t, i);
+        if (nb == kInvalidIndex) continue;
+        const double c = F.m[i].dot(F.n);
+        const double bound = F.m[i].dot(cells_[tet_cell[nb]].focus - T.focus) / c;
+        if (c > 0) hi = std::min(hi, bound);
+        else lo = std::max(lo, bound);
+      }
+      const double delta = lo <= hi ? std::clamp(0.0, lo, hi) : 0.5 * (lo + hi);
+      if (delta == 0.0 || !std::isfinite(delta)) continue;
+      T.focus += delta * F.n;
+      const WeightedPoint& p0 = rt.point(T.vertices[0]);
+      T.focus_weight = (T.focus - p0.z).squaredNorm() - p0.w;
+      moved = true;
+      ++num_reordered_foci_;
+    }
+    if (!moved) break;
+  }
+}
 
 MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) {
   const Index np = rt.num_points();
@@ -192,6 +263,10 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     if (c.dim == 1) c.axis = (p[1].z - p[0].z).normalized();
     if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
   }
+
+  // Foci of flat tetrahedra (slivers) put back in the order their Voronoi
+  // edges require (papers/skin/mixed_complex.md, "Flat tetrahedra").
+  order_flat_foci(tet_cell);
 
   // The walk bound of locate() (computed here: a cube root per query was 4 %
   // of the sweep).

@@ -103,13 +103,24 @@ class MixedComplex {
   /// A = P_perp - P_par (half the Hessian of f_X).
   Mat3 quadric_matrix(Index c) const;
 
+  /// Number of focus moves made by the construction to put the foci of flat
+  /// tetrahedra in the order of their Voronoi edges (papers/skin/mixed_complex.md,
+  /// "Flat tetrahedra"); 0 for inputs without cocircular slivers.
+  std::size_t num_reordered_foci() const { return num_reordered_foci_; }
+
  private:
+  /// Moves the focus of every flat tetrahedron (all facet normals within
+  /// ~1.4e-6 rad of one line) along that line into the slab its four Voronoi
+  /// edges allow. tet_cell maps a tetrahedron of the triangulation to its cell.
+  void order_flat_foci(const std::vector<Index>& tet_cell);
+
   const geometry::RegularTriangulation* rt_;
   std::vector<MixedCell> cells_;
   std::vector<CellPlane> planes_;
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
+  std::size_t num_reordered_foci_ = 0;
 };
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices

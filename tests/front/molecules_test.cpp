@@ -88,5 +88,12 @@ TEST_CASE("regression: two minima whose bowls overlap, maltoporin at probe 0") {
 TEST_CASE("regression: a hole tangled in every projection, random atoms with probe 0") {
   mesh_and_check(kRegression + "random_probe0_tangled_hole.xyzr", 0.0);
 }
+TEST_CASE("regression: cocircular slivers of a rotated cubic lattice, vertices off the skin") {
+  // The computed foci of sliver tetrahedra on the square faces broke the
+  // order of their Voronoi edges; the mixed cells around them overlapped and
+  // 5 vertices were up to 0.0033 Å off the skin (papers/skin/mixed_complex.md,
+  // "Flat tetrahedra").
+  mesh_and_check(kRegression + "sc2_probe3_rotated_cocircular_faces.xyzr", 3.0);
+}
 
 }  // TEST_SUITE
