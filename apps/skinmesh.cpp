@@ -303,6 +303,11 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                      {"contractions", r.contractions},
                      {"insertions", r.insertions},
                      {"refine_rounds", r.rounds},
+                     {"refused_contractions", r.refused_contractions},
+                     {"protected_contractions", r.protected_contractions},
+                     {"refused_insertions", r.refused_insertions},
+                     {"crowded_insertions", r.crowded_insertions},
+                     {"flip_caps", r.flip_caps},
                      {"L_left", r.L_left},
                      {"U_left", r.U_left}};
   json seconds = json::object();

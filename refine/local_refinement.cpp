@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "geometry/mesh_checks.h"
+#include "geometry/point_grid.h"
 #include "refine/restricted_delaunay.h"
 
 namespace skinmesh::refine {
@@ -28,8 +30,16 @@ class Refiner {
     normal_ = mesh_.vertex_property<Vec3>("v:normal", Vec3::Zero());
     rho_ = mesh_.vertex_property<double>("v:rho", 0.0);
     cell_ = mesh_.vertex_property<Index>("v:cell", kInvalidIndex);
+    inserted_ = mesh_.vertex_property<std::uint8_t>("v:inserted", 0);
     for (Vertex v : mesh_.vertices())
       if (!(rho_[v] > 0)) sample(v);
+    // Grid of the vertices inserted here, for the separation test of insert():
+    // cells of the mean edge length (the scale of R), hashed, so its size
+    // follows the inserted vertices only.
+    double mean_edge = 0;
+    std::size_t ne = 0;
+    for (Edge e : mesh_.edges()) mean_edge += (pos(mesh_.vertex(e, 0)) - pos(mesh_.vertex(e, 1))).norm(), ++ne;
+    inserted_grid_.emplace(ne && mean_edge > 0 ? mean_edge / double(ne) : skin_.length_scale() * 1e-3);
   }
 
   RefineStats run();
@@ -76,6 +86,8 @@ class Refiner {
   geometry::VertexProperty<Vec3> normal_;
   geometry::VertexProperty<double> rho_;
   geometry::VertexProperty<Index> cell_;
+  geometry::VertexProperty<std::uint8_t> inserted_;  ///< 1: inserted by this refinement
+  std::optional<geometry::PointGrid> inserted_grid_;
   std::vector<Edge> stack_;
   RefineStats stats_;
 };
@@ -110,6 +122,7 @@ void Refiner::lawson() {
     stack_.pop_back();
     if (!should_flip(e)) continue;
     if (++flips > cap) {
+      ++stats_.flip_caps;
       stack_.clear();
       break;
     }
@@ -133,10 +146,18 @@ void Refiner::push_edges_around(Vertex v) {
 bool Refiner::contract(Edge e) {
   // Keep the endpoint whose new star has the better minimum angle, among the
   // collapses that pass the link condition and turn no triangle over (Q9.3).
+  // A vertex inserted by this refinement is never the one deleted
+  // ("Termination": it keeps contractions and insertions from undoing each
+  // other).
   double best = -1;
   Halfedge pick;
+  bool protected_vertex = false;
   for (unsigned i = 0; i < 2; ++i) {
     const Halfedge h = mesh_.halfedge(e, i);
+    if (inserted_[mesh_.from_vertex(h)]) {
+      protected_vertex = true;
+      continue;
+    }
     if (!mesh_.is_collapse_ok(h)) continue;
     const Vertex v0 = mesh_.from_vertex(h), v1 = mesh_.to_vertex(h);
     double q = 4;
@@ -155,6 +176,7 @@ bool Refiner::contract(Edge e) {
   }
   if (!pick.is_valid()) {
     ++stats_.refused_contractions;
+    stats_.protected_contractions += protected_vertex;
     return false;
   }
   const Vertex keep = mesh_.to_vertex(pick);
@@ -178,6 +200,18 @@ bool Refiner::insert(Face f) {
     return false;
   }
   const double radius = (m - pos(v[0])).norm();
+  // Separation from the vertices inserted before ("Termination").
+  {
+    bool crowded = false;
+    inserted_grid_->for_each_near(m, opt_.min_inserted_separation * radius, [&](Index id, const Vec3&) {
+      crowded = crowded || !mesh_.is_deleted(Vertex(id));
+    });
+    if (crowded) {
+      ++stats_.refused_insertions;
+      ++stats_.crowded_insertions;
+      return false;
+    }
+  }
   // Walk from f to the triangle whose prism contains m (barycentric
   // coordinates in the triangle's plane).
   Face t = f;
@@ -266,6 +300,8 @@ bool Refiner::insert(Face f) {
   normal_[nv] = nm;
   rho_[nv] = s.rho;
   cell_[nv] = s.cell;
+  inserted_[nv] = 1;
+  inserted_grid_->insert(nv.idx(), m);
   ++stats_.insertions;
   push_edges_around(nv);
   lawson();

@@ -17,12 +17,24 @@ namespace skinmesh::refine {
 struct RefineOptions {
   /// C and Q of [L] and [U] (Cheng & Shi §2.2).
   SizeConstants size;
-  /// At most this many rounds of (contraction pass, insertion pass).
+  /// At most this many rounds of (contraction pass, insertion pass). A guard
+  /// only: the number of rounds that change something is bounded by the
+  /// number of contractions and insertions, both finite
+  /// (papers/refine/local_refinement.md, "Termination").
   int max_rounds = 60;
   /// Flips per Lawson pass are capped at this factor times the number of edges
   /// (termination of flips with surface Delaunay balls is not proved,
-  /// papers/front/open_questions.md Q9.2).
+  /// papers/front/open_questions.md Q9.2); passes that hit the cap are counted
+  /// in RefineStats::flip_caps.
   double max_flips_factor = 20;
+  /// An insertion is refused when a vertex inserted earlier lies closer than
+  /// min_inserted_separation · R to the new point (R: the surface Delaunay
+  /// radius of the violating triangle). With the value above 0.921 (derived
+  /// from C, Q and the 1-Lipschitz rho in papers/refine/local_refinement.md,
+  /// "Termination"), no edge between two inserted vertices can violate [L],
+  /// and the inserted vertices are separated by a fixed fraction of rho, so
+  /// there are finitely many of them.
+  double min_inserted_separation = 0.93;
   /// An insertion is refused when the new point would lie closer than
   /// min_insertion_clearance · R to a corner of the triangle that contains it
   /// (R: the surface Delaunay radius of the violating triangle): its ball is
@@ -41,6 +53,13 @@ struct RefineStats {
   /// Operations wanted but refused because they would turn a triangle over
   /// (against the skin normal) or break the link condition.
   std::size_t refused_contractions = 0, refused_insertions = 0;
+  /// Insertions refused because an earlier inserted vertex lies within
+  /// min_inserted_separation · R (also counted in refused_insertions), and
+  /// contractions of an [L] edge refused because the vertex they would delete
+  /// was inserted by the refinement (also counted in refused_contractions).
+  std::size_t crowded_insertions = 0, protected_contractions = 0;
+  /// Lawson passes stopped by the max_flips_factor cap.
+  std::size_t flip_caps = 0;
   /// Violations left when the refinement stopped (0 and 0 when it converged).
   std::size_t L_left = 0, U_left = 0;
 };
@@ -56,8 +75,11 @@ struct RefineStats {
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;
 /// it uses (and creates if absent, sampling the skin) the vertex properties
-/// "v:normal" (unit outward normal), "v:rho" (Å) and "v:cell" (mixed cell).
-/// No operation turns a triangle against the normals of its corners.
+/// "v:normal" (unit outward normal), "v:rho" (Å) and "v:cell" (mixed cell),
+/// and sets "v:inserted" (std::uint8_t, 1 on the vertices it inserted).
+/// No operation turns a triangle against the normals of its corners, no vertex
+/// moves, and a vertex inserted here is never deleted; the number of
+/// operations is finite (papers/refine/local_refinement.md, "Termination").
 /// Elements are deleted, not compacted: call garbage_collection() afterwards.
 RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
                         const RefineOptions& opt = {});

@@ -6,7 +6,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "refine/local_refinement.h"
 #include "refine/restricted_delaunay.h"
@@ -46,6 +48,57 @@ TEST_CASE("refinement: a coarse icosphere (all triangles violate [U]) is refined
   CHECK(st.L_left == 0);
   CHECK(st.U_left == 0);
   CHECK(rep.mesh.num_triangles > 80);
+}
+
+TEST_CASE("refinement: the invariants of the termination argument hold") {
+  // papers/refine/local_refinement.md, "Termination": inserted vertices are
+  // never deleted, are pairwise at least gamma · max(rho) apart (gamma =
+  // kappa beta / (1 + kappa beta), beta = CQ / (1 + CQ), kappa = 0.93), and
+  // no edge between two of them violates [L]. Brute force over all pairs,
+  // on a coarse icosphere (insertions only) and on a jittered one (flips,
+  // contractions and insertions together).
+  const skin::SkinSurface skin = one_atom();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
+  for (int level : {1, 2}) {
+    INFO("icosphere level " << level);
+    geometry::IndexedMesh m = test::sphere(level);
+    for (Vec3& p : m.positions) {
+      const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
+      if (level == 2) p += 0.15 * (jitter(rng) * t1 + jitter(rng) * t2);
+      p = p.normalized() * kRadius;
+    }
+    geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(m);
+    const refine::RefineOptions opt;
+    const refine::RefineStats st = refine::refine_mesh(skin, mesh, opt);
+    CHECK(st.U_left == 0);
+    CHECK(st.L_left == 0);
+    CHECK(st.flip_caps == 0);
+    REQUIRE(st.insertions > 10);
+    auto inserted = mesh.vertex_property<std::uint8_t>("v:inserted", 0);
+    auto rho = mesh.vertex_property<double>("v:rho", 0.0);
+    std::vector<geometry::Vertex> ins;
+    for (geometry::Vertex v : mesh.vertices())
+      if (inserted[v]) ins.push_back(v);
+    CHECK(ins.size() == st.insertions);  // none deleted
+    const double CQ = opt.size.C * opt.size.Q;
+    const double kb = opt.min_inserted_separation * CQ / (1 + CQ);
+    const double gamma = kb / (1 + kb);
+    double worst = 1e300;
+    for (std::size_t i = 0; i < ins.size(); ++i)
+      for (std::size_t j = i + 1; j < ins.size(); ++j) {
+        const double d = (mesh.position(ins[i]) - mesh.position(ins[j])).norm();
+        worst = std::min(worst, d / std::max(rho[ins[i]], rho[ins[j]]));
+      }
+    CHECK(worst >= gamma * (1 - 1e-9));
+    for (geometry::Edge e : mesh.edges()) {
+      const geometry::Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
+      if (inserted[a] && inserted[b])
+        CHECK(refine::satisfies_L(mesh.position(a), mesh.position(b), rho[a], rho[b], opt.size));
+    }
+    mesh.garbage_collection();
+    test::check_every_property(refine::check_skin_mesh(skin, mesh.to_indexed_mesh()));
+  }
 }
 
 TEST_CASE("refinement: a fine icosphere (edges violate [L]) is coarsened by contraction") {
