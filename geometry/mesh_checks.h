@@ -37,7 +37,7 @@ inline double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 /// What check_mesh() does and how much it lists.
 struct MeshCheckOptions {
-  /// Run the exact self-intersection test (uniform grid + exact predicates);
+  /// Run the exact self-intersection test (column grid + exact predicates);
   /// the most expensive part. Default: true.
   bool check_self_intersections = true;
   /// Triangles with an angle strictly below this (degrees) are counted in
@@ -159,8 +159,9 @@ struct MeshCheckReport {
 /// Verify a triangle soup. Every combinatorial decision is exact (index
 /// comparisons, orient2d/orient3d of geometry/predicates); volumes, areas and
 /// angles are double-precision estimates. O(n log n) for meshes whose triangles
-/// have comparable sizes (uniform grid of cell size about the mean triangle
-/// extent); many huge overlapping triangles degrade towards O(n^2).
+/// have comparable sizes (a grid of (x, y) columns about the mean triangle
+/// extent, swept along z; pairs around a simple fan settled from the
+/// connectivity); many huge overlapping triangles degrade towards O(n^2).
 /// Throws nothing but std::bad_alloc.
 MeshCheckReport check_mesh(const IndexedMesh& mesh, const MeshCheckOptions& options = {});
 

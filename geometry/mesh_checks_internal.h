@@ -4,11 +4,13 @@
 //   mesh_checks.cpp               check_mesh(): triangle classes, the steps, the problem list
 //   mesh_checks_topology.cpp      check_topology(): edges, components, Euler characteristics
 //   mesh_checks_geometry.cpp      measure_components() (volume, area), measure_angles()
-//   mesh_checks_intersections.cpp find_self_intersections(): grid + exact test
+//   mesh_checks_intersections.cpp find_self_intersections(): column grid, simple fans, exact test
 //   mesh_checks_json.cpp          MeshCheckReport::to_json()
-// Only geometry/mesh_checks*.cpp include this header.
+// Only geometry/mesh_checks*.cpp include this header (and the tests of
+// tests/geometry/mesh_checks_broad_phase_test.cpp).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -42,6 +44,17 @@ struct TriangleClasses {
   }
 };
 
+/// Vertex -> triangle incidence in compressed (CSR) form, over the triangles in
+/// the topology (TriangleClasses::in_topology): the triangles of vertex v are
+/// incident[start[v] .. start[v + 1]), in increasing order.
+struct VertexIncidence {
+  std::vector<Index> start;  ///< number of vertices + 1 offsets
+  std::vector<Index> incident;
+};
+
+/// The VertexIncidence of `mesh`, counting only triangles in the topology.
+VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& classes);
+
 /// Appends `item` to an examples list of the report unless it already holds
 /// `max_examples` entries (the counts are kept separately, always complete).
 template <class List, class Item>
@@ -55,9 +68,11 @@ void add_example(List& list, const Item& item, std::size_t max_examples) {
 /// vertices (vertex_manifold) and vertex-connected components. Fills those
 /// fields of `r`, leaving each component's volume and area at 0. Returns the
 /// component of every triangle (an index into r.components; kInvalidIndex for
-/// triangles outside the topology). Exact: index comparisons only.
+/// triangles outside the topology). Exact: index comparisons only. `incidence`
+/// = build_incidence(mesh, classes), kept by the caller for
+/// find_self_intersections().
 std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses& classes,
-                                  std::size_t max_examples, MeshCheckReport& r);
+                                  const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r);
 
 /// Signed volume and area of every component of r.components (from
 /// check_topology(), `component` = its triangle -> component map), over the
@@ -74,10 +89,24 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
 
 /// The exact self-intersection test over the good triangles: sets
 /// self_intersections_checked, num_self_intersections, num_pairs_tested and the
-/// first `max_examples` pairs (i < j, sorted) of `r`. Uniform-grid broad phase,
+/// first `max_examples` pairs (i < j, sorted) of `r`. Column-grid broad phase,
 /// then mesh_triangles_intersect() (geometry/triangle_intersection.h) on each
-/// candidate pair that is not the same triangle twice.
+/// candidate pair that is not the same triangle twice and not settled by
+/// simple_fan_vertices() (`incidence` from build_incidence()).
 void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
-                             std::size_t max_examples, MeshCheckReport& r);
+                             const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r);
+
+/// Per vertex, 1 if the good triangles around it form a simple fan: one closed
+/// cycle of consistently oriented triangles that a coordinate projection maps
+/// one-to-one onto a disc around the vertex (orient2d of one strict sign,
+/// winding number 1). Two good triangles sharing such a vertex (or an edge with
+/// such an end) meet only in what they share. Exact. 0 for other vertices.
+/// `incidence` = build_incidence(mesh, classes).
+std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const TriangleClasses& classes,
+                                              const VertexIncidence& incidence);
+
+/// The broad phase of find_self_intersections(), for tests: every pair (i < j)
+/// of `boxes` (lo x, y, z, hi x, y, z) whose closed boxes overlap, sorted.
+std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes);
 
 }  // namespace skinmesh::geometry::mesh_checks_detail

@@ -1,213 +1,314 @@
 // geometry/mesh_checks_intersections.cpp: the exact self-intersection test of
-// check_mesh() — a uniform-grid broad phase over the triangles' exact bounding
-// boxes (radix-sorted cell keys, an x-sweep per cell), then the exact
-// mesh_triangles_intersect() of geometry/triangle_intersection.h on each
-// candidate pair. Declared in mesh_checks_internal.h.
+// check_mesh() — a broad phase over the triangles' exact bounding boxes (a grid
+// of (x, y) columns, a z-sweep per column), the simple-fan test that settles
+// pairs sharing a vertex or an edge from the mesh's connectivity, then the
+// exact mesh_triangles_intersect() of geometry/triangle_intersection.h on every
+// other candidate pair. Declared in mesh_checks_internal.h.
+#include <Eigen/Geometry>  // cross()
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
 
 #include "geometry/mesh_checks_internal.h"
+#include "geometry/predicates.h"
 #include "geometry/triangle_intersection.h"
 
 namespace skinmesh::geometry::mesh_checks_detail {
 
 namespace {
 
-// Sort (key, value) pairs by key with an LSD radix sort on the low `bits` bits
-// of the keys (stable; 11-bit digits). O(n bits / 11).
-void radix_sort(std::vector<std::pair<std::uint64_t, Index>>& a, int bits) {
-  constexpr int kDigit = 11;
-  constexpr std::size_t kBuckets = std::size_t(1) << kDigit;
-  std::vector<std::pair<std::uint64_t, Index>> tmp(a.size());
-  std::vector<std::size_t> count(kBuckets);
-  for (int shift = 0; shift < bits; shift += kDigit) {
-    std::fill(count.begin(), count.end(), 0);
-    for (const auto& x : a) ++count[(x.first >> shift) & (kBuckets - 1)];
-    std::size_t sum = 0;
-    for (std::size_t& c : count) {
-      const std::size_t n = c;
-      c = sum;
-      sum += n;
-    }
-    for (const auto& x : a) tmp[count[(x.first >> shift) & (kBuckets - 1)]++] = x;
-    a.swap(tmp);
-  }
-}
+/// One box of the broad phase with its payload `tri` (any struct with an Index
+/// `id`); `first` = its first column (x, y), set by for_each_box_pair().
+template <class Tri>
+struct BoxItem {
+  double lo[3], hi[3];
+  Tri tri;
+  std::int32_t first[2] = {0, 0};
+};
 
-// Uniform-grid broad phase over triangle boxes. Calls test(i, j) once for every
-// pair of listed triangles whose (closed, exact) bounding boxes overlap.
-template <class PairTest>
-void for_each_box_pair(const std::vector<Index>& tris, const std::vector<std::array<double, 6>>& box,
-                       PairTest&& test) {
-  const std::size_t n = tris.size();
+// Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
+// called three times per box, so nothing is stored twice): a grid of square
+// columns (x, y) of side w about the mean extent of the boxes; each box is
+// entered in every column its (x, y) range meets. The boxes are stored once,
+// renumbered by their first column (a counting sort, for locality); each
+// column lists its boxes (4-byte indices) sorted by lower z and is swept along
+// z; a pair is tested only in the first column both ranges share (the
+// componentwise maximum of their first columns), so exactly once.
+// Calls test(p, q, hit) with the payloads of candidate pairs (in either
+// order), hit = true exactly once for every pair of boxes that overlap (closed
+// boxes: touching counts), false for the others.
+template <class Tri, class MakeItem, class PairTest>
+void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
   if (n < 2) return;
   Vec3 gmin = Vec3::Constant(std::numeric_limits<double>::infinity()), gmax = -gmin;
   double mean_extent = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& b = box[i];
+    const BoxItem<Tri> b = make(i);
     for (int k = 0; k < 3; ++k) {
-      gmin[k] = std::min(gmin[k], b[k]);
-      gmax[k] = std::max(gmax[k], b[3 + k]);
+      gmin[k] = std::min(gmin[k], b.lo[k]);
+      gmax[k] = std::max(gmax[k], b.hi[k]);
     }
-    mean_extent += std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
+    mean_extent += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
   }
   mean_extent /= double(n);
-  const double span = (gmax - gmin).maxCoeff();
-  // Cell size: kCellPerExtent times the mean triangle extent (so a triangle
-  // covers a few cells), coarsened until the grid has at most 2^21 cells per
-  // axis and the (cell, triangle) entries stay below kMaxEntriesPerTriangle per
-  // triangle. Both constants only trade speed (measured on spheres of 1e6
-  // triangles), never correctness.
-  constexpr double kCellPerExtent = 2.0;
-  constexpr double kMaxEntriesPerTriangle = 16.0;
-  constexpr double kMaxCellsPerAxis = double(1 << 21);
-  double cell = mean_extent > 0.0 ? kCellPerExtent * mean_extent : (span > 0.0 ? span : 1.0);
-  std::array<std::uint64_t, 3> dims{};
-  std::vector<std::array<Index, 6>> range(n);  // cell index ranges [lo, hi] per axis
+  const double span = std::max(gmax[0] - gmin[0], gmax[1] - gmin[1]);
+  // Column side: kColumnPerExtent times the mean (x, y) extent, coarsened until
+  // there are at most 4 columns and 16 (column, box) entries per box. A
+  // non-finite span (coordinates near the double range) gives one column.
+  // The constants only trade speed (measured on crambin at probe 0), never
+  // correctness.
+  constexpr double kColumnPerExtent = 1.5;
+  constexpr double kMaxColumnsPerBox = 4.0;
+  constexpr double kMaxEntriesPerBox = 16.0;
+  const bool finite_grid = std::isfinite(span) && std::isfinite(mean_extent);
+  double w = mean_extent > 0.0 ? kColumnPerExtent * mean_extent : (span > 0.0 ? span : 1.0);
+  std::int64_t dims[2] = {1, 1};
+  double inv = 0.0;
+  // Column index along axis k (0: x, 1: y): monotone in the coordinate, so
+  // boxes overlapping in (x, y) share a column.
+  auto col = [&](double x, int k) {
+    return std::int64_t(std::clamp(std::floor((x - gmin[k]) * inv), 0.0, double(dims[k] - 1)));
+  };
+  std::size_t num_entries = 0;
   for (;;) {
-    const double inv = 1.0 / cell;
-    bool fits = true;
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::floor((gmax[k] - gmin[k]) * inv) + 1.0;
-      fits = fits && d <= kMaxCellsPerAxis;
-      dims[k] = fits ? std::uint64_t(d) : 1;
-    }
-    if (!fits) {
-      cell *= 2.0;
+    inv = finite_grid ? 1.0 / w : 0.0;
+    const double dx = finite_grid ? std::floor((gmax[0] - gmin[0]) * inv) + 1.0 : 1.0;
+    const double dy = finite_grid ? std::floor((gmax[1] - gmin[1]) * inv) + 1.0 : 1.0;
+    if (dx * dy > kMaxColumnsPerBox * double(n) + 4096.0) {
+      w *= 2.0;
       continue;
     }
+    dims[0] = std::int64_t(dx);
+    dims[1] = std::int64_t(dy);
     double entries = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      double cells = 1.0;
-      for (int k = 0; k < 3; ++k) {
-        // Monotone in the coordinate, so overlapping boxes share a cell.
-        auto c = [&](double x) {
-          const double t = std::floor((x - gmin[k]) * inv);
-          return Index(std::clamp(t, 0.0, double(dims[k] - 1)));
-        };
-        range[i][k] = c(box[i][k]);
-        range[i][3 + k] = c(box[i][3 + k]);
-        cells *= double(range[i][3 + k] - range[i][k] + 1);
-      }
-      entries += cells;
+      const BoxItem<Tri> b = make(i);
+      entries += double(col(b.hi[0], 0) - col(b.lo[0], 0) + 1) * double(col(b.hi[1], 1) - col(b.lo[1], 1) + 1);
     }
-    if (entries <= kMaxEntriesPerTriangle * double(n) + 1024.0) break;
-    cell *= 2.0;
+    if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) {
+      num_entries = std::size_t(entries);
+      break;
+    }
+    w *= 2.0;
   }
-  auto key = [&](std::uint64_t x, std::uint64_t y, std::uint64_t z) {
-    return (z * dims[1] + y) * dims[0] + x;
-  };
-  const int key_bits = std::bit_width(dims[0] * dims[1] * dims[2] - 1);
-  // Renumber the triangles in the order of the cell of their box's lower corner
-  // (stable), so that the triangles of one cell lie close together in memory:
-  // the sweeps below then read the boxes and ranges mostly from the cache.
-  std::vector<std::pair<std::uint64_t, Index>> entries;
-  entries.reserve(4 * n);
-  for (std::size_t i = 0; i < n; ++i) entries.emplace_back(key(range[i][0], range[i][1], range[i][2]), Index(i));
-  radix_sort(entries, key_bits);
-  std::vector<Index> tri(n);                      // renumbered -> input triangle
-  std::vector<std::array<double, 6>> sbox(n);     // renumbered boxes
-  std::vector<std::array<Index, 6>> srange(n);    // renumbered cell ranges
-  for (std::size_t k = 0; k < n; ++k) {
-    const Index i = entries[k].second;
-    tri[k] = tris[i];
-    sbox[k] = box[i];
-    srange[k] = range[i];
+  const std::size_t num_columns = std::size_t(dims[0] * dims[1]);
+  auto column = [&](double x, double y) { return std::size_t(col(x, 0) * dims[1] + col(y, 1)); };
+  // The boxes renumbered by their first column (counting sort, stable).
+  std::vector<std::uint32_t> start(num_columns + 1, 0);
+  std::vector<BoxItem<Tri>> item(n);
+  {
+    for (std::size_t i = 0; i < n; ++i) {
+      const BoxItem<Tri> b = make(i);
+      ++start[column(b.lo[0], b.lo[1]) + 1];
+    }
+    for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
+    for (std::size_t i = 0; i < n; ++i) {
+      BoxItem<Tri> b = make(i);
+      b.first[0] = std::int32_t(col(b.lo[0], 0));
+      b.first[1] = std::int32_t(col(b.lo[1], 1));
+      item[start[std::size_t(b.first[0] * dims[1] + b.first[1])]++] = b;
+    }
   }
-  range = std::vector<std::array<Index, 6>>();
-  entries.clear();
+  // Entries per column (CSR of renumbered boxes), each column then sorted by lower z.
+  std::fill(start.begin(), start.end(), 0);
+  for (const BoxItem<Tri>& b : item)
+    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
+      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y) ++start[std::size_t(x * dims[1] + y) + 1];
+  for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> entry(num_entries);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& r = srange[i];
-    for (Index z = r[2]; z <= r[5]; ++z)
-      for (Index y = r[1]; y <= r[4]; ++y)
-        for (Index x = r[0]; x <= r[3]; ++x) entries.emplace_back(key(x, y, z), Index(i));
+    const BoxItem<Tri>& b = item[i];
+    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
+      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
+        entry[start[std::size_t(x * dims[1] + y)]++] = std::uint32_t(i);
   }
-  radix_sort(entries, key_bits);
-  // In each cell, sweep along x: copy the cell's boxes into one contiguous
-  // array, sort it by the boxes' lower x and pair each box only with those
-  // starting before it ends.
-  struct Item {
-    double lo[3], hi[3];  // the box
-    Index first[3];       // its lowest cell per axis
-    Index id;             // renumbered triangle
-  };
-  std::vector<Item> items;
-  for (std::size_t s = 0; s < entries.size();) {
-    std::size_t e = s + 1;
-    while (e < entries.size() && entries[e].first == entries[s].first) ++e;
-    items.clear();
-    for (std::size_t a = s; a < e; ++a) {
-      const Index i = entries[a].second;
-      const auto& b = sbox[i];
-      const auto& r = srange[i];
-      items.push_back({{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {r[0], r[1], r[2]}, i});
-    }
-    std::sort(items.begin(), items.end(), [](const Item& p, const Item& q) {
-      return p.lo[0] < q.lo[0] || (p.lo[0] == q.lo[0] && p.id < q.id);
-    });
-    // The cell's coordinates: a pair is tested only in the first cell both
-    // ranges share, the cell of the componentwise maximum of their lowest cells.
-    const std::uint64_t cx = entries[s].first % dims[0], cy = entries[s].first / dims[0] % dims[1],
-                        cz = entries[s].first / dims[0] / dims[1];
-    for (std::size_t a = 0; a < items.size(); ++a) {
-      const Item& p = items[a];
-      for (std::size_t b = a + 1; b < items.size(); ++b) {
-        const Item& q = items[b];
-        if (q.lo[0] > p.hi[0]) break;  // this and all later ones start after p ends
-        // Non-short-circuit: these outcomes are hard to predict, the loads are cheap.
-        const bool overlap = (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]) & (p.lo[2] <= q.hi[2]) &
-                             (q.lo[2] <= p.hi[2]);
-        const bool first_cell = (std::max(p.first[0], q.first[0]) == cx) &
-                                (std::max(p.first[1], q.first[1]) == cy) &
-                                (std::max(p.first[2], q.first[2]) == cz);
-        if (!(overlap & first_cell)) continue;
-        test(std::min(tri[p.id], tri[q.id]), std::max(tri[p.id], tri[q.id]));
+  // start[c] now holds the end of column c (and its start is start[c - 1]).
+  auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
+  for (std::size_t c = 0; c < num_columns; ++c) {
+    const std::uint32_t b = c ? start[c - 1] : 0, e = start[c];
+    if (e - b > 1) std::sort(entry.begin() + b, entry.begin() + e, lower_z);
+  }
+  // In each column, sweep along z: pair each box only with those starting
+  // before it ends. Branch-free apart from the end of each run: the outcome
+  // of the box test is passed on, not branched on (it is hard to predict).
+  for (std::int32_t cx = 0; cx < dims[0]; ++cx)
+    for (std::int32_t cy = 0; cy < dims[1]; ++cy) {
+      const std::size_t c = std::size_t(cx * dims[1] + cy);
+      const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
+      for (std::uint32_t a = begin; a + 1 < end; ++a) {
+        const BoxItem<Tri>& p = item[entry[a]];
+        for (std::uint32_t b = a + 1; b < end; ++b) {
+          const BoxItem<Tri>& q = item[entry[b]];
+          if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
+          const bool overlap = (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) &
+                               (q.lo[1] <= p.hi[1]);
+          const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
+          test(p.tri, q.tri, overlap & first);
+        }
       }
     }
-    s = e;
+}
+
+// Fan Test ---------------------------------------------------------------------
+
+// True if the good triangles around vertex s (`fan`, triangle ids) form one
+// closed fan that a coordinate projection maps one-to-one onto a disc around s:
+// every triangle (s, a, b) (its corners in cyclic order from s) contributes the
+// link edge a -> b, the link edges form a single cycle through distinct
+// vertices, and for some dropped coordinate every projected triangle has the
+// same strict orient2d sign and the projected link winds exactly once around s.
+// Then the projected triangles tile sectors of angle < pi that cover the plane
+// once, so two of them meet only at s (non-consecutive) or along their common
+// edge (consecutive), and the projection, injective on each triangle, carries
+// this back to R^3: no two of these triangles meet beyond their shared vertex
+// or edge. Exact (index comparisons, coordinate comparisons, orient2d).
+bool simple_fan(const std::vector<Vec3>& P, const std::vector<std::array<Index, 3>>& T, Index s,
+                const Index* fan, std::size_t k) {
+  constexpr std::size_t kMaxFan = 32;
+  if (k < 3 || k > kMaxFan) return false;
+  Index a[kMaxFan], b[kMaxFan];
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto& t = T[fan[j]];
+    const int i = t[0] == s ? 0 : (t[1] == s ? 1 : 2);
+    a[j] = t[(i + 1) % 3];
+    b[j] = t[(i + 2) % 3];
   }
+  // Link cycle in order: order[0] = 0, order[j + 1] = the triangle whose a is b[order[j]].
+  std::size_t order[kMaxFan];
+  order[0] = 0;
+  for (std::size_t j = 0; j < k; ++j)
+    for (std::size_t m = j + 1; m < k; ++m)
+      if (a[j] == a[m] || b[j] == b[m]) return false;
+  for (std::size_t j = 1; j <= k; ++j) {
+    const Index want = b[order[j - 1]];
+    std::size_t next = k;
+    for (std::size_t m = 0; m < k; ++m)
+      if (a[m] == want) next = m;
+    if (next == k || (next == 0) != (j == k)) return false;  // open, or a shorter cycle
+    if (j < k) order[j] = next;
+  }
+  // The coordinate to drop: the largest component of the summed normals first
+  // (a choice only; every decision below is exact).
+  const Vec3& ps = P[s];
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t j = 0; j < k; ++j) normal += (P[a[j]] - ps).cross(P[b[j]] - ps);
+  int axes[3] = {0, 1, 2};
+  if (std::abs(normal[axes[1]]) > std::abs(normal[axes[0]])) std::swap(axes[0], axes[1]);
+  if (std::abs(normal[axes[2]]) > std::abs(normal[axes[1]])) std::swap(axes[1], axes[2]);
+  if (std::abs(normal[axes[1]]) > std::abs(normal[axes[0]])) std::swap(axes[0], axes[1]);
+  for (const int axis : axes) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // the kept coordinates
+    const double su = ps[u], sw = ps[w];
+    // Half-plane of a link vertex around s: "upper" = angle in [0, pi).
+    auto upper = [&](const Vec3& p) { return p[w] > sw || (p[w] == sw && p[u] > su); };
+    int sign = 0, crossings = 0;
+    bool consistent = true;
+    for (std::size_t j = 0; j < k && consistent; ++j) {
+      const Vec3& pa = P[a[order[j]]];
+      const Vec3& pb = P[b[order[j]]];
+      const int o = static_cast<int>(orient2d(su, sw, pa[u], pa[w], pb[u], pb[w]));
+      if (o == 0 || (sign != 0 && o != sign)) consistent = false;
+      sign = o;
+      // Each step turns by less than pi in the direction `sign`; it passes the
+      // angle 0 iff it goes from lower to upper (counter-clockwise) or from
+      // upper to lower (clockwise).
+      const bool ua = upper(pa), ub = upper(pb);
+      if (sign > 0 ? (!ua && ub) : (ua && !ub)) ++crossings;
+    }
+    if (consistent && crossings == 1) return true;
+  }
+  return false;
 }
 
 }  // namespace
 
+std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const TriangleClasses& classes,
+                                              const VertexIncidence& incidence) {
+  const std::size_t nv = mesh.positions.size();
+  std::vector<std::uint8_t> ok(nv, 0);
+  Index fan[64];
+  for (std::size_t v = 0; v < nv; ++v) {
+    const Index b = incidence.start[v], e = incidence.start[v + 1];
+    if (e - b > 64) continue;
+    std::size_t k = 0;
+    for (Index j = b; j < e; ++j)
+      if (classes.kind[incidence.incident[j]] == TriangleKind::kGood) fan[k++] = incidence.incident[j];
+    ok[v] = simple_fan(mesh.positions, mesh.triangles, Index(v), fan, k) ? 1 : 0;
+  }
+  return ok;
+}
+
+std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes) {
+  struct Id {
+    Index id;
+  };
+  std::vector<std::array<Index, 2>> pairs;
+  for_each_box_pair<Id>(
+      boxes.size(),
+      [&](std::size_t i) {
+        const auto& b = boxes[i];
+        return BoxItem<Id>{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {Index(i)}};
+      },
+      [&](const Id& i, const Id& j, bool hit) {
+        if (hit) pairs.push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
+      });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
-                             std::size_t max_examples, MeshCheckReport& r) {
+                             const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nt = T.size();
   r.self_intersections_checked = true;
-  std::vector<Index> tris;
-  std::vector<std::array<double, 6>> boxes;
-  for (std::size_t t = 0; t < nt; ++t) {
-    if (classes.kind[t] != TriangleKind::kGood) continue;
-    std::array<double, 6> b;
+  struct Tri {
+    Index id;                // triangle
+    std::array<Index, 3> v;  // its vertices
+  };
+  std::vector<Index> good;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (classes.kind[t] == TriangleKind::kGood) good.push_back(Index(t));
+  auto make = [&](std::size_t i) {
+    const Index t = good[i];
+    const Vec3 &a = P[T[t][0]], &b = P[T[t][1]], &c = P[T[t][2]];
+    BoxItem<Tri> item;
     for (int k = 0; k < 3; ++k) {
-      b[k] = std::min({P[T[t][0]][k], P[T[t][1]][k], P[T[t][2]][k]});
-      b[3 + k] = std::max({P[T[t][0]][k], P[T[t][1]][k], P[T[t][2]][k]});
+      item.lo[k] = std::min({a[k], b[k], c[k]});
+      item.hi[k] = std::max({a[k], b[k], c[k]});
     }
-    tris.push_back(Index(t));
-    boxes.push_back(b);
-  }
+    item.tri = {t, T[t]};
+    return item;
+  };
+  // Pairs that share a vertex (or an edge) of a simple fan cannot meet beyond
+  // what they share (simple_fan()): counted as tested, decided without the
+  // exact test. Every other pair goes through mesh_triangles_intersect().
+  const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence);
   std::vector<std::array<Index, 2>> found;
-  for_each_box_pair(tris, boxes, [&](Index i, Index j) {
-    const auto& ti = T[i];
-    const auto& tj = T[j];
-    int shared = 0;
-    for (Index a : ti)
-      for (Index b : tj) shared += a == b ? 1 : 0;
-    if (shared == 3) return;  // a duplicate, counted separately
-    ++r.num_pairs_tested;
-    if (mesh_triangles_intersect(ti, tj, P)) {
-      ++r.num_self_intersections;
-      found.push_back({i, j});
-    }
+  std::size_t tested = 0;
+  for_each_box_pair<Tri>(good.size(), make, [&](const Tri& ti, const Tri& tj, bool hit) {
+    // Shared vertices, without branches: m[k] = whether ti.v[k] is a vertex of tj.
+    bool m[3];
+    for (int k = 0; k < 3; ++k) m[k] = (ti.v[k] == tj.v[0]) | (ti.v[k] == tj.v[1]) | (ti.v[k] == tj.v[2]);
+    const int ns = int(m[0]) + int(m[1]) + int(m[2]);
+    const bool counted = hit & (ns != 3);  // a duplicate is counted separately
+    tested += counted;
+    // One or two shared vertices, one of them a simple fan: settled.
+    const bool settled = (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) |
+                         (m[2] & (fan_ok[ti.v[2]] != 0));
+    if (!(counted & !settled)) return;
+    const Tri& lo = ti.id < tj.id ? ti : tj;
+    const Tri& hi = ti.id < tj.id ? tj : ti;
+    if (mesh_triangles_intersect(lo.v, hi.v, P)) found.push_back({lo.id, hi.id});
   });
+  r.num_pairs_tested = tested;
+  r.num_self_intersections = found.size();
   std::sort(found.begin(), found.end());
   if (found.size() > max_examples) found.resize(max_examples);
   r.self_intersection_examples = std::move(found);

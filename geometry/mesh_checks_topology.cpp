@@ -43,33 +43,6 @@ class UnionFind {
   std::vector<Index> size_;
 };
 
-/// Vertex -> triangle incidence in compressed (CSR) form, over the triangles in
-/// the topology: the triangles of vertex v are incident[start[v] .. start[v + 1]),
-/// in increasing order.
-struct VertexIncidence {
-  std::vector<Index> start;  ///< number of vertices + 1 offsets
-  std::vector<Index> incident;
-};
-
-/// The VertexIncidence of `mesh`, counting only triangles in the topology.
-VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& classes) {
-  const auto& T = mesh.triangles;
-  const std::size_t nv = mesh.positions.size(), nt = T.size();
-  VertexIncidence in;
-  std::vector<Index>& start = in.start;
-  start.assign(nv + 1, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    if (classes.in_topology(t))
-      for (Index v : T[t]) ++start[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  in.incident.resize(start[nv]);
-  std::vector<Index> fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < nt; ++t)
-    if (classes.in_topology(t))
-      for (Index v : T[t]) in.incident[fill[v]++] = Index(t);
-  return in;
-}
-
 /// The number of triangles in the topology whose vertex set (in any order) is
 /// that of an earlier one: MeshCheckReport::num_duplicate_triangles. Equal
 /// vertex sets have the same lowest vertex, so the triangles are grouped by
@@ -212,6 +185,7 @@ void count_component_edges(const std::vector<EdgeRecord>& edges, const std::vect
 /// most `max_examples`) and sets vertex_manifold.
 void check_vertex_links(const IndexedMesh& mesh, const VertexIncidence& in, const std::vector<Index>& component,
                         std::size_t max_examples, MeshCheckReport& r) {
+  constexpr std::size_t kMaxFastFan = 32;
   const auto& T = mesh.triangles;
   const std::size_t nv = mesh.positions.size();
   std::vector<std::pair<Index, Index>> around;  // (component, triangle)
@@ -222,6 +196,38 @@ void check_vertex_links(const IndexedMesh& mesh, const VertexIncidence& in, cons
     return tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
   };
   for (std::size_t v = 0; v < nv; ++v) {
+    // Fast path, the common case: the triangles at v are in one component and
+    // their link edges (next -> prev) form one directed cycle through distinct
+    // vertices; then the link graph is a cycle (every degree 2, connected), as
+    // the general test below would find.
+    const Index kb = in.start[v], ke = in.start[v + 1];
+    if (ke - kb >= 2 && ke - kb <= kMaxFastFan) {
+      const std::size_t k = ke - kb;
+      const Index comp = component[in.incident[kb]];
+      Index a[kMaxFastFan], b[kMaxFastFan];
+      bool fast = true;
+      for (std::size_t j = 0; j < k && fast; ++j) {
+        const Index t = in.incident[kb + j];
+        const int i = corner(t, v);
+        a[j] = T[t][(i + 1) % 3];
+        b[j] = T[t][(i + 2) % 3];
+        fast = component[t] == comp;
+      }
+      for (std::size_t j = 0; j < k && fast; ++j)
+        for (std::size_t m = j + 1; m < k; ++m) fast = fast && a[j] != a[m];
+      std::size_t at = 0;
+      for (std::size_t step = 1; step <= k && fast; ++step) {
+        std::size_t next = k;
+        for (std::size_t m = 0; m < k; ++m)
+          if (a[m] == b[at]) next = m;
+        fast = next != k && (next == 0) == (step == k);
+        at = next;
+      }
+      if (fast) {
+        ++r.components[comp].vertices;
+        continue;
+      }
+    }
     around.clear();
     for (Index k = in.start[v]; k < in.start[v + 1]; ++k)
       around.emplace_back(component[in.incident[k]], in.incident[k]);
@@ -309,9 +315,26 @@ std::size_t count_vertex_components(const IndexedMesh& mesh, const TriangleClass
 
 }  // namespace
 
+VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& classes) {
+  const auto& T = mesh.triangles;
+  const std::size_t nv = mesh.positions.size(), nt = T.size();
+  VertexIncidence in;
+  std::vector<Index>& start = in.start;
+  start.assign(nv + 1, 0);
+  for (std::size_t t = 0; t < nt; ++t)
+    if (classes.in_topology(t))
+      for (Index v : T[t]) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  in.incident.resize(start[nv]);
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t < nt; ++t)
+    if (classes.in_topology(t))
+      for (Index v : T[t]) in.incident[fill[v]++] = Index(t);
+  return in;
+}
+
 std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses& classes,
-                                  std::size_t max_examples, MeshCheckReport& r) {
-  const VertexIncidence incidence = build_incidence(mesh, classes);
+                                  const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
   r.num_duplicate_triangles = count_duplicate_triangles(mesh, incidence);
   UnionFind faces_uf(mesh.triangles.size());  // triangles joined through shared edges
   const std::vector<EdgeRecord> edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
