@@ -58,8 +58,10 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
 /// skin, angles, [L], [U], restricted Delaunay) on the mesh of a bundled
 /// molecule at probe radius `probe` (Å), built once before the loop. Its time
 /// against BM_SweepMesher's on the same input is the check's share
-/// (issue #7 asks for at most half). Counters: triangles, triangles_per_s.
-void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double probe) {
+/// (issue #7 asks for at most half). `threads`: SkinCheckOptions::threads (1:
+/// all on this thread; 2: the mesh-only checks on a second thread).
+/// Counters: triangles, triangles_per_s.
+void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double probe, int threads) {
   const std::vector<geometry::WeightedPoint> points = molecule_points(molecule_file, probe);
   MeshOptions options;
   options.check = false;
@@ -70,8 +72,10 @@ void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double
   const skin::SkinSurface skin(skin::translated(points, centre));
   geometry::IndexedMesh local = res.mesh;
   for (Vec3& p : local.positions) p -= centre;
+  refine::SkinCheckOptions check_options;
+  check_options.threads = threads;
   for (auto _ : state) {
-    const refine::SkinCheckReport report = refine::check_skin_mesh(skin, local);
+    const refine::SkinCheckReport report = refine::check_skin_mesh(skin, local, check_options);
     if (!report.ok()) {
       state.SkipWithError(report.problems.front().c_str());
       return;
@@ -108,8 +112,13 @@ BENCHMARK_CAPTURE(BM_SweepMesher, crambin_1crn_probe0, sweep_mesher, "crambin_1c
     ->Unit(benchmark::kMillisecond);
 
 // The check's share: the same inputs as the two rates issue #7 asks for.
-BENCHMARK_CAPTURE(BM_SkinMeshCheck, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb", 1.4)
+BENCHMARK_CAPTURE(BM_SkinMeshCheck, gramicidinA_1grm_model1_1thread, "gramicidinA_1grm_model1.pdb", 1.4, 1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_SkinMeshCheck, crambin_1crn_probe0, "crambin_1crn.pdb", 0.0)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinMeshCheck, crambin_1crn_probe0_1thread, "crambin_1crn.pdb", 0.0, 1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinMeshCheck, gramicidinA_1grm_model1_2threads, "gramicidinA_1grm_model1.pdb", 1.4, 2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinMeshCheck, crambin_1crn_probe0_2threads, "crambin_1crn.pdb", 0.0, 2)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace skinmesh::bench

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -105,9 +107,17 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   geometry::MeshCheckOptions mopt;
   mopt.check_self_intersections = opt.check_self_intersections;
   mopt.small_angle_threshold_deg = opt.min_angle_deg;
-  rep.mesh = geometry::check_mesh(mesh, mopt);
+  // The mesh-only checks share nothing with the skin checks below but the
+  // (read-only) mesh: with two threads they run beside them.
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::min(hw, 2u));
+  std::future<geometry::MeshCheckReport> mesh_report;
+  if (threads >= 2)
+    mesh_report = std::async(std::launch::async, [&mesh, mopt] { return geometry::check_mesh(mesh, mopt); });
+  else
+    rep.mesh = geometry::check_mesh(mesh, mopt);
   rep.min_angle_required_deg = opt.min_angle_deg;
-  rep.problems = rep.mesh.problems;
+  std::vector<std::string> skin_problems;
   const std::size_t nv = mesh.positions.size();
   const auto& P = mesh.positions;
 
@@ -115,11 +125,40 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   std::vector<double> rho(nv, 0.0);
   std::vector<Vec3> normal(nv, Vec3::Zero());
   std::vector<Index> cell(nv, kInvalidIndex);
-  Index hint = kInvalidIndex;
-  for (std::size_t v = 0; v < nv; ++v) {
+  // Point location walks from a hint: the cell of a vertex located before
+  // that shares a triangle with v (one edge away), else the last cell found.
+  // Vertices are visited in triangle order so that such a neighbour exists;
+  // vertices of no triangle come last. (Hints change only the walk, not the
+  // cell's patch at the point: f, grad f and rho are continuous across faces.)
+  std::vector<Index> order;
+  std::vector<Index> order_hint;
+  {
+    std::vector<std::uint8_t> seen(nv, 0);
+    order.reserve(nv);
+    order_hint.reserve(nv);
+    for (const auto& t : mesh.triangles) {
+      Index from = kInvalidIndex;
+      for (int i = 0; i < 3; ++i)
+        if (t[i] < nv && seen[t[i]]) from = t[i];
+      for (int i = 0; i < 3; ++i) {
+        const Index v = t[i];
+        if (v >= nv || seen[v]) continue;
+        seen[v] = 1;
+        order.push_back(v);
+        order_hint.push_back(from);
+        from = v;
+      }
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      if (!seen[v]) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
+  }
+  Index last = kInvalidIndex;
+  for (std::size_t k = 0; k < nv; ++k) {
+    const Index v = order[k];
     if (!P[v].allFinite()) continue;
-    const skin::SkinSample s = skin.sample(P[v], hint);
-    hint = cell[v] = s.cell;
+    const Index h = order_hint[k] != kInvalidIndex && cell[order_hint[k]] != kInvalidIndex ? cell[order_hint[k]] : last;
+    const skin::SkinSample s = skin.sample(P[v], h);
+    last = cell[v] = s.cell;
     rho[v] = s.rho;
     const double g = s.gradient.norm();
     normal[v] = s.gradient / g;
@@ -128,7 +167,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     if (d > opt.max_vertex_distance) ++rep.num_far_vertices;
   }
   if (rep.num_far_vertices)
-    rep.problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
+    skin_problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
                            number_text(opt.max_vertex_distance) + " Å from the skin (max " +
                            number_text(rep.max_vertex_distance) + " Å)");
 
@@ -146,15 +185,13 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   }
   rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
   if (rep.num_inward_triangles)
-    rep.problems.push_back(std::to_string(rep.num_inward_triangles) +
+    skin_problems.push_back(std::to_string(rep.num_inward_triangles) +
                            " triangles face inwards (against the skin normal)");
   if (rep.num_L_violations)
-    rep.problems.push_back(std::to_string(rep.num_L_violations) + " edges violate [L]");
+    skin_problems.push_back(std::to_string(rep.num_L_violations) + " edges violate [L]");
   if (rep.num_U_violations)
-    rep.problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
-  if (rep.mesh.num_triangles > 0 && rep.mesh.min_angle_deg < opt.min_angle_deg)
-    rep.problems.push_back("minimum angle " + number_text(rep.mesh.min_angle_deg) + "° below " +
-                           number_text(opt.min_angle_deg) + "°");
+    skin_problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
+  const std::size_t min_angle_slot = skin_problems.size();  // the angle message goes here
 
   // Restricted Delaunay: the surface Delaunay ball of every triangle is empty.
   if (opt.check_restricted_delaunay && !mesh.triangles.empty()) {
@@ -181,8 +218,18 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
       }
     }
     if (rep.num_rdt_violations)
-      rep.problems.push_back(std::to_string(rep.num_rdt_violations) +
+      skin_problems.push_back(std::to_string(rep.num_rdt_violations) +
                              " triangles are not restricted Delaunay (non-empty surface Delaunay ball)");
+  }
+
+  // Join the mesh-only checks; problems in the order of the single-thread report.
+  if (mesh_report.valid()) rep.mesh = mesh_report.get();
+  rep.problems = rep.mesh.problems;
+  for (std::size_t i = 0; i <= skin_problems.size(); ++i) {
+    if (i == min_angle_slot && rep.mesh.num_triangles > 0 && rep.mesh.min_angle_deg < opt.min_angle_deg)
+      rep.problems.push_back("minimum angle " + number_text(rep.mesh.min_angle_deg) + "° below " +
+                             number_text(opt.min_angle_deg) + "°");
+    if (i < skin_problems.size()) rep.problems.push_back(skin_problems[i]);
   }
 
   // Topology against K0 (and the caller's per-component expectation).

@@ -139,15 +139,20 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
   double best_t = std::numeric_limits<double>::infinity();
   Index best_c = kInvalidIndex;
   // Walk outwards from t = 0 in both directions, cell by cell; the first root
-  // met on each side is that side's closest.
+  // met on each side is that side's closest. The second side stops as soon
+  // as it is no nearer to t = 0 than the first side's root (a root there
+  // could not win: ties go to the first side).
+  double lo0, hi0;
+  const auto ex0 = interval(c0, lo0, hi0);
   for (int dir = +1; dir >= -1; dir -= 2) {
     Index c = c0;
-    double lo, hi;
-    auto ex = interval(c, lo, hi);
+    double lo = lo0, hi = hi0;
+    auto ex = ex0;
     double r[2];
     for (int guard = 0; guard < 64; ++guard) {
       const double seg_lo = dir > 0 ? std::max(lo, 0.0) : lo;
       const double seg_hi = dir > 0 ? hi : std::min(hi, 0.0);
+      if ((dir > 0 ? seg_lo : -seg_hi) - eta > std::abs(best_t)) break;
       const int nr = roots_in(c, seg_lo, seg_hi, r);
       if (nr > 0) {
         const double t = dir > 0 ? r[0] : r[nr - 1];
@@ -155,7 +160,7 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
         break;
       }
       const double t_exit = dir > 0 ? hi : lo;
-      if (std::abs(t_exit) >= delta || !std::isfinite(t_exit)) break;
+      if (std::abs(t_exit) >= delta || !std::isfinite(t_exit) || std::abs(t_exit) - eta > std::abs(best_t)) break;
       const Index next = dir > 0 ? ex.second : ex.first;
       if (next == kInvalidIndex) break;
       c = mc.locate(q + (t_exit + dir * eta) * n, next);

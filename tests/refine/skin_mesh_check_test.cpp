@@ -176,3 +176,49 @@ TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, fl
 }
 
 }  // TEST_SUITE
+
+TEST_SUITE("refine") {
+
+TEST_CASE("the report is the same with one thread and with two") {
+  // SkinCheckOptions::threads: the mesh-only checks on a second thread must
+  // not change a single byte of the report, including the order of the
+  // problems, on clean and defective meshes.
+  const Vec3 c(0, 0, 0);
+  const double R = 2.0;
+  skin::SkinSurface skin({{c, 2 * R * R}});
+  std::vector<geometry::IndexedMesh> meshes;
+  meshes.push_back(icosphere(c, R, 3));  // clean
+  meshes.push_back(icosphere(c, R, 1));  // too coarse: [U]
+  {
+    auto m = icosphere(c, R, 3);  // a vertex off the skin, pushed far enough to fold
+    m.positions[7] *= 1.2;
+    meshes.push_back(m);
+  }
+  {
+    auto m = icosphere(c, R, 3);  // inside out, plus a duplicated triangle
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    m.triangles.push_back(m.triangles.front());
+    meshes.push_back(m);
+  }
+  {
+    auto m = icosphere(c, R, 2);  // a needle: a vertex moved next to its neighbour
+    m.positions[5] = m.positions[6] * 0.999 + m.positions[5] * 0.001;
+    meshes.push_back(m);
+  }
+  int defective = 0;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    INFO("mesh " << i);
+    refine::SkinCheckOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    const auto a = refine::check_skin_mesh(skin, meshes[i], one);
+    const auto b = refine::check_skin_mesh(skin, meshes[i], two);
+    CHECK(a.to_json() == b.to_json());
+    CHECK(a.problems == b.problems);
+    defective += !a.ok();
+    if (i > 0) CHECK(a.problems.size() >= 1);
+  }
+  CHECK(defective == int(meshes.size()) - 1);
+}
+
+}  // TEST_SUITE
