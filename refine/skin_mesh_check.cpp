@@ -88,6 +88,7 @@ std::string SkinCheckReport::to_json() const {
   j["topology_matches"] = topology_matches;
   j["max_vertex_distance"] = finite_or_null(max_vertex_distance);
   j["num_far_vertices"] = num_far_vertices;
+  j["vertex_distance_tolerance"] = finite_or_null(vertex_distance_tolerance);
   j["min_angle_deg"] = finite_or_null(mesh.min_angle_deg);
   j["max_angle_deg"] = finite_or_null(mesh.max_angle_deg);
   j["min_angle_required_deg"] = finite_or_null(min_angle_required_deg);
@@ -152,6 +153,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (std::size_t v = 0; v < nv; ++v)
       if (!seen[v]) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
   }
+  rep.vertex_distance_tolerance = opt.max_vertex_distance * std::max(1.0, skin.length_scale() / 100.0);
   Index last = kInvalidIndex;
   for (std::size_t k = 0; k < nv; ++k) {
     const Index v = order[k];
@@ -164,11 +166,11 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     normal[v] = s.gradient / g;
     const double d = std::abs(s.f) / g;
     if (d > rep.max_vertex_distance) rep.max_vertex_distance = d, rep.worst_vertex = static_cast<Index>(v);
-    if (d > opt.max_vertex_distance) ++rep.num_far_vertices;
+    if (d > rep.vertex_distance_tolerance) ++rep.num_far_vertices;
   }
   if (rep.num_far_vertices)
     skin_problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
-                           number_text(opt.max_vertex_distance) + " Å from the skin (max " +
+                           number_text(rep.vertex_distance_tolerance) + " Å from the skin (max " +
                            number_text(rep.max_vertex_distance) + " Å)");
 
   // Triangles: orientation against the skin normal, [U]; edges: [L].

@@ -22,7 +22,10 @@ namespace skinmesh::refine {
 /// What the skin check verifies and with which thresholds.
 struct SkinCheckOptions {
   SizeConstants size;
-  /// Largest admissible |f(v)| / |grad f(v)| at a vertex (Å).
+  /// Largest admissible |f(v)| / |grad f(v)| at a vertex (Å) for a skin of
+  /// length scale L <= 100 Å; above, it grows with L (tolerance =
+  /// max_vertex_distance · max(1, L / 100 Å), about 1e-11 L: scale-free, and
+  /// still ~1e5 units in the last place of a coordinate of size L).
   double max_vertex_distance = 1e-9;
   /// Smallest admissible angle (degrees); the [L]+[U] bound is 21.55°.
   double min_angle_deg = 21.5;
@@ -50,7 +53,8 @@ struct SkinCheckReport {
   bool topology_matches = false;
   double max_vertex_distance = 0;    ///< max |f| / |grad f| over vertices (Å)
   Index worst_vertex = kInvalidIndex;
-  std::size_t num_far_vertices = 0;  ///< above options.max_vertex_distance
+  std::size_t num_far_vertices = 0;  ///< above vertex_distance_tolerance
+  double vertex_distance_tolerance = 0;  ///< the tolerance applied (Å), see SkinCheckOptions
   std::size_t num_inward_triangles = 0;  ///< normal disagrees with the skin normal
   std::size_t num_L_violations = 0;  ///< edges violating [L]
   std::size_t num_U_violations = 0;  ///< triangles violating [U]

@@ -222,3 +222,26 @@ TEST_CASE("the report is the same with one thread and with two") {
 }
 
 }  // TEST_SUITE
+
+TEST_SUITE("refine") {
+
+TEST_CASE("the on-skin tolerance is 1e-9 Å up to L = 100 Å and 1e-11 L beyond") {
+  // Scale-free (issue #7, item 4): a molecule 10x larger gets a 10x larger
+  // tolerance, so a check does not fail on rounding alone at large L.
+  skin::SkinSurface small({{Vec3(0, 0, 0), 8.0}});
+  CHECK(refine::check_skin_mesh(small, icosphere(Vec3(0, 0, 0), 2.0, 3)).vertex_distance_tolerance == 1e-9);
+  skin::SkinSurface large({{Vec3(0, 0, 0), 8.0}, {Vec3(2000, 0, 0), 8.0}});
+  const double L = large.length_scale();
+  REQUIRE(L > 2000);
+  geometry::IndexedMesh two = icosphere(Vec3(0, 0, 0), 2.0, 3);
+  const geometry::IndexedMesh other = icosphere(Vec3(2000, 0, 0), 2.0, 3);
+  const Index off = static_cast<Index>(two.positions.size());
+  two.positions.insert(two.positions.end(), other.positions.begin(), other.positions.end());
+  for (auto t : other.triangles) two.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  const auto rep = refine::check_skin_mesh(large, two);
+  CHECK(rep.vertex_distance_tolerance == doctest::Approx(1e-11 * L));
+  CHECK(rep.num_far_vertices == 0);
+  CHECK(rep.topology_matches);
+}
+
+}  // TEST_SUITE
