@@ -195,6 +195,8 @@ int run_info(const InfoArgs& a) {
               << "those of the 4 bounding points)\n"
               << "mixed cells        vertex " << mc.num_cells_of_dim(0) << ", edge " << mc.num_cells_of_dim(1)
               << ", triangle " << mc.num_cells_of_dim(2) << ", tetrahedron " << mc.num_cells_of_dim(3) << "\n"
+              << "flat tetrahedra    " << mc.num_reordered_foci()
+              << " foci moved into the order of their Voronoi edges (cocircular slivers)\n"
               << "height direction   (" << e.x() << ", " << e.y() << ", " << e.z() << ")\n"
               << "critical points    " << all.minima << " minima, " << all.saddles << " saddles, " << all.maxima
               << " maxima (Morse sum " << all.euler() << ")\n"
