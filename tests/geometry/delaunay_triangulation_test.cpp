@@ -20,6 +20,7 @@
 #include "geometry/delaunay_triangulation.h"
 #include "geometry/errors.h"
 #include "geometry/predicates.h"
+#include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;
 using skinmesh::Index;
@@ -27,6 +28,7 @@ using skinmesh::kInvalidIndex;
 using skinmesh::Sign;
 using skinmesh::Vec3;
 using sg::DelaunayTriangulation;
+using skinmesh::test::integer_sphere;
 using sg::WeightedPoint;
 
 namespace {
@@ -104,16 +106,6 @@ std::vector<Vec3> random_points(std::mt19937_64& rng, int n, double box) {
   return pts;
 }
 
-// Integer points on the sphere x^2 + y^2 + z^2 = r2 (exactly cospherical).
-std::vector<Vec3> integer_sphere(int r2) {
-  std::vector<Vec3> out;
-  const int r = static_cast<int>(std::sqrt(double(r2)));
-  for (int x = -r; x <= r; ++x)
-    for (int y = -r; y <= r; ++y)
-      for (int z = -r; z <= r; ++z)
-        if (x * x + y * y + z * z == r2) out.emplace_back(x, y, z);
-  return out;
-}
 
 std::vector<Vec3> grid(int nx, int ny, int nz, double h) {
   std::vector<Vec3> out;

@@ -21,6 +21,7 @@ using skinmesh::Index;
 using skinmesh::Vec3;
 using namespace skinmesh::geometry;
 using namespace skinmesh::geometry::mesh_checks_detail;
+using skinmesh::test::brute_force_intersections;
 
 namespace {
 
@@ -46,28 +47,6 @@ Box box_of(const Vec3& a, const Vec3& b, const Vec3& c) {
     r[3 + k] = std::max({a[k], b[k], c[k]});
   }
   return r;
-}
-
-// Exact intersecting pairs (i < j) of the good triangles of m, all pairs, duplicates skipped.
-std::vector<std::array<Index, 2>> brute_force_intersections(const IndexedMesh& m) {
-  std::vector<std::array<Index, 2>> out;
-  const auto& T = m.triangles;
-  auto usable = [&](const std::array<Index, 3>& t) {
-    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-           !is_degenerate_triangle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-  };
-  for (std::size_t i = 0; i < T.size(); ++i) {
-    if (!usable(T[i])) continue;
-    for (std::size_t j = i + 1; j < T.size(); ++j) {
-      if (!usable(T[j])) continue;
-      int shared = 0;
-      for (Index a : T[i])
-        for (Index b : T[j]) shared += a == b;
-      if (shared == 3) continue;
-      if (mesh_triangles_intersect(T[i], T[j], m.positions)) out.push_back({Index(i), Index(j)});
-    }
-  }
-  return out;
 }
 
 // The classes check_mesh() computes, for the meshes of these tests (indices in

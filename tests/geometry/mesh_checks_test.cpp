@@ -22,6 +22,8 @@ using namespace skinmesh::geometry;
 using skinmesh::test::icosahedron;
 using skinmesh::test::sphere;
 using skinmesh::test::torus;
+using skinmesh::test::brute_force_intersections;
+using skinmesh::test::join;
 
 namespace {
 
@@ -60,36 +62,6 @@ IndexedMesh tetrahedron(const Vec3& t) {
   m.positions = {t, t + Vec3(1, 0, 0), t + Vec3(0, 1, 0), t + Vec3(0, 0, 1)};
   m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   return m;
-}
-
-// b's vertices and triangles appended to a (indices shifted).
-IndexedMesh join(IndexedMesh a, const IndexedMesh& b) {
-  const Index off = Index(a.positions.size());
-  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
-  for (auto t : b.triangles) a.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
-  return a;
-}
-
-// Brute-force list of intersecting pairs (the same exact narrow phase, all pairs).
-std::vector<std::array<Index, 2>> brute_force_intersections(const IndexedMesh& m) {
-  std::vector<std::array<Index, 2>> out;
-  const auto& T = m.triangles;
-  auto usable = [&](const std::array<Index, 3>& t) {
-    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-           !is_degenerate_triangle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-  };
-  for (std::size_t i = 0; i < T.size(); ++i) {
-    if (!usable(T[i])) continue;
-    for (std::size_t j = i + 1; j < T.size(); ++j) {
-      if (!usable(T[j])) continue;
-      int shared = 0;
-      for (Index a : T[i])
-        for (Index b : T[j]) shared += a == b;
-      if (shared == 3) continue;
-      if (mesh_triangles_intersect(T[i], T[j], m.positions)) out.push_back({Index(i), Index(j)});
-    }
-  }
-  return out;
 }
 
 // Brackets balance outside strings and the text is one object.

@@ -18,6 +18,7 @@
 #include "geometry/errors.h"
 #include "geometry/predicates.h"
 #include "geometry/regular_triangulation.h"
+#include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;
 using skinmesh::Index;
@@ -25,6 +26,7 @@ using skinmesh::kInvalidIndex;
 using skinmesh::Sign;
 using skinmesh::Vec3;
 using sg::RegularTriangulation;
+using skinmesh::test::integer_sphere;
 using sg::WeightedPoint;
 
 namespace {
@@ -189,16 +191,6 @@ std::vector<WeightedPoint> random_points(std::mt19937_64& rng, int n, double box
 
 double round3(double x) { return std::round(x * 1000.0) / 1000.0; }
 
-// Integer points on the sphere x^2 + y^2 + z^2 = r2 (exactly cospherical).
-std::vector<Vec3> integer_sphere(int r2) {
-  std::vector<Vec3> out;
-  const int r = static_cast<int>(std::sqrt(double(r2)));
-  for (int x = -r; x <= r; ++x)
-    for (int y = -r; y <= r; ++y)
-      for (int z = -r; z <= r; ++z)
-        if (x * x + y * y + z * z == r2) out.emplace_back(x, y, z);
-  return out;
-}
 
 }  // namespace
 

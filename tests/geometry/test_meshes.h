@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/indexed_mesh.h"
+#include "geometry/triangle_intersection.h"
 
 namespace skinmesh::test {
 
@@ -76,6 +77,49 @@ inline IndexedMesh torus(int n, int m) {
       t.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return t;
+}
+
+// b's vertices and triangles appended to a (b's indices shifted).
+inline IndexedMesh join(IndexedMesh a, const IndexedMesh& b) {
+  const Index off = Index(a.positions.size());
+  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) a.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  return a;
+}
+
+// Brute-force list of intersecting pairs (i < j) of the usable triangles of m
+// (no repeated index, not degenerate), with the checker's exact narrow phase
+// on all pairs; exact duplicates (3 shared vertices) are skipped.
+inline std::vector<std::array<Index, 2>> brute_force_intersections(const IndexedMesh& m) {
+  std::vector<std::array<Index, 2>> out;
+  const auto& T = m.triangles;
+  auto usable = [&](const std::array<Index, 3>& t) {
+    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+           !geometry::is_degenerate_triangle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  };
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    if (!usable(T[i])) continue;
+    for (std::size_t j = i + 1; j < T.size(); ++j) {
+      if (!usable(T[j])) continue;
+      int shared = 0;
+      for (Index a : T[i])
+        for (Index b : T[j]) shared += a == b;
+      if (shared == 3) continue;
+      if (geometry::mesh_triangles_intersect(T[i], T[j], m.positions)) out.push_back({Index(i), Index(j)});
+    }
+  }
+  return out;
+}
+
+// Integer points on the sphere x^2 + y^2 + z^2 = r2 (exactly cospherical).
+inline std::vector<Vec3> integer_sphere(int r2) {
+  std::vector<Vec3> out;
+  const int r = static_cast<int>(std::sqrt(double(r2)));
+  for (int x = -r; x <= r; ++x)
+    for (int y = -r; y <= r; ++y)
+      for (int z = -r; z <= r; ++z)
+        if (x * x + y * y + z * z == r2) out.emplace_back(x, y, z);
+  return out;
 }
 
 }  // namespace skinmesh::test

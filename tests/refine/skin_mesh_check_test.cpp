@@ -233,11 +233,7 @@ TEST_CASE("the on-skin tolerance is 1e-9 Å up to L = 100 Å and 1e-11 L beyond"
   skin::SkinSurface large({{Vec3(0, 0, 0), 8.0}, {Vec3(2000, 0, 0), 8.0}});
   const double L = large.length_scale();
   REQUIRE(L > 2000);
-  geometry::IndexedMesh two = icosphere(Vec3(0, 0, 0), 2.0, 3);
-  const geometry::IndexedMesh other = icosphere(Vec3(2000, 0, 0), 2.0, 3);
-  const Index off = static_cast<Index>(two.positions.size());
-  two.positions.insert(two.positions.end(), other.positions.begin(), other.positions.end());
-  for (auto t : other.triangles) two.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  const geometry::IndexedMesh two = test::join(icosphere(Vec3(0, 0, 0), 2.0, 3), icosphere(Vec3(2000, 0, 0), 2.0, 3));
   const auto rep = refine::check_skin_mesh(large, two);
   CHECK(rep.vertex_distance_tolerance == doctest::Approx(1e-11 * L));
   CHECK(rep.num_far_vertices == 0);
