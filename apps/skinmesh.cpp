@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "apps/output.h"
+#include "dynamic/dynamic_skin.h"
 #include "front/pipeline.h"
 #include "geometry/errors.h"
 #include "geometry/mesh_io.h"
@@ -254,6 +255,10 @@ struct MeshArgs {
   std::vector<double> direction;
   MeshOptions opt;
   bool no_check = false, force = false, trace = false;
+  /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
+  std::string algorithm = "sweep";
+  bool no_growth = false;
+  double growth_step = dynamic::DynamicOptions{}.max_step_motion;
 };
 
 /// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
@@ -266,8 +271,8 @@ std::size_t peak_memory_bytes() {
 }
 
 /// The JSON summary of a mesh run (`--stats`).
-json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult& res, double read_s,
-                  double write_s, double total_s) {
+json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult& res,
+                  const dynamic::DynamicResult* dyn, double read_s, double write_s, double total_s) {
   json j;
   j["input"] = a.mol.input;
   j["output"] = a.out;
@@ -284,6 +289,39 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                           {"maxima", res.critical.maxima}};
   j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles},
                                {"maxima", res.live.maxima}};
+  j["algorithm"] = a.algorithm;
+  if (dyn) {
+    const dynamic::DynamicStats& d = dyn->stats;
+    const dynamic::SampleStats& st = d.samples;
+    j["growth"] = !a.no_growth;
+    j["operations"] = {{"growth_steps", d.steps},
+                       {"start_level", d.start_level},
+                       {"sphere_patches_seeded", d.births},
+                       {"seeds", st.seeds},
+                       {"u_insertions", st.u_insertions},
+                       {"bounding_insertions", st.bounding_insertions},
+                       {"manifold_insertions", st.manifold_insertions},
+                       {"l_deletions", st.l_deletions},
+                       {"ring_samples", st.ring_samples},
+                       {"isolated_deletions", st.isolated_deletions},
+                       {"lost_samples", d.lost_samples},
+                       {"failed_insertions", st.failed_insertions},
+                       {"moves", d.moves},
+                       {"kinetic_moves", d.kinetic_moves},
+                       {"voronoi_vertices_evaluated", st.tets_classified},
+                       {"peak_samples", d.peak_samples},
+                       {"peak_tetrahedra", d.peak_tets},
+                       {"refine_rounds", st.rounds},
+                       {"converged", d.converged},
+                       {"L_left", st.L_left},
+                       {"U_left", st.U_left},
+                       {"nonmanifold_left", st.nonmanifold_left}};
+    const auto& dt = d.delaunay;
+    j["delaunay"] = {{"insertions", dt.insertions},       {"removals", dt.removals},
+                     {"kinetic_moves", dt.kinetic_moves}, {"conflict_tets", dt.conflict_tets},
+                     {"star_tets", dt.star_tets},         {"link_vertices", dt.link_vertices},
+                     {"local_tets", dt.local_tets},       {"walk_steps", dt.walk_steps}};
+  } else {
   const front::SweepStats& s = res.sweep;
   const refine::RefineStats& r = res.refinement;
   j["operations"] = {{"creations", s.creations},
@@ -312,6 +350,7 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                      {"flip_caps", r.flip_caps},
                      {"L_left", r.L_left},
                      {"U_left", r.U_left}};
+  }
   json seconds = json::object();
   seconds["read"] = read_s;
   for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
@@ -339,7 +378,27 @@ int run_mesh(MeshArgs& a) {
   if (a.trace) a.opt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   app::ProgressReporter progress(!a.mol.quiet);
   a.opt.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
-  const MeshResult res = mesh_skin(mol, a.opt);
+  MeshResult res;
+  std::optional<dynamic::DynamicResult> dyn;
+  if (a.algorithm == "dynamic") {
+    dynamic::DynamicOptions d;
+    d.probe_radius = a.mol.probe;
+    d.size = a.opt.size;
+    d.growth = !a.no_growth;
+    d.max_step_motion = a.growth_step;
+    d.check = a.opt.check;
+    d.progress = a.opt.progress;
+    dyn = dynamic::mesh_skin_dynamic(mol, d);
+    // The fields the summary and the writer share with the sweep's result.
+    res.mesh = dyn->mesh;
+    res.expected_topology = dyn->expected_topology;
+    res.checked = dyn->checked;
+    res.check = dyn->check;
+    res.seconds = dyn->seconds;
+    res.frame_centre = dyn->frame_centre;
+  } else {
+    res = mesh_skin(mol, a.opt);
+  }
   progress.finish();
 
   const bool failed = !res.ok();
@@ -354,7 +413,7 @@ int run_mesh(MeshArgs& a) {
   const double write_s = since(write_start);
   const double total = since(start);
   if (!a.stats.empty())
-    app::write_text_file(a.stats, mesh_summary(a, mol, res, read_s, write_s, total).dump(2) + "\n");
+    app::write_text_file(a.stats, mesh_summary(a, mol, res, dyn ? &*dyn : nullptr, read_s, write_s, total).dump(2) + "\n");
   if (!a.mol.quiet)
     std::cerr << "wrote " << a.out << ": " << res.mesh.triangles.size() << " triangles"
               << (res.checked ? ", min angle " + std::to_string(res.check.mesh.min_angle_deg) + "°" : std::string())
@@ -401,6 +460,19 @@ int main(int argc, char** argv) {
       ->add_option("--disc-factor", mesh.opt.sweep.disc_factor,
                    "tangent-disc radius / rho; must lie in (2C/(Q-2C), 2CQ sqrt((1+CQ)(1+3CQ))/(1+2CQ)^2]")
       ->check(number_at_least_zero(true))
+      ->capture_default_str();
+  mesh_cmd->add_option("--algorithm", mesh.algorithm,
+                       "sweep: the advancing front of Cheng & Shi (2004); dynamic: the dynamic-skin baseline "
+                       "(Cheng, Dey, Edelsbrunner & Sullivan 2001: restricted Delaunay triangulation of a sample, "
+                       "3D Delaunay triangulation, the skin grown from small spheres; papers/dynamic/dynamic_skin.md)")
+      ->check(CLI::IsMember({"sweep", "dynamic"}))
+      ->capture_default_str();
+  mesh_cmd->add_flag("--no-growth", mesh.no_growth,
+                     "with --algorithm dynamic: sample and refine the final skin directly (the static variant)");
+  mesh_cmd->add_option("--growth-step", mesh.growth_step,
+                       "with --algorithm dynamic: largest motion of a sample per growth step, as a fraction of "
+                       "its local length scale rho (the growth schedule)")
+      ->check(CLI::Range(1e-3, 1.0))
       ->capture_default_str();
   mesh_cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
   mesh_cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");

@@ -81,6 +81,7 @@ void DelaunayTriangulation::Mesh::reset(const std::array<Vec3, 4>& corners) {
   cells.clear();
   free_cells.clear();
   cell_mark.clear();
+  created.clear();
   for (Index k = 0; k < 4; ++k) {
     points.push_back(WeightedPoint{corners[k], 0.0});
     sos.push_back(k);
@@ -109,8 +110,10 @@ Index DelaunayTriangulation::Mesh::new_cell() {
   if (!free_cells.empty()) {
     const Index t = free_cells.back();
     free_cells.pop_back();
+    created.push_back(t);
     return t;
   }
+  created.push_back(static_cast<Index>(cells.size()));
   SKINMESH_ASSERT_MSG(cells.size() < std::size_t(kInvalidIndex) - 1, "too many tetrahedra");
   cells.push_back(Cell{});
   cell_mark.push_back(0);
@@ -338,6 +341,7 @@ Index DelaunayTriangulation::insert(const Vec3& p, Index hint) {
   check_point(p, "insert");
   if (mesh_.points.size() >= std::size_t(kInvalidIndex) - 1) throw_input_error("too many vertices");
   const Index t = locate_checked(p, hint, kInvalidIndex);
+  mesh_.created.clear();
   const Index v = static_cast<Index>(mesh_.points.size());
   mesh_.add_vertex(p, v);
   mesh_.insert_vertex(v, t, &stats_.conflict_tets);
@@ -349,6 +353,7 @@ Index DelaunayTriangulation::insert(const Vec3& p, Index hint) {
 void DelaunayTriangulation::remove(Index v) {
   if (!is_vertex(v) || is_bounding(v))
     throw_input_error("remove: " + std::to_string(v) + " is not a live non-bounding vertex");
+  mesh_.created.clear();
   remove_vertex(v);
   --num_live_vertices_;
 }
@@ -357,9 +362,47 @@ void DelaunayTriangulation::move(Index v, const Vec3& p) {
   if (!is_vertex(v) || is_bounding(v))
     throw_input_error("move: " + std::to_string(v) + " is not a live non-bounding vertex");
   check_point(p, "move");
-  if (mesh_.points[v].z == p) return;
+  if (mesh_.points[v].z == p) {
+    mesh_.created.clear();
+    return;
+  }
   // Refuse a duplicate before changing anything.
   locate_checked(p, mesh_.vertex_tet[v], v);
+  mesh_.created.clear();
+  // Kinetic fast path: if the star of v, with v at p, is still positively
+  // oriented and every facet of it is locally Delaunay, the triangulation of
+  // the new point set is the old one (the local Delaunay property of every
+  // facet implies the global one; facets outside the star did not change).
+  {
+    incident_tets(v, star_);
+    const Vec3 old = mesh_.points[v].z;
+    mesh_.points[v].z = p;
+    bool same = true;
+    for (const Index t : star_) {
+      const auto& c = mesh_.cells[t].v;
+      if (orient3d(mesh_.points[c[0]].z, mesh_.points[c[1]].z, mesh_.points[c[2]].z, mesh_.points[c[3]].z) !=
+          Sign::Positive) {
+        same = false;
+        break;
+      }
+    }
+    for (std::size_t k = 0; same && k < star_.size(); ++k) {
+      const Index t = star_[k];
+      for (int i = 0; i < 4 && same; ++i) {
+        const Index u = mesh_.cells[t].n[i];
+        if (u == kInvalidIndex) continue;
+        int j = 0;
+        while (mesh_.cells[u].n[j] != t) ++j;
+        if (mesh_.conflict_with(t, mesh_.cells[u].v[j]) != Sign::Negative) same = false;
+      }
+    }
+    if (same) {
+      mesh_.created.assign(star_.begin(), star_.end());
+      ++stats_.kinetic_moves;
+      return;
+    }
+    mesh_.points[v].z = old;
+  }
   remove_vertex(v);
   // Re-insert with the same id (and so the same SoS index).
   mesh_.points[v].z = p;

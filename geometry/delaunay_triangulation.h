@@ -97,6 +97,7 @@ class DelaunayTriangulation {
     std::uint64_t star_tets = 0;        ///< tetrahedra killed by removals
     std::uint64_t link_vertices = 0;    ///< link vertices triangulated by removals, in total
     std::uint64_t local_tets = 0;       ///< tetrahedra of the link triangulations, in total
+    std::uint64_t kinetic_moves = 0;    ///< move() calls that kept the combinatorics (no removal)
   };
 
   /// An empty triangulation (the bounding tetrahedron only) for points in the
@@ -123,8 +124,10 @@ class DelaunayTriangulation {
   /// a link of k vertices (O(k^2) worst case), independent of the global size.
   void remove(Index v);
 
-  /// Moves the live non-bounding vertex v to p (Å), keeping its id: remove(v)
-  /// then an insertion with the same id. Consequence for SoS: v keeps its place
+  /// Moves the live non-bounding vertex v to p (Å), keeping its id. If the
+  /// star of v stays positively oriented and locally Delaunay with v at p,
+  /// only the position changes (kinetic fast path, O(star)); otherwise
+  /// remove(v) then an insertion with the same id. Consequence for SoS: v keeps its place
   /// in the perturbation order (its id), which need not be the latest; the
   /// result is still the unique triangulation of the current (id, position)
   /// pairs. Throws InputError (triangulation unchanged) if v is not a live
@@ -220,6 +223,17 @@ class DelaunayTriangulation {
   /// Counters of the operations so far.
   const Stats& stats() const { return stats_; }
 
+  /// The tetrahedra created by the last successful insert(), remove() or
+  /// move() (a move logs those of its removal and of its re-insertion, or,
+  /// on its fast path, the star whose vertex moved), in creation order. An id
+  /// may be listed twice, or be dead again (a move's re-insertion can kill
+  /// what its removal created): filter with is_live(). Every live
+  /// tetrahedron not listed existed before the operation with the same
+  /// vertices at the same positions. Empty before the first operation and after a move() to the
+  /// vertex's own position. This is how a client keeps per-tetrahedron data
+  /// (circumcentres, restricted facets) up to date in O(size of the change).
+  const std::vector<Index>& last_created() const { return mesh_.created; }
+
  private:
   // A tetrahedron: vertices and neighbours; dead iff v[0] == kInvalidIndex.
   struct Cell {
@@ -248,6 +262,7 @@ class DelaunayTriangulation {
     std::vector<Index> vertex_tet;      // kInvalidIndex: not a live vertex
     std::vector<Cell> cells;
     std::vector<Index> free_cells;
+    std::vector<Index> created;         // cells made since the last clear (last_created())
     Index live_cells = 0;
     Index last_cell = 0;
     // Scratch of insert_vertex().

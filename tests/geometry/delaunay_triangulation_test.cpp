@@ -330,6 +330,8 @@ TEST_CASE("delaunay triangulation: long random insert / remove / move sequence")
     return false;
   };
   int inserts = 0, removes = 0, moves = 0, refused = 0;
+  std::map<Index, std::array<Index, 4>> before;  // live tetrahedra before the operation
+  dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
   for (int op = 0; op < num_ops; ++op) {
     INFO("operation " << op);
     const unsigned r = static_cast<unsigned>(rng() % 100);
@@ -369,6 +371,23 @@ TEST_CASE("delaunay triangulation: long random insert / remove / move sequence")
     check_valid(dt);
     REQUIRE(dt.num_vertices() == live.size());
     if (op % 50 == 49) check_brute_force(dt);
+    // last_created(): every live tetrahedron it does not list is unchanged.
+    {
+      std::set<Index> listed(dt.last_created().begin(), dt.last_created().end());
+      std::size_t unchanged = 0;
+      dt.for_each_tet([&](Index t) {
+        if (listed.count(t)) return;
+        ++unchanged;
+        const auto it_before = before.find(t);
+        REQUIRE(it_before != before.end());
+        CHECK(it_before->second == dt.tet(t));
+      });
+      std::size_t live_listed = 0;
+      for (const Index t : listed) live_listed += dt.is_live(t) ? 1 : 0;
+      CHECK(unchanged + live_listed == dt.num_tets());
+      before.clear();
+      dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
+    }
   }
   MESSAGE("inserts " << inserts << ", removes " << removes << ", moves " << moves
                      << ", refused duplicates " << refused);
@@ -376,6 +395,9 @@ TEST_CASE("delaunay triangulation: long random insert / remove / move sequence")
   CHECK(removes > num_ops / 7);
   CHECK(moves > num_ops / 20);
   CHECK(refused > 0);
+  // Small moves of a generic point keep the combinatorics: the kinetic fast
+  // path of move() ran (and every state above matched the brute force).
+  if (grid_in_8 == 4u) CHECK(dt.stats().kinetic_moves > 0);
   for (const auto& [v, p] : live) CHECK(dt.point(v) == p);
 
   // History independence: the same (id order, position) set built directly
