@@ -10,7 +10,7 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 20
 FUZZ_CXX ?= clang++-14
 
-.PHONY: all deps configure build mesh test sanitize fuzz bench stress clean
+.PHONY: all deps configure build mesh test sanitize fuzz bench table1 stress clean
 
 all: build
 
@@ -54,6 +54,13 @@ fuzz:
 # Google Benchmark: predicates, regular triangulation, the mesher (Table 1).
 bench: build
 	$(BUILD)/skinmesh_bench
+
+# Cheng & Shi's Table 1 reproduced: sweep, dynamic-skin baseline and static
+# variant on the Table-1 stand-ins, crambin, HIV protease, maltoporin and the
+# Figure 4 cube, one thread, every mesh checked (papers/bench/table1.md).
+# TABLE1_ARGS="--quick" for the small inputs only.
+table1: build
+	$(BUILD)/skinmesh_table1 $(TABLE1_ARGS)
 
 # The seeded stress suite (tests/stress): a few hundred generated inputs through
 # the whole pipeline, each checked against an independently computed topology.

@@ -259,7 +259,10 @@ SampleTriangulation::RoundReport SampleTriangulation::scan() const {
       const auto& fv = DelaunayTriangulation::kFaceVertices[f];
       // (a, b, c) has its normal into t (inside); the outward triangle is (a, c, b).
       const Index a = v[fv[0]], b = v[fv[2]], c = v[fv[1]];
-      if (facet_ratio(t, f) >= 1.0) ++rep.u;
+      if (const double ratio = facet_ratio(t, f); !(ratio < 1.0)) {
+        ++rep.u;
+        rep.u_facets.push_back(Facet{ratio, t, f, birth_[t]});
+      }
       const Index tri[3] = {a, b, c};
       for (int k = 0; k < 3; ++k) {
         const Index p = tri[k], q = tri[(k + 1) % 3], r = tri[(k + 2) % 3];
@@ -315,6 +318,9 @@ bool SampleTriangulation::refine(int max_rounds) {
     if (rep.l_edges.empty() && rep.bad_vertices.empty() && rep.isolated.empty() && rep.u == 0) return true;
     ++stats_.rounds;
     std::size_t actions = 0;
+    // [U] facets the queue does not hold (e.g. after set_rho_floor()).
+    for (const Facet& f : rep.u_facets) queue_.push(f);
+    actions += rep.u_facets.size();
     // [L]: contract by deleting a seed endpoint (the later one of two seeds).
     for (const auto& [a, b] : rep.l_edges) {
       if (!dt_.is_vertex(a) || !dt_.is_vertex(b)) continue;

@@ -89,6 +89,7 @@ class SampleTriangulation {
   /// then protects only the vertices it inserts from now on).
   void mark_all_as_seeds();
   /// [U] uses max(rho, floor) (Å) instead of rho (0: the true rho, default).
+  /// Facets that a lower floor makes violate [U] are found by refine()'s scan.
   void set_rho_floor(double floor) { rho_floor_ = floor; }
   double rho_floor() const { return rho_floor_; }
 
@@ -136,6 +137,7 @@ class SampleTriangulation {
   struct RoundReport {
     std::vector<std::array<Index, 2>> l_edges;
     std::vector<Index> bad_vertices, isolated;
+    std::vector<Facet> u_facets;
     std::size_t u = 0;
   };
 

@@ -197,3 +197,33 @@ TEST_CASE("dynamic: a molecule far from the origin meshes like the same molecule
   require_clean(far, "far");
   CHECK(far.mesh.triangles.size() == near.mesh.triangles.size());
 }
+
+TEST_CASE("dynamic: lowering the rho floor re-refines the facets it makes violate [U]") {
+  // A sparse sample of one sphere meets [U] with a floor of twice the radius;
+  // with the floor removed, refine() must find and split the facets that now
+  // violate [U] although no operation queued them (regression: the growth's
+  // final level once ended with [U] violations left).
+  const std::vector<WeightedPoint> pts = {{Vec3(0.1, 0.2, -0.3), 2 * 1.7 * 1.7}};
+  const skinmesh::skin::SkinSurface skin(pts);
+  sd::SampleTriangulation st(skin, 0.0, {});
+  const double r = 1.7;
+  st.set_rho_floor(2 * r);
+  const int n = 60;
+  for (int k = 0; k < n; ++k) {
+    const double u = 1 - (2 * k + 1) / double(n), s = std::sqrt(1 - u * u), phi = 2.399963229728653 * k;
+    Vec3 x;
+    Index cell = kInvalidIndex;
+    double rho = 0;
+    REQUIRE(st.level_set().project(pts[0].z + r * Vec3(s * std::cos(phi), s * std::sin(phi), u), x, cell, rho));
+    st.add_sample(x, cell, rho, true);
+  }
+  REQUIRE(st.refine(20));
+  const std::size_t before = st.triangulation().num_vertices();
+  st.set_rho_floor(0);
+  CHECK(st.refine(20));
+  CHECK(st.stats().U_left == 0);
+  CHECK(st.triangulation().num_vertices() > before);
+  const skinmesh::refine::SkinCheckReport rep = skinmesh::refine::check_skin_mesh(skin, st.extract());
+  for (const std::string& p : rep.problems) INFO(p);
+  CHECK(rep.ok());
+}
