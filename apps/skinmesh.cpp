@@ -321,6 +321,10 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                      {"kinetic_moves", dt.kinetic_moves}, {"conflict_tets", dt.conflict_tets},
                      {"star_tets", dt.star_tets},         {"link_vertices", dt.link_vertices},
                      {"local_tets", dt.local_tets},       {"walk_steps", dt.walk_steps}};
+    const auto& pr = d.predicates;
+    j["predicates"] = {
+        {"orient3d", {{"calls", pr.orient3d.calls}, {"exact", pr.orient3d.exact}, {"sos", pr.orient3d.sos}}},
+        {"power_test", {{"calls", pr.power_test.calls}, {"exact", pr.power_test.exact}, {"sos", pr.power_test.sos}}}};
   } else {
   const front::SweepStats& s = res.sweep;
   const refine::RefineStats& r = res.refinement;

@@ -77,6 +77,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
   };
 
   report("skin", 0.0);
+  const geometry::PredicateStats predicates_before = geometry::predicate_stats();
   const skin::SkinSurface skin(points);
   res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
   lap("skin");
@@ -169,6 +170,18 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     lap("output");
   }
 
+  {
+    const geometry::PredicateStats now = geometry::predicate_stats();
+    auto diff = [](geometry::PredicateCounters a, const geometry::PredicateCounters& b) {
+      a.calls -= b.calls;
+      a.exact -= b.exact;
+      a.sos -= b.sos;
+      return a;
+    };
+    stats.predicates.orient2d = diff(now.orient2d, predicates_before.orient2d);
+    stats.predicates.orient3d = diff(now.orient3d, predicates_before.orient3d);
+    stats.predicates.power_test = diff(now.power_test, predicates_before.power_test);
+  }
   if (opt.check) {
     report("check", 0.0);
     refine::SkinCheckOptions checks = opt.checks;

@@ -18,6 +18,7 @@
 
 #include "dynamic/sample_triangulation.h"
 #include "geometry/indexed_mesh.h"
+#include "geometry/predicates.h"
 #include "geometry/weighted_point.h"
 #include "refine/size_conditions.h"
 #include "refine/skin_mesh_check.h"
@@ -41,7 +42,7 @@ struct DynamicOptions {
   double seed_spacing = 0.2;
   /// Growth: largest motion of a sample in one step, as a fraction of
   /// max(rho, rho_floor) at the sample.
-  double max_step_motion = 0.5;
+  double max_step_motion = 1.0;
   /// Growth: rho floor as a fraction of the smallest final atom sphere radius
   /// sqrt(w/2); during growth [U] uses max(rho, floor), so that the sample
   /// stays bounded near the critical points of the growth, where rho -> 0
@@ -74,6 +75,9 @@ struct DynamicStats {
   bool converged = false;        ///< the final refinement met every condition it checks
   /// Operation counts of the 3D Delaunay triangulation (where the time goes).
   geometry::DelaunayTriangulation::Stats delaunay;
+  /// Predicate calls of the whole run on the calling thread, and how many
+  /// needed exact arithmetic or symbolic perturbation (geometry/predicates.h).
+  geometry::PredicateStats predicates;
 };
 
 /// Result of mesh_skin_dynamic().
