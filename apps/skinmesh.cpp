@@ -524,6 +524,20 @@ int main(int argc, char** argv) {
     std::cerr << "skinmesh" << cmd << ": " << one_line(e.what()) << " (see 'skinmesh" << cmd << " --help')\n";
     return 2;
   }
+  // Options of one algorithm given with the other: an error, not silently ignored.
+  if (mesh_cmd->parsed()) {
+    const bool dynamic = mesh.algorithm == "dynamic";
+    for (const char* name :
+         {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor", "--no-growth",
+          "--growth-step"}) {
+      const bool sweep_only = std::string(name) != "--no-growth" && std::string(name) != "--growth-step";
+      if (mesh_cmd->count(name) > 0 && sweep_only == dynamic) {
+        std::cerr << "skinmesh mesh: " << name << " applies to --algorithm " << (sweep_only ? "sweep" : "dynamic")
+                  << " only (see 'skinmesh mesh --help')\n";
+        return 2;
+      }
+    }
+  }
   try {
     if (info_cmd->parsed()) return run_info(info);
     if (check_cmd->parsed()) return run_check(check);

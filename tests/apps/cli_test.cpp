@@ -109,6 +109,29 @@ TEST_CASE("bad values, unknown commands and missing files: one line each, docume
   CHECK_FALSE(fs::exists(s.dir / "out.ply"));
 }
 
+TEST_CASE("--algorithm dynamic: a checked mesh, its statistics, and options of the other algorithm refused") {
+  Scratch s;
+  const Run r = run(s, "mesh " + kAtom + " -o d.ply --algorithm dynamic --no-growth --stats - --quiet");
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j.at("algorithm") == "dynamic");
+  CHECK(j.at("growth") == false);
+  CHECK(j.at("checks_passed") == true);
+  CHECK(j.at("operations").at("converged") == true);
+  CHECK(j.at("delaunay").at("insertions").get<std::size_t>() > 100);
+  const Run c = run(s, "check " + kAtom + " d.ply --quiet");
+  CHECK(c.exit_code == 0);
+  for (const std::string bad : {"--algorithm dynamic --trace", "--algorithm dynamic --max-steps 3",
+                                "--no-growth", "--algorithm sweep --growth-step 0.5"}) {
+    INFO(bad);
+    const Run e = run(s, "mesh " + kAtom + " -o e.ply " + bad);
+    CHECK(e.exit_code == 2);
+    CHECK(lines(e.err) == 1);
+    CHECK(e.err.find("applies to --algorithm") != std::string::npos);
+    CHECK_FALSE(fs::exists(s.dir / "e.ply"));
+  }
+}
+
 TEST_CASE("--stats is valid JSON even for a path with a quote and a backslash; check accepts the mesh") {
   Scratch s;
   const std::string name = "a\"b\\c.ply";
