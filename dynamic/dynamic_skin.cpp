@@ -12,6 +12,7 @@
 
 #include "geometry/errors.h"
 #include "morse/critical_points.h"
+#include "morse/singular_skin.h"
 #include "skin/mixed_complex.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
@@ -79,6 +80,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
   report("skin", 0.0);
   const geometry::PredicateStats predicates_before = geometry::predicate_stats();
   const skin::SkinSurface skin(points);
+  morse::require_non_singular(skin);
   res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
   lap("skin");
 

@@ -97,8 +97,9 @@ struct DynamicResult {
 };
 
 /// Meshes the skin of `points` (centres Å, weights Å², shrink factor 1/2) with
-/// the dynamic-skin baseline. Throws InputError for an empty or singular input
-/// (as mesh_skin), std::invalid_argument for options out of range. A mesh that
+/// the dynamic-skin baseline. Throws InputError for an empty input or a
+/// singular skin (morse::require_non_singular, as mesh_skin does),
+/// std::invalid_argument for options out of range. A mesh that
 /// fails its check is returned with the report (ok() false).
 DynamicResult mesh_skin_dynamic(const std::vector<geometry::WeightedPoint>& points,
                                 const DynamicOptions& options = {});

@@ -17,6 +17,7 @@
 #include "dynamic/level_set.h"
 #include "dynamic/sample_triangulation.h"
 #include "geometry/delaunay_triangulation.h"
+#include "geometry/errors.h"
 #include "refine/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
@@ -226,4 +227,21 @@ TEST_CASE("dynamic: lowering the rho floor re-refines the facets it makes violat
   const skinmesh::refine::SkinCheckReport rep = skinmesh::refine::check_skin_mesh(skin, st.extract());
   for (const std::string& p : rep.problems) INFO(p);
   CHECK(rep.ok());
+}
+
+TEST_CASE("dynamic: a singular skin is refused with the atoms named, as the sweep refuses it") {
+  // Two balls of radius sqrt(8) Å at distance sqrt(32) Å touch exactly (the
+  // sweep's test of the same refusal, tests/front/sweep_test.cpp).
+  const double w = skinmesh::skin::atom_weight(1.5, 0.5);
+  const std::vector<WeightedPoint> touching = {{Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
+  for (const bool growth : {false, true}) {
+    sd::DynamicOptions opt;
+    opt.growth = growth;
+    try {
+      (void)sd::mesh_skin_dynamic(touching, opt);
+      FAIL("a skin with a cone point was meshed");
+    } catch (const skinmesh::InputError& e) {
+      CHECK(std::string(e.what()).find("#2 and #3") != std::string::npos);
+    }
+  }
 }
