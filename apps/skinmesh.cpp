@@ -254,7 +254,7 @@ struct MeshArgs {
   std::string out, stats;
   std::vector<double> direction;
   MeshOptions opt;
-  bool no_check = false, force = false, trace = false;
+  bool no_check = false, force = false, trace = false, no_angle_improvement = false;
   /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
   std::string algorithm = "sweep";
   bool no_growth = false;
@@ -354,6 +354,21 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
                      {"flip_caps", r.flip_caps},
                      {"L_left", r.L_left},
                      {"U_left", r.U_left}};
+  const refine::AngleImprovementStats& ai = res.angle_improvement;
+  j["angle_improvement"] = {{"enabled", a.opt.improve_angles},
+                            {"low_triangles", ai.low_triangles},
+                            {"passes", ai.passes},
+                            {"attempts", ai.attempts},
+                            {"moves", ai.moves},
+                            {"refused", ai.refused},
+                            {"refused_orientation", ai.refused_orientation},
+                            {"refused_rdt", ai.refused_rdt},
+                            {"refused_intersection", ai.refused_intersection},
+                            {"refused_L", ai.refused_L},
+                            {"refused_U", ai.refused_U},
+                            {"skipped", ai.skipped},
+                            {"min_angle_before_deg", ai.min_angle_before_deg},
+                            {"min_angle_after_deg", ai.min_angle_after_deg}};
   }
   json seconds = json::object();
   seconds["read"] = read_s;
@@ -379,6 +394,7 @@ int run_mesh(MeshArgs& a) {
   a.opt.probe_radius = a.mol.probe;
   a.opt.height_direction = height_direction(a.direction);
   a.opt.check = !a.no_check;
+  a.opt.improve_angles = !a.no_angle_improvement;
   if (a.trace) a.opt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   app::ProgressReporter progress(!a.mol.quiet);
   a.opt.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
@@ -478,6 +494,9 @@ int main(int argc, char** argv) {
                        "its local length scale rho (the growth schedule)")
       ->check(CLI::Range(1e-3, 1.0))
       ->capture_default_str();
+  mesh_cmd->add_flag("--no-angle-improvement", mesh.no_angle_improvement,
+                     "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
+                     "the paper's algorithm alone; papers/refine/angle_improvement.md)");
   mesh_cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
   mesh_cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
   const char* debug = "Debugging the sweep (papers/front/sweep.md)";
@@ -528,8 +547,8 @@ int main(int argc, char** argv) {
   if (mesh_cmd->parsed()) {
     const bool dynamic = mesh.algorithm == "dynamic";
     for (const char* name :
-         {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor", "--no-growth",
-          "--growth-step"}) {
+         {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
+         "--no-angle-improvement", "--no-growth", "--growth-step"}) {
       const bool sweep_only = std::string(name) != "--no-growth" && std::string(name) != "--growth-step";
       if (mesh_cmd->count(name) > 0 && sweep_only == dynamic) {
         std::cerr << "skinmesh mesh: " << name << " applies to --algorithm " << (sweep_only ? "sweep" : "dynamic")

@@ -1,18 +1,18 @@
 // front/pipeline.cpp: mesh_skin(), the stages of Cheng & Shi 2004 §4.1
 // "Algorithm" in order (skin, Morse–Smale complex, sweep, local refinement,
-// check), timed one by one.
+// angle improvement, check), timed one by one.
 // Notes: papers/front/pipeline.md
 #include "front/pipeline.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <stdexcept>
 
 #include "geometry/errors.h"
 #include "morse/critical_points.h"
+#include "morse/singular_skin.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
@@ -78,37 +78,6 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
 
 namespace {
 
-/// Refuses a skin that is singular or within kSingularScale · L of a
-/// singular one (L the mixed complex's length scale, Å): a simplex X (edge,
-/// triangle or tetrahedron of the regular triangulation) whose orthosphere
-/// weight w_X is at most 2 eps² in absolute value, eps = kSingularScale · L,
-/// with its focus z_X within eps of its mixed cell. There the skin has a cone
-/// point (two balls touching, three or four balls meeting at one point) or a
-/// neck, gap or cavity of radius sqrt(|w_X| / 2) <= eps: rho falls to that
-/// radius and no mesh of bounded size resolves it. Throws InputError naming
-/// the atoms (input order, 1-based) and what to change. papers/front/pipeline.md,
-/// "Singular skins".
-void require_non_singular(const skin::SkinSurface& skin) {
-  constexpr double kSingularScale = 1e-6;
-  const skin::MixedComplex& mc = skin.mixed_complex();
-  const double eps = kSingularScale * mc.length_scale();
-  for (Index c = 0; c < mc.num_cells(); ++c) {
-    const skin::MixedCell& X = mc.cell(c);
-    if (X.dim == 0 || X.bounding) continue;
-    if (!(std::abs(X.focus_weight) <= 2 * eps * eps)) continue;
-    if (!(morse::cell_distance(mc, c, X.focus) <= eps)) continue;
-    static const char* const kWhat[4] = {"", "touch", "meet at one point", "meet at one point"};
-    std::ostringstream os;
-    os.precision(2);
-    os << "singular skin: the balls of atoms";
-    for (int i = 0; i <= X.dim; ++i) os << (i ? (i == X.dim ? " and " : ", ") : " ") << '#' << X.vertices[i] + 1;
-    os << " (input order) " << kWhat[X.dim] << ": the skin pinches there (radius "
-       << std::sqrt(std::abs(X.focus_weight) / 2) << " Å < " << eps
-       << " Å, 1e-6 of the molecule's size); move one of these atoms or change the probe radius by ~1e-4 Å";
-    throw InputError("", 0, os.str());
-  }
-}
-
 MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
   using Clock = std::chrono::steady_clock;
   MeshResult res;
@@ -126,7 +95,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // 1. The skin: regular triangulation and mixed complex (§2.1).
   stage("skin");
   const skin::SkinSurface skin(points);
-  require_non_singular(skin);
+  morse::require_non_singular(skin);
   lap("skin");
 
   // 2. Critical points and the Morse–Smale complex (§3), checked against the
@@ -155,6 +124,13 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     stage("refine");
     res.refinement = refine::refine_mesh(skin, swept.mesh, with_size(options.refinement, options.size));
     lap("refine");
+    // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
+    if (options.improve_angles) {
+      stage("angles");
+      res.angle_improvement =
+          refine::improve_angles(skin, swept.mesh, with_size(options.angle_improvement, options.size));
+      lap("angles");
+    }
   }
   res.mesh = output_mesh(skin, swept.mesh);
   lap("output");

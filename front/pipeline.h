@@ -8,6 +8,9 @@
 //                 Euler characteristic of the skin (from its dual complex)
 //   3. sweep      Algorithm 1: creation, creep, wing, bridge, seal (§4.1, §4.2)
 //   4. refine     the local refinement: flips, contractions, insertions (§4.3)
+//   4b. angles    vertex moves that raise the smallest angles and keep [L],
+//                 [U] and the restricted Delaunay property (not in the paper;
+//                 refine/angle_improvement.h)
 //   5. check      the skin-aware verifier (refine/skin_mesh_check.h)
 // Notes: papers/front/pipeline.md
 #pragma once
@@ -22,6 +25,7 @@
 #include "geometry/weighted_point.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
+#include "refine/angle_improvement.h"
 #include "refine/local_refinement.h"
 #include "refine/size_conditions.h"
 #include "refine/skin_mesh_check.h"
@@ -36,8 +40,8 @@ struct MeshOptions {
   /// w = 2 (r + probe)² (Cheng & Shi §2.1; papers/skin/molecule_io.md).
   double probe_radius = 1.4;
   /// C and Q of [L] and [U] (Cheng & Shi §2.2). They are copied into the
-  /// sweep, refinement and check options (whose own `size` fields are
-  /// ignored), so that all stages agree.
+  /// sweep, refinement, angle-improvement and check options (whose own
+  /// `size` fields are ignored), so that all stages agree.
   refine::SizeConstants size;
   /// Unit height direction of the sweep (§3.1 uses +y; the default is tilted
   /// slightly so that no two atoms are at the same height by accident).
@@ -51,10 +55,17 @@ struct MeshOptions {
   /// restricted Delaunay property may fail.
   bool refine = true;
   refine::RefineOptions refinement;
+  /// Stage 4b, after the refinement (skipped when `refine` is false): move
+  /// the vertices of triangles with small angles on the skin, keeping [L],
+  /// [U], the restricted Delaunay property, orientation and embedding
+  /// (refine/angle_improvement.h; papers/refine/angle_improvement.md).
+  /// Default on; off gives the mesh of the paper's algorithm alone.
+  bool improve_angles = true;
+  refine::AngleImprovementOptions angle_improvement;
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
   refine::SkinCheckOptions checks;
-  /// Called with a stage name ("skin", "morse", "sweep", "refine", "check")
+  /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles", "check")
   /// and the fraction of it done (0..1); empty: no reports. The library
   /// itself prints nothing.
   std::function<void(const std::string& stage, double fraction)> progress;
@@ -72,12 +83,14 @@ struct MeshResult {
   skin::SkinTopology expected_topology;
   front::SweepStats sweep;
   refine::RefineStats refinement;
+  /// What stage 4b did (all zero if it did not run).
+  refine::AngleImprovementStats angle_improvement;
   /// True if stage 5 ran; then `check` holds its report.
   bool checked = false;
   refine::SkinCheckReport check;
   /// Wall-clock seconds per stage, in order ("skin", "morse", "sweep",
-  /// "refine", "output" (compaction, normals, atoms), "check"; stages that
-  /// did not run are absent).
+  /// "refine", "angles", "output" (compaction, normals, atoms), "check";
+  /// stages that did not run are absent).
   std::vector<std::pair<std::string, double>> seconds;
 
   /// Centre of the local frame (Å, skin::local_frame_centre): every stage ran
