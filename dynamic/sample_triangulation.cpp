@@ -251,27 +251,18 @@ SampleTriangulation::RoundReport SampleTriangulation::scan() const {
   };
   std::vector<Link> links;
   std::vector<std::uint8_t> used(dt_.vertex_capacity(), 0);
-  dt_.for_each_tet([&](Index t) {
-    if (!(value_[t] < 0)) return;
-    for (int f = 0; f < 4; ++f) {
-      if (!restricted(t, f)) continue;
-      const auto& v = dt_.tet(t);
-      const auto& fv = DelaunayTriangulation::kFaceVertices[f];
-      // (a, b, c) has its normal into t (inside); the outward triangle is (a, c, b).
-      const Index a = v[fv[0]], b = v[fv[2]], c = v[fv[1]];
-      if (const double ratio = facet_ratio(t, f); !(ratio < 1.0)) {
-        ++rep.u;
-        rep.u_facets.push_back(Facet{ratio, t, f, birth_[t]});
-      }
-      const Index tri[3] = {a, b, c};
-      for (int k = 0; k < 3; ++k) {
-        const Index p = tri[k], q = tri[(k + 1) % 3], r = tri[(k + 2) % 3];
-        links.push_back({p, q, r});
-        used[p] = 1;
-        if (p < q && !DelaunayTriangulation::is_bounding(p) && !DelaunayTriangulation::is_bounding(q) &&
-            !refine::satisfies_L(dt_.point(p), dt_.point(q), rho_[p], rho_[q], size_))
-          rep.l_edges.push_back({p, q});
-      }
+  for_each_restricted_facet([&](Index t, int f, const std::array<Index, 3>& tri) {
+    if (const double ratio = facet_ratio(t, f); !(ratio < 1.0)) {
+      ++rep.u;
+      rep.u_facets.push_back(Facet{ratio, t, f, birth_[t]});
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Index p = tri[k], q = tri[(k + 1) % 3], r = tri[(k + 2) % 3];
+      links.push_back({p, q, r});
+      used[p] = 1;
+      if (p < q && !DelaunayTriangulation::is_bounding(p) && !DelaunayTriangulation::is_bounding(q) &&
+          !refine::satisfies_L(dt_.point(p), dt_.point(q), rho_[p], rho_[q], size_))
+        rep.l_edges.push_back({p, q});
     }
   });
   std::sort(links.begin(), links.end());
@@ -380,10 +371,7 @@ bool SampleTriangulation::refine(int max_rounds) {
 
 std::size_t SampleTriangulation::num_restricted_facets() const {
   std::size_t n = 0;
-  dt_.for_each_tet([&](Index t) {
-    if (!(value_[t] < 0)) return;
-    for (int f = 0; f < 4; ++f) n += restricted(t, f) ? 1 : 0;
-  });
+  for_each_restricted_facet([&](Index, int, const std::array<Index, 3>&) { ++n; });
   return n;
 }
 
@@ -391,15 +379,9 @@ geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_id
   geometry::IndexedMesh mesh;
   std::vector<Index> local(dt_.vertex_capacity(), kInvalidIndex);
   std::vector<std::array<Index, 3>> tris;
-  dt_.for_each_tet([&](Index t) {
-    if (!(value_[t] < 0)) return;
-    for (int f = 0; f < 4; ++f) {
-      if (!restricted(t, f)) continue;
-      const auto& v = dt_.tet(t);
-      const auto& fv = DelaunayTriangulation::kFaceVertices[f];
-      tris.push_back({v[fv[0]], v[fv[2]], v[fv[1]]});
-      for (const int k : fv) local[v[k]] = 0;
-    }
+  for_each_restricted_facet([&](Index, int, const std::array<Index, 3>& tri) {
+    tris.push_back(tri);
+    for (const Index u : tri) local[u] = 0;
   });
   if (vertex_ids) vertex_ids->clear();
   const skin::MixedComplex& mc = skin_->mixed_complex();

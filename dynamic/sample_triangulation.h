@@ -7,6 +7,7 @@
 // Notes: papers/dynamic/dynamic_skin.md
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <queue>
@@ -141,6 +142,22 @@ class SampleTriangulation {
     std::size_t u = 0;
   };
 
+  /// Calls fn(t, face, {a, b, c}) once for every restricted facet, from its
+  /// inside tetrahedron t (circumcentre inside F_c); (a, b, c) is ordered
+  /// counter-clockwise seen from outside.
+  template <class Fn>
+  void for_each_restricted_facet(Fn&& fn) const {
+    dt_.for_each_tet([&](Index t) {
+      if (!(value_[t] < 0)) return;
+      for (int f = 0; f < 4; ++f) {
+        if (!restricted(t, f)) continue;
+        const auto& v = dt_.tet(t);
+        const auto& fv = geometry::DelaunayTriangulation::kFaceVertices[f];
+        // (v[fv0], v[fv1], v[fv2]) has its normal into t (inside): reverse it.
+        fn(t, f, std::array<Index, 3>{v[fv[0]], v[fv[2]], v[fv[1]]});
+      }
+    });
+  }
   void ensure_capacity();
   void classify(Index t);
   void after_operation();
