@@ -22,6 +22,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/output.h"
@@ -410,10 +411,10 @@ int run_mesh(MeshArgs& a) {
     d.progress = a.opt.progress;
     dyn = dynamic::mesh_skin_dynamic(mol, d);
     // The fields the summary and the writer share with the sweep's result.
-    res.mesh = dyn->mesh;
+    res.mesh = std::move(dyn->mesh);
     res.expected_topology = dyn->expected_topology;
     res.checked = dyn->checked;
-    res.check = dyn->check;
+    res.check = std::move(dyn->check);
     res.seconds = dyn->seconds;
     res.frame_centre = dyn->frame_centre;
   } else {
