@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "geometry/mesh_checks.h"
@@ -177,30 +178,20 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
 
 TEST_SUITE("refine") {
 
-TEST_CASE("angle improvement: a refined jittered sphere gets larger angles and keeps [L], [U], RDT, embedding") {
-  const skin::SkinSurface skin = one_atom();
-  for (unsigned seed : {1u, 2u, 3u}) {
-    INFO("seed " << seed);
-    geometry::SurfaceMesh mesh = refined_mesh(skin, 3, 0.05, seed);
-    const double before = min_angle_deg(mesh);
-    REQUIRE(before < 28.0);  // something to improve (the default target)
-    const auto st = improve_and_check(skin, mesh);
-    CHECK(st.moves > 0);
-    CHECK(min_angle_deg(mesh) > before);
-    CHECK(!st.skipped);
-  }
-}
-
-TEST_CASE("angle improvement: two atoms (sphere caps and a hyperboloid neck)") {
-  const skin::SkinSurface skin = two_atoms();
-  for (unsigned seed : {1u, 2u, 3u}) {
-    INFO("seed " << seed);
-    geometry::SurfaceMesh mesh = refined_mesh(skin, 3, 0.05, seed);
-    const double before = min_angle_deg(mesh);
-    REQUIRE(before < 28.0);
-    const auto st = improve_and_check(skin, mesh);
-    CHECK(st.moves > 0);
-    CHECK(min_angle_deg(mesh) > before);
+TEST_CASE("angle improvement: one sphere, and two atoms (sphere caps and a hyperboloid neck), get larger "
+          "angles and keep [L], [U], RDT, embedding") {
+  const std::pair<const char*, skin::SkinSurface> skins[] = {{"one atom", one_atom()}, {"two atoms", two_atoms()}};
+  for (const auto& [name, skin] : skins) {
+    for (unsigned seed : {1u, 2u, 3u}) {
+      INFO(name << ", seed " << seed);
+      geometry::SurfaceMesh mesh = refined_mesh(skin, 3, 0.05, seed);
+      const double before = min_angle_deg(mesh);
+      REQUIRE(before < 28.0);  // something to improve (the default target)
+      const auto st = improve_and_check(skin, mesh);
+      CHECK(st.moves > 0);
+      CHECK(min_angle_deg(mesh) > before);
+      CHECK(!st.skipped);
+    }
   }
 }
 
