@@ -163,8 +163,15 @@ std::string cell(const Result& r, bool with_seconds = true) {
   std::snprintf(buf, sizeof buf, "%s | %.1f°%s |", thousands(r.triangles).c_str(), r.min_angle, r.ok ? "" : " FAILED");
   std::string out = buf;
   if (with_seconds) {
-    std::snprintf(buf, sizeof buf, " %.3g |", r.seconds);
-    out += buf;
+    // Three significant digits, but whole seconds from 1,000 s on (no exponent).
+    if (r.seconds >= 999.5) {
+      out += ' ';
+      out += thousands(static_cast<std::size_t>(std::llround(r.seconds)));
+      out += " |";
+    } else {
+      std::snprintf(buf, sizeof buf, " %.3g |", r.seconds);
+      out += buf;
+    }
   }
   return out;
 }
