@@ -157,12 +157,23 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // of rho are one degenerate (birth-death) critical point for the sweep,
   // whatever the traced lines say: the first step of a line from the saddle
   // jumps over the extremum, so no arc joins them. Positions do not change,
-  // so they are found once; liveness is checked when they are used.
+  // so they are found once; liveness is checked when they are used. The
+  // extrema come from the grid (radius padded against rounding, then the
+  // exact test), in increasing index per saddle, so the list is the one an
+  // all-pairs scan gives.
   std::vector<Cand> coincident;
+  double max_extremum_rho = 0;
+  for (const CriticalPoint& c : ms.critical)
+    if (c.kind != CriticalKind::Saddle) max_extremum_rho = std::max(max_extremum_rho, c.rho);
+  std::vector<Index> near;
   for (Index s = 0; s < n; ++s) {
     if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
-    for (Index x = 0; x < n; ++x) {
-      if (x == s || !ms.live[x] || ms.critical[x].kind == CriticalKind::Saddle) continue;
+    near.clear();
+    const double reach = opt.coincident_factor * (ms.critical[s].rho + max_extremum_rho) * (1 + 1e-9);
+    extrema.for_each_near(ms.critical[s].position, reach, [&](Index x, const Vec3&) { near.push_back(x); });
+    std::sort(near.begin(), near.end());
+    for (const Index x : near) {
+      if (!ms.live[x]) continue;
       const double d = (ms.critical[s].position - ms.critical[x].position).norm();
       if (d < opt.coincident_factor * (ms.critical[s].rho + ms.critical[x].rho)) coincident.push_back({d, s, x});
     }
