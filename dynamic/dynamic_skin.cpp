@@ -188,6 +188,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     report("check", 0.0);
     refine::SkinCheckOptions checks = opt.checks;
     checks.size = opt.size;
+    if (!checks.expected_topology) checks.expected_topology = res.expected_topology;
     res.check = refine::check_skin_mesh(skin, res.mesh, checks);
     res.checked = true;
     lap("check");

@@ -138,7 +138,9 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // 5. The check.
   if (options.check) {
     stage("check");
-    res.check = refine::check_skin_mesh(skin, res.mesh, with_size(options.checks, options.size));
+    refine::SkinCheckOptions check_options = with_size(options.checks, options.size);
+    if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
+    res.check = refine::check_skin_mesh(skin, res.mesh, check_options);
     res.checked = true;
     lap("check");
   }

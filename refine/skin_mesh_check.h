@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct SkinCheckOptions {
   /// components and the total are compared, plus the multiset when the total
   /// genus is 0 or there is a single component.
   std::vector<std::int64_t> expected_component_euler;
+  /// The topology of the skin from its dual complex K0
+  /// (skin::dual_complex_topology of the same skin), if the caller has
+  /// already computed it (the pipeline has); empty: computed here. It is a
+  /// deterministic function of the skin, so the report is the same either way.
+  std::optional<skin::SkinTopology> expected_topology;
 };
 
 /// Result of check_skin_mesh().

@@ -221,6 +221,29 @@ TEST_CASE("the report is the same with one thread and with two") {
   CHECK(defective == int(meshes.size()) - 1);
 }
 
+TEST_CASE("the report is the same when the caller passes the skin's topology, and that topology is used") {
+  // SkinCheckOptions::expected_topology (the pipeline passes the K0 topology
+  // it computed for the Morse count) must give the report the check computes
+  // itself; a wrong one must make the topology check fail, so the option is
+  // not ignored.
+  const Vec3 c(0, 0, 0);
+  const double R = 2.0;
+  const skin::SkinSurface skin({{c, 2 * R * R}});
+  const geometry::IndexedMesh mesh = icosphere(c, R, 3);
+  refine::SkinCheckOptions computed, given, wrong;
+  given.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+  wrong.expected_topology = *given.expected_topology;
+  wrong.expected_topology->betti2 += 1;  // a cavity that is not there
+  const auto a = refine::check_skin_mesh(skin, mesh, computed);
+  const auto b = refine::check_skin_mesh(skin, mesh, given);
+  CHECK(a.ok());
+  CHECK(a.to_json() == b.to_json());
+  CHECK(a.problems == b.problems);
+  const auto w = refine::check_skin_mesh(skin, mesh, wrong);
+  CHECK(!w.topology_matches);
+  CHECK(!w.ok());
+}
+
 }  // TEST_SUITE
 
 TEST_SUITE("refine") {
