@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include "geometry/types.h"
@@ -18,14 +17,35 @@ namespace skinmesh::geometry {
 
 /// Uniform grid of cubic cells of side `cell_size` (Å) hashing point indices.
 /// Points can be added after construction; removal is not supported (callers
-/// filter stale entries). Queries visit the cells overlapping the query box.
+/// filter stale entries). Queries visit the cells overlapping the query box,
+/// and, within a cell, the points in insertion order.
+///
+/// Layout: an open-addressing table (linear probing, at most half full) maps
+/// a cell's key to the first and last of its points; the points live in one
+/// flat array, each linked to the next point of its cell. No allocation per
+/// cell, one probe sequence per visited cell. [measured: it replaced a
+/// node-based std::unordered_map of per-cell vectors; same queries, same
+/// order, byte-identical meshes, the sweep of maltoporin 1.58 -> 1.48 s; most
+/// of the remaining cost is reading the points of the visited cells
+/// (papers/bench/profile.md)]
 class PointGrid {
  public:
   /// Pre: cell_size > 0.
-  explicit PointGrid(double cell_size) : h_(cell_size) {}
+  explicit PointGrid(double cell_size) : h_(cell_size), slots_(kInitialSlots) {}
 
   /// Adds point `id` at position p.
-  void insert(Index id, const Vec3& p) { cells_[key(cell_of(p))].push_back({id, p}); }
+  void insert(Index id, const Vec3& p) {
+    if (2 * (used_ + 1) > slots_.size()) grow();
+    Slot& s = slot_for_insert(key(cell_of(p)));
+    const auto e = static_cast<std::uint32_t>(entries_.size());
+    entries_.push_back({p, id, kNone});
+    if (s.head == kNone) {
+      s.head = e;
+    } else {
+      entries_[s.tail].next = e;
+    }
+    s.tail = e;
+  }
 
   /// Calls fn(id, position) for every point within distance r (Å) of q.
   template <class Fn>
@@ -36,20 +56,65 @@ class PointGrid {
     for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
       for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
         for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
-          auto it = cells_.find(key({i, j, k}));
-          if (it == cells_.end()) continue;
-          for (const Entry& e : it->second)
-            if ((e.p - q).squaredNorm() <= r2) fn(e.id, e.p);
+          const Slot* s = find(key({i, j, k}));
+          if (!s) continue;
+          for (std::uint32_t e = s->head; e != kNone; e = entries_[e].next)
+            if ((entries_[e].p - q).squaredNorm() <= r2) fn(entries_[e].id, entries_[e].p);
         }
   }
 
   double cell_size() const { return h_; }
 
  private:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  /// Keys use 63 bits, so the all-ones key marks an empty slot.
+  static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
+  static constexpr std::size_t kInitialSlots = 64;  // a power of two
   struct Entry {
-    Index id;
     Vec3 p;
+    Index id;
+    std::uint32_t next;  ///< the next point of the same cell, or kNone
   };
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t head = kNone, tail = kNone;
+  };
+  std::size_t home(std::uint64_t k) const {
+    // Fibonacci hashing: the high bits of k times 2^64 / golden ratio.
+    return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+  const Slot* find(std::uint64_t k) const {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = home(k);; i = (i + 1) & mask) {
+      const Slot& s = slots_[i];
+      if (s.key == k) return &s;
+      if (s.key == kEmpty) return nullptr;
+    }
+  }
+  Slot& slot_for_insert(std::uint64_t k) {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = home(k);; i = (i + 1) & mask) {
+      Slot& s = slots_[i];
+      if (s.key == k) return s;
+      if (s.key == kEmpty) {
+        s.key = k;
+        ++used_;
+        return s;
+      }
+    }
+  }
+  void grow() {
+    std::vector<Slot> old(slots_.size() * 2);
+    old.swap(slots_);
+    --shift_;
+    const std::size_t mask = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.key == kEmpty) continue;
+      std::size_t i = home(s.key);
+      while (slots_[i].key != kEmpty) i = (i + 1) & mask;
+      slots_[i] = s;
+    }
+  }
   std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
     return {static_cast<std::int64_t>(std::floor(p.x() / h_)),
             static_cast<std::int64_t>(std::floor(p.y() / h_)),
@@ -62,7 +127,10 @@ class PointGrid {
            ((static_cast<std::uint64_t>(c[2]) & m) << 42);
   }
   double h_;
-  std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+  std::vector<Slot> slots_;
+  std::vector<Entry> entries_;
+  std::size_t used_ = 0;  ///< occupied slots
+  int shift_ = 64 - 6;    ///< 64 - log2(slots_.size())
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the

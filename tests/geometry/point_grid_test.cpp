@@ -91,6 +91,29 @@ TEST_CASE("point_grid: FlatPointGrid and PointGrid queries equal a linear scan")
     }
 }
 
+TEST_CASE("point_grid: PointGrid visits a cell's points in insertion order, across table growth") {
+  // Callers (the sweep's collision safety net) take the first point found, so
+  // the visiting order is part of the contract: cells in (x, y, z) order,
+  // points of a cell in the order they were inserted. 5,000 points in 40
+  // cells of side 1 (every other cell, so a query around a cell's centre
+  // reaches no other point) force several re-hashes of the table in between.
+  PointGrid grid(1.0);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  std::vector<std::vector<Index>> inserted(40);
+  for (Index i = 0; i < 5000; ++i) {
+    const int c = int(rng() % 40);
+    grid.insert(i, Vec3(2 * (c % 5) + u(rng), 2 * (c / 5) + u(rng), -3 + u(rng)));
+    inserted[std::size_t(c)].push_back(i);
+  }
+  for (int c = 0; c < 40; ++c) {
+    const Vec3 centre(2 * (c % 5) + 0.5, 2 * (c / 5) + 0.5, -2.5);
+    std::vector<Index> got;
+    grid.for_each_near(centre, 0.87, [&](Index id, const Vec3&) { got.push_back(id); });
+    CHECK(got == inserted[std::size_t(c)]);  // the whole cell (its corners are 0.866 away), in order
+  }
+}
+
 TEST_CASE("point_grid: FlatPointGrid on empty, all-non-finite and single-point inputs") {
   const FlatPointGrid empty(std::vector<Vec3>{}, 1.0);
   CHECK_FALSE(empty.any_near(Vec3::Zero(), 1e9, [](Index, const Vec3&) { return true; }));
