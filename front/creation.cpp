@@ -21,8 +21,9 @@ void Sweep::creation(Index c) {
   for (int i = 0; i < k; ++i) {
     // q_i on the tangent circle, projected along the normal line to p_i.
     const Vec3 dir = rotate(t1, n, i * opt_.fan_angle_deg * kDeg);
-    const Vec3 p = project_tangent(p0, dir, r);
-    ring[static_cast<std::size_t>(i)] = new_vertex(p, cell_[p0]);
+    Index cell = kInvalidIndex;
+    const Vec3 p = project_tangent(p0, dir, r, &cell);
+    ring[static_cast<std::size_t>(i)] = new_vertex(p, cell);
   }
   for (int i = 0; i < k; ++i)
     add_triangle(p0, ring[static_cast<std::size_t>(i)], ring[static_cast<std::size_t>((i + 1) % k)]);

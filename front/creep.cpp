@@ -24,8 +24,15 @@ void Sweep::creep(Vertex v) {
   // Figure 7: if the first (last) fan triangle would not fit in the hole
   // wedge of w (u), measured in T_w (T_u), or its new point would come close
   // to w's (u's) other neighbour, wing w (u) first and look again.
+  // The end points p_1 and p_{m-1} of the last Figure 7 test, projected
+  // there once and reused by the fan (valid while test_m == m and k is the
+  // corner they were computed for).
+  int test_m = 0;
+  Vec3 test_p1, test_pm;
+  Index test_cell1 = kInvalidIndex, test_cellm = kInvalidIndex;
   for (int attempt = 0;; ++attempt) {
     k = corner(v);
+    test_m = 0;
     if (!std::isfinite(k.angle)) {
       std::ostringstream os;
       os << "creep: undefined front angle at vertex " << v.idx() << " (" << pv.transpose()
@@ -48,8 +55,20 @@ void Sweep::creep(Vertex v) {
       // where a point just inside the wedge on the tangent circle can fall
       // just outside it on the skin (src kinase at probe 0: 0.3° inside, then
       // a fold at w).
-      const Vec3 p1 = mm == 1 ? mesh_.position(k.u) : project_tangent(v, rotate(k.dw, n, k.angle / mm), r);
-      const Vec3 pm = mm == 1 ? mesh_.position(k.w) : project_tangent(v, rotate(k.dw, n, k.angle * (mm - 1) / mm), r);
+      // For mm = 2 both ends are the same point (the angles k.angle / 2 and
+      // k.angle * 1 / 2 are the same double), projected once.
+      test_m = mm;
+      if (mm == 1) {
+        test_p1 = mesh_.position(k.u), test_pm = mesh_.position(k.w);
+      } else {
+        test_p1 = project_tangent(v, rotate(k.dw, n, k.angle / mm), r, &test_cell1);
+        if (mm == 2)
+          test_pm = test_p1, test_cellm = test_cell1;
+        else
+          test_pm = project_tangent(v, rotate(k.dw, n, k.angle * (mm - 1) / mm), r, &test_cellm);
+      }
+      const Vec3& p1 = test_p1;
+      const Vec3& pm = test_pm;
       const Vertex p1v = mm == 1 ? k.u : Vertex(), pmv = mm == 1 ? k.w : Vertex();
       const double clearance = opt_.fan_clearance * r;
       bw = w2 != k.u && ((mm > 1 && (p1 - pw2).norm() < clearance) || !fits_at(k.w, p1, pv, p1v, v));
@@ -121,8 +140,17 @@ void Sweep::creep(Vertex v) {
   std::vector<Vertex> fan;
   fan.push_back(k.w);
   for (int i = 1; i < m; ++i) {
-    const Vec3 dir = rotate(k.dw, n, i * k.angle / m);
-    fan.push_back(new_vertex(project_tangent(v, dir, r), cell_[v]));
+    // The same rotation angle as test_fan's for i = 1 (1 * a / m == a / m) and
+    // i = m - 1 ((m - 1) * a == a * (m - 1)): its projections are reused.
+    if (test_m == m && i == 1) {
+      fan.push_back(new_vertex(test_p1, test_cell1));
+    } else if (test_m == m && i == m - 1) {
+      fan.push_back(new_vertex(test_pm, test_cellm));
+    } else {
+      Index cell = kInvalidIndex;
+      const Vec3 p = project_tangent(v, rotate(k.dw, n, i * k.angle / m), r, &cell);
+      fan.push_back(new_vertex(p, cell));
+    }
   }
   fan.push_back(k.u);
   for (int i = 1; i <= m; ++i) add_triangle(v, fan[i - 1], fan[i]);

@@ -107,7 +107,7 @@ void Sweep::defer(Vertex v, double r) {
   ++stats_.deferred;
 }
 
-Vec3 Sweep::project_tangent(Vertex v, const Vec3& dir, double r) {
+Vec3 Sweep::project_tangent(Vertex v, const Vec3& dir, double r, Index* cell_out) {
   // Normal-line projection of q = v + r dir (papers/skin/skin_math.md §7.2):
   // the bracket [-delta, delta] comes from the sandwiching balls of radius rho(v).
   const double rho = rho_[v];
@@ -117,11 +117,16 @@ Vec3 Sweep::project_tangent(Vertex v, const Vec3& dir, double r) {
   Vec3 out;
   Index cell = cell_[v];
   for (int attempt = 0; attempt < 4; ++attempt, delta *= 2) {
-    if (skin_.project_along_line(q, n, delta * (1 + 1e-9) + 1e-12 * skin_.length_scale(), out, cell)) return out;
+    if (skin_.project_along_line(q, n, delta * (1 + 1e-9) + 1e-12 * skin_.length_scale(), out, cell)) {
+      if (cell_out) *cell_out = cell;
+      return out;
+    }
   }
   // Fall back on the gradient pull-back (papers/skin/skin_math.md §7.3).
   cell = cell_[v];
-  return skin_.pull_back(q, cell);
+  out = skin_.pull_back(q, cell);
+  if (cell_out) *cell_out = cell;
+  return out;
 }
 
 // Holds in Protecting Spheres (Algorithm 1, lines 3–10)

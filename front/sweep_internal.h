@@ -228,8 +228,10 @@ class Sweep {
   /// the front moves on around it first.
   void defer(Vertex v, double r);
   double height(Vertex v) const { return e_.dot(mesh_.position(v)); }
-  /// Normal-line projection of v + r dir onto the skin (papers/skin/skin_math.md §7.2).
-  Vec3 project_tangent(Vertex v, const Vec3& dir, double r);
+  /// Normal-line projection of v + r dir onto the skin (papers/skin/skin_math.md §7.2);
+  /// if `cell` is given, the mixed cell of the projected point is written there
+  /// (the hint for new_vertex(), which then need not walk to it again).
+  Vec3 project_tangent(Vertex v, const Vec3& dir, double r, Index* cell = nullptr);
   /// The unresolved live saddle or maximum whose protecting sphere v's tangent
   /// disc meets (the nearest), or kInvalidIndex.
   Index hold_region(Vertex v) const;
