@@ -30,6 +30,23 @@ Sweep::Corner Sweep::corner(Vertex v) const {
   return k;
 }
 
+bool Sweep::clearly_not_below(Vertex v, double bound) const {
+  // Without atan2: for the unit tangents dw, du the hole angle t satisfies
+  // cos t = dw . du and sin t = (dw x du) . n. A cosine below -1e-9 puts t in
+  // (90° + 1e-9, 270°), a sine below -1e-9 in (180° + 1e-9, 360°), both clear
+  // of the rounding of atan2 and of a bound at 90° or 180° (a few ulps off).
+  // Most wing candidates after a creep have an obtuse hole angle and stop here.
+  constexpr double kUlps = 1e-12;
+  if (bound > kPi + kUlps) return false;
+  const Halfedge out = mesh_.halfedge(v);
+  const Vec3& p = mesh_.position(v);
+  const Vec3& n = normal_[v];
+  const Vec3 dw = tangent_dir(p, n, mesh_.position(mesh_.to_vertex(out)));
+  const Vec3 du = tangent_dir(p, n, mesh_.position(mesh_.from_vertex(mesh_.prev(out))));
+  if (dw.cross(du).dot(n) < -1e-9) return true;
+  return bound <= kPi / 2 + kUlps && dw.dot(du) < -1e-9;
+}
+
 bool Sweep::fits_at(Vertex x, Vertex y_from, Vertex y_to) const {
   return fits_at(x, mesh_.position(y_from), mesh_.position(y_to), y_from, y_to);
 }
@@ -67,16 +84,25 @@ bool Sweep::quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin
 }
 
 double Sweep::fold_excess(Vertex v) const {
+  // A test with a tolerance of degrees (opt.fold_tolerance_deg): the angles in
+  // single precision (atan2f, ~1e-7 rad) are plenty and cost half as much.
+  auto coarse_ccw_angle = [](const Vec3& a, const Vec3& b, const Vec3& n) {
+    double t = std::atan2(static_cast<float>(a.cross(b).dot(n)), static_cast<float>(a.dot(b)));
+    return t < 0 ? t + 2 * kPi : t;
+  };
   const Vec3 pv = mesh_.position(v);
   const Vec3 n = normal_[v];
   double covered = 0;
-  for (Face f : mesh_.faces(v)) {
-    Vertex a, b;
-    for (Halfedge h : mesh_.halfedges(f))
-      if (mesh_.from_vertex(h) == v) a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
-    covered += ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
+  for (Halfedge h : mesh_.halfedges(v)) {
+    if (!mesh_.face(h).is_valid()) continue;  // the face of h has corners v, to(h), to(next(h))
+    const Vertex a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
+    covered += coarse_ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
   }
-  if (mesh_.is_boundary(v)) covered += corner(v).angle;
+  if (mesh_.is_boundary(v)) {  // the hole angle, as corner(v) measures it
+    const Halfedge out = mesh_.halfedge(v);
+    covered += coarse_ccw_angle(tangent_dir(pv, n, mesh_.position(mesh_.to_vertex(out))),
+                                tangent_dir(pv, n, mesh_.position(mesh_.from_vertex(mesh_.prev(out)))), n);
+  }
   return covered - 2 * kPi;
 }
 

@@ -21,19 +21,24 @@ using geometry::min_angle;
 bool Sweep::small_hole(Vertex v) const {
   const double reach = opt_.small_hole_reach * disc_radius(v);
   const Halfedge start = mesh_.halfedge(v);
+  // First the cheap part: the loop closes within small_hole_vertices vertices,
+  // all within reach of v (most departures stop here, before any angle).
   Halfedge h = start;
-  double angle_sum = 0;
-  for (int count = 1; count <= opt_.small_hole_vertices; ++count) {
+  int count = 1;
+  for (;; ++count) {
+    if (count > opt_.small_hole_vertices) return false;
     const Vertex x = mesh_.to_vertex(h);
-    angle_sum += corner(x).angle;
-    // A loop of k vertices bounds a small hole iff its hole angles add up to
-    // less than k 180°: (k - 2) 180° inside a polygon, (k + 2) 180° around
-    // the outside of a small disc (like a fresh bowl).
-    if (x == v) return angle_sum < count * kPi;
+    if (x == v) break;
     if ((mesh_.position(x) - mesh_.position(v)).norm() > reach) return false;
     h = mesh_.next(h);
   }
-  return false;
+  // A loop of k vertices bounds a small hole iff its hole angles add up to
+  // less than k 180°: (k - 2) 180° inside a polygon, (k + 2) 180° around the
+  // outside of a small disc (like a fresh bowl).
+  double angle_sum = 0;
+  h = start;
+  for (int i = 0; i < count; ++i, h = mesh_.next(h)) angle_sum += corner(mesh_.to_vertex(h)).angle;
+  return angle_sum < count * kPi;
 }
 
 bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {

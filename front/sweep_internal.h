@@ -193,6 +193,11 @@ class Sweep {
   // Front geometry in tangent planes (front_geometry.cpp).
   /// The corner of the front at boundary vertex v.
   Corner corner(Vertex v) const;
+  /// True if the hole angle at boundary vertex v is certainly at least
+  /// `bound` (radians), decided from the sine and cosine alone; false if it
+  /// may be below (then corner(v).angle decides). Decides only bounds of at
+  /// most 90° or 180° (give or take 1e-12 rad).
+  bool clearly_not_below(Vertex v, double bound) const;
   /// True if the quad a b c d (two front edges a->b, c->d joined by a bridge
   /// row) is convex and counter-clockwise in the plane through `origin` with
   /// normal `normal`, and its triangles fit the hole wedges at its four

@@ -23,8 +23,10 @@ bool Sweep::wing(Vertex v, bool force) {
 
 const char* Sweep::wing_refusal(Vertex v, bool force) const {
   if (state_[v] != VState::Front || !mesh_.is_boundary(v)) return "not a free front vertex";
+  const double max_angle = (force ? opt_.forced_wing_angle_deg : opt_.wing_angle_deg) * kDeg;
+  if (clearly_not_below(v, max_angle)) return "front angle too large";
   const Corner k = corner(v);
-  if (k.angle >= (force ? opt_.forced_wing_angle_deg : opt_.wing_angle_deg) * kDeg) return "front angle too large";
+  if (k.angle >= max_angle) return "front angle too large";
   // A 3-gon is closed only by seal; the new edge u-w must not exist yet.
   if (mesh_.next(k.out) == k.in) return "the front loop is a triangle";
   if (mesh_.find_halfedge(k.w, k.u).is_valid()) return "the edge u-w exists";
