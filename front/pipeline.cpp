@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <stdexcept>
 
@@ -22,9 +23,11 @@ namespace {
 
 /// The output mesh of a closed SurfaceMesh of the skin: positions, triangles,
 /// and per vertex the normal from "v:normal" and the atom of its mixed cell
-/// ("v:cell"). Compacts the mesh first.
-geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh) {
-  mesh.garbage_collection();
+/// ("v:cell"). Deleted elements are left out.
+geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh) {
+  // No garbage_collection(): to_indexed_mesh() and vertices() skip deleted
+  // elements in index order, which is the order the compaction keeps (the same
+  // output without moving every property array of the mesh once more).
   geometry::IndexedMesh out = mesh.to_indexed_mesh();
   const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
   const auto cell = mesh.get_vertex_property<Index>("v:cell");
@@ -101,10 +104,11 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // 2. Critical points and the Morse–Smale complex (§3), checked against the
   //    Euler characteristic of the skin from its dual complex.
   stage("morse");
-  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, options.height_direction, options.morse);
+  auto ms = std::make_unique<const morse::MorseSmaleComplex>(
+      morse::build_morse_smale_complex(skin, options.height_direction, options.morse));
   res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
-  res.critical = morse::count_critical_points(ms.critical);
-  res.live = ms.live_count();
+  res.critical = morse::count_critical_points(ms->critical);
+  res.live = ms->live_count();
   if (res.critical.euler() != res.expected_topology.euler_skin())
     throw TopologyError("Morse count " + std::to_string(res.critical.euler()) +
                         " differs from the expected Euler characteristic " +
@@ -115,8 +119,9 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   stage("sweep");
   front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
-  front::SweepResult swept = front::sweep_mesh(skin, ms, sweep_options);
+  front::SweepResult swept = front::sweep_mesh(skin, *ms, sweep_options);
   res.sweep = swept.stats;
+  ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   lap("sweep");
 
   // 4. The local refinement (§4.3).
@@ -133,6 +138,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     }
   }
   res.mesh = output_mesh(skin, swept.mesh);
+  swept.mesh = geometry::SurfaceMesh();  // the check reads res.mesh: free the half-edge mesh first
   lap("output");
 
   // 5. The check.
