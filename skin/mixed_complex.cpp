@@ -208,6 +208,16 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     cells_.push_back(c);
     return static_cast<Index>(cells_.size() - 1);
   };
+  {
+    // The triangulation fills the bounding tetrahedron, a ball: with V vertices
+    // and T tetrahedra it has F = 2T + 2 triangles (4T facets, 4 on the hull)
+    // and, by Euler (V - E + F - T = 1), E = V + T + 1 edges. Reserving the
+    // exact count saves the vector's growth (up to half of the complex's
+    // memory on large inputs).
+    std::size_t nv = 0;
+    for (Index v = 0; v < np; ++v) nv += rt.is_vertex(v) ? 1 : 0;
+    cells_.reserve(2 * nv + 4 * std::size_t(nt) + 3);
+  }
   for (Index v = 0; v < np; ++v)
     if (rt.is_vertex(v)) vertex_cell_[v] = add_cell(0, {v, kInvalidIndex, kInvalidIndex, kInvalidIndex});
 
@@ -255,6 +265,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     }
   }
 
+  cells_.shrink_to_fit();  // a no-op when the count above was exact
   // Foci and axes.
   for (MixedCell& c : cells_) {
     std::array<WeightedPoint, 4> p;
