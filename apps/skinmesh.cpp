@@ -30,6 +30,7 @@
 #include "front/pipeline.h"
 #include "geometry/errors.h"
 #include "geometry/mesh_io.h"
+#include "geometry/parallel.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "refine/skin_mesh_check.h"
@@ -291,6 +292,7 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
   j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles},
                                {"maxima", res.live.maxima}};
   j["algorithm"] = a.algorithm;
+  j["threads"] = thread_count(a.opt.threads);
   if (dyn) {
     const dynamic::DynamicStats& d = dyn->stats;
     const dynamic::SampleStats& st = d.samples;
@@ -408,6 +410,7 @@ int run_mesh(MeshArgs& a) {
     d.growth = !a.no_growth;
     d.max_step_motion = a.growth_step;
     d.check = a.opt.check;
+    d.checks.threads = a.opt.threads;
     d.progress = a.opt.progress;
     dyn = dynamic::mesh_skin_dynamic(mol, d);
     // The fields the summary and the writer share with the sweep's result.
@@ -498,6 +501,11 @@ int main(int argc, char** argv) {
   mesh_cmd->add_flag("--no-angle-improvement", mesh.no_angle_improvement,
                      "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
                      "the paper's algorithm alone; papers/refine/angle_improvement.md)");
+  mesh_cmd
+      ->add_option("--threads", mesh.opt.threads,
+                   "threads (0: every core); the mesh is the same, byte for byte, for every count")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   mesh_cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
   mesh_cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
   const char* debug = "Debugging the sweep (papers/front/sweep.md)";
@@ -522,6 +530,11 @@ int main(int argc, char** argv) {
   check_cmd->add_option("-o,--output", check.report, "also write the report to this file");
   add_size_options(*check_cmd, check.opt.size);
   check_cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
+      ->capture_default_str();
+  check_cmd
+      ->add_option("--threads", check.opt.threads,
+                   "threads (0: every core, at most 2 are used); the report is the same for every count")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   check_cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   check_cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");

@@ -7,11 +7,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <string>
 #include <stdexcept>
 
 #include "geometry/errors.h"
+#include "geometry/parallel.h"
 #include "morse/critical_points.h"
 #include "morse/singular_skin.h"
 #include "skin/molecule_io.h"
@@ -104,9 +106,17 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // 2. Critical points and the Morse–Smale complex (§3), checked against the
   //    Euler characteristic of the skin from its dual complex.
   stage("morse");
+  // The dual complex (for the Euler characteristic and the check) needs only
+  // the skin: with two threads it is computed beside the Morse–Smale complex.
+  const int threads = thread_count(options.threads);
+  std::future<skin::SkinTopology> topology;
+  if (threads >= 2)
+    topology = std::async(std::launch::async, [&skin] { return skin::dual_complex_topology(skin.mixed_complex()); });
+  morse::MorseSmaleOptions morse_options = options.morse;
+  if (morse_options.threads == morse::MorseSmaleOptions{}.threads) morse_options.threads = threads;
   auto ms = std::make_unique<const morse::MorseSmaleComplex>(
-      morse::build_morse_smale_complex(skin, options.height_direction, options.morse));
-  res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+      morse::build_morse_smale_complex(skin, options.height_direction, morse_options));
+  res.expected_topology = topology.valid() ? topology.get() : skin::dual_complex_topology(skin.mixed_complex());
   res.critical = morse::count_critical_points(ms->critical);
   res.live = ms->live_count();
   if (res.critical.euler() != res.expected_topology.euler_skin())
@@ -146,6 +156,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     stage("check");
     refine::SkinCheckOptions check_options = with_size(options.checks, options.size);
     if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
+    if (check_options.threads == refine::SkinCheckOptions{}.threads) check_options.threads = threads;
     res.check = refine::check_skin_mesh(skin, res.mesh, check_options);
     res.checked = true;
     lap("check");

@@ -65,6 +65,14 @@ struct MeshOptions {
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
   refine::SkinCheckOptions checks;
+  /// Threads (0: every core of the machine). The mesh and every count in
+  /// MeshResult are the same, byte for byte, for every thread count: the
+  /// threads run independent computations side by side — the skin's dual
+  /// complex beside the Morse–Smale complex, the integral lines of different
+  /// saddles, the mesh-only checks beside the skin checks
+  /// (papers/bench/profile.md, "Threads"). morse.threads and checks.threads,
+  /// when left at their defaults, follow this.
+  int threads = 0;
   /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles", "check")
   /// and the fraction of it done (0..1); empty: no reports. The library
   /// itself prints nothing.

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "geometry/parallel.h"
 #include "geometry/point_grid.h"
 
 namespace skinmesh::morse {
@@ -127,17 +128,23 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
                                        std::numeric_limits<double>::min()));
   for (Index i = 0; i < n; ++i)
     if (ms.critical[i].kind != CriticalKind::Saddle) extrema.insert(i, ms.critical[i].position);
-  // Four integral lines per saddle: ±ascent (ascending), ±descent (descending).
-  for (Index s = 0; s < n; ++s) {
+  // Four integral lines per saddle: ±ascent (ascending), ±descent (descending),
+  // in saddle order; the lines only read the skin, the critical points and
+  // the grid, so the saddles are shared among the threads, each writing its
+  // own four slots.
+  std::vector<Index> saddles;
+  for (Index s = 0; s < n; ++s)
+    if (ms.critical[s].kind == CriticalKind::Saddle) saddles.push_back(s);
+  ms.lines.resize(4 * saddles.size());
+  for (std::size_t j = 0; j < saddles.size(); ++j)
+    for (int k = 0; k < 4; ++k) ms.arcs[saddles[j]][k] = static_cast<Index>(4 * j + k);
+  parallel_for(saddles.size(), thread_count(opt.threads), 8, [&](std::size_t j) {
+    const Index s = saddles[j];
     const CriticalPoint& c = ms.critical[s];
-    if (c.kind != CriticalKind::Saddle) continue;
     const Vec3 dirs[4] = {c.ascent, -c.ascent, c.descent, -c.descent};
-    for (int k = 0; k < 4; ++k) {
-      ms.arcs[s][k] = static_cast<Index>(ms.lines.size());
-      ms.lines.push_back(
-          trace_integral_line(skin, e, ms.critical, s, dirs[k], k < 2 ? +1 : -1, opt, &extrema));
-    }
-  }
+    for (int k = 0; k < 4; ++k)
+      ms.lines[4 * j + k] = trace_integral_line(skin, e, ms.critical, s, dirs[k], k < 2 ? +1 : -1, opt, &extrema);
+  });
 
   // Arc contraction: noisy (saddle, extremum) pairs joined by exactly one arc,
   // closest first; repeat until none is left.

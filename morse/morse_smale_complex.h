@@ -61,6 +61,9 @@ struct MorseSmaleOptions {
   /// A Heun step that does not climb (descend) is halved at most this many
   /// times before the line is declared stalled. [numerical]
   int max_step_halvings = 30;
+  /// Threads for the integral lines (one saddle's four lines per item; 0:
+  /// every core). The complex is the same for every count.
+  int threads = 1;
 };
 
 /// The Morse–Smale complex: critical points, the four arcs of every saddle,

@@ -151,6 +151,24 @@ TEST_CASE("--stats is valid JSON even for a path with a quote and a backslash; c
   CHECK(report.at("num_U_violations") == 0);
 }
 
+TEST_CASE("--threads: the same file, byte for byte, for 1 and 2 threads; a negative count is refused") {
+  Scratch s;
+  const std::string three = quoted(std::string(SKINMESH_TEST_DATA) + "/three_ring.xyzr");
+  const Run one = run(s, "mesh " + three + " -o t1.ply --threads 1 --stats s1.json --quiet");
+  const Run two = run(s, "mesh " + three + " -o t2.ply --threads 2 --stats s2.json --quiet");
+  REQUIRE(one.exit_code == 0);
+  REQUIRE(two.exit_code == 0);
+  CHECK(slurp(s.dir / "t1.ply") == slurp(s.dir / "t2.ply"));
+  CHECK(nlohmann::json::parse(slurp(s.dir / "s1.json")).at("threads") == 1);
+  CHECK(nlohmann::json::parse(slurp(s.dir / "s2.json")).at("threads") == 2);
+  const Run c = run(s, "check " + three + " t2.ply --threads 1 --quiet");
+  CHECK(c.exit_code == 0);
+  const Run bad = run(s, "mesh " + three + " -o t3.ply --threads -1");
+  CHECK(bad.exit_code == 2);
+  CHECK(lines(bad.err) == 1);
+  CHECK_FALSE(fs::exists(s.dir / "t3.ply"));
+}
+
 TEST_CASE("help of each command lists its own options only") {
   Scratch s;
   const Run mesh = run(s, "mesh --help");

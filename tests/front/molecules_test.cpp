@@ -42,6 +42,29 @@ TEST_CASE("molecules: adna_3dna_fiber_30bp (genus 1)") { mesh_and_check(kData + 
 TEST_CASE("molecules: ligand_1hvr_xk263") { mesh_and_check(kData + "/ligand_1hvr_xk263.pdb"); }
 
 // Inputs that once broke the sweep (see papers/front/creep.md and papers/front/hole_filling.md).
+TEST_CASE("threads: the same mesh and the same counts, byte for byte, with 1 and 2 threads") {
+  // gramicidin A at probe 0: 90 saddles, so the integral lines are shared.
+  const skin::Molecule mol = skin::read_molecule(kData + "/gramicidinA_1grm_model1.pdb");
+  MeshResult res[2];
+  for (int t = 0; t < 2; ++t) {
+    MeshOptions options;
+    options.probe_radius = 0;
+    options.threads = t + 1;
+    res[t] = mesh_skin(mol, options);
+    REQUIRE(res[t].checked);
+    test::check_every_property(res[t].check);
+  }
+  CHECK(res[0].mesh.positions == res[1].mesh.positions);
+  CHECK(res[0].mesh.triangles == res[1].mesh.triangles);
+  CHECK(res[0].mesh.normals == res[1].mesh.normals);
+  CHECK(res[0].mesh.atom == res[1].mesh.atom);
+  CHECK(res[0].critical.saddles == res[1].critical.saddles);
+  CHECK(res[0].live.saddles == res[1].live.saddles);
+  CHECK(res[0].sweep.creeps == res[1].sweep.creeps);
+  CHECK(res[0].check.problems == res[1].check.problems);
+  CHECK(res[0].check.mesh.min_angle_deg == res[1].check.mesh.min_angle_deg);
+}
+
 TEST_CASE("regression: a neighbour's narrow spike that no fan fits (Figure 7), random 50 atoms") {
   mesh_and_check(kRegression + "random50_probe1.4_figure7_stuck.xyzr");
 }
