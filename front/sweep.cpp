@@ -206,14 +206,12 @@ void Sweep::create_initial_front() {
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return ms_.critical[a].position.dot(e_) < ms_.critical[b].position.dot(e_);
   });
-  // rho never exceeds the largest sphere radius sqrt(w/2) (as for vertex_grid_).
-  double rho_max = 0;
-  for (const auto& wp : skin_.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
+  // rho never exceeds rho_max_, the largest sphere radius sqrt(w/2) (as for vertex_grid_).
   for (Index c : minima) {
     const morse::CriticalPoint& cp = ms_.critical[c];
     const double r = opt_.disc_factor * cp.rho;
     bool overlaps = false;
-    vertex_grid_->for_each_near(cp.position, r + opt_.disc_factor * rho_max, [&](Index xi, const Vec3& q) {
+    vertex_grid_->for_each_near(cp.position, r + opt_.disc_factor * rho_max_, [&](Index xi, const Vec3& q) {
       if ((q - cp.position).norm() < r + disc_radius(Vertex(xi))) overlaps = true;
     });
     if (!overlaps) {

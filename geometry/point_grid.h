@@ -83,25 +83,21 @@ class PointGrid {
     // Fibonacci hashing: the high bits of k times 2^64 / golden ratio.
     return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_);
   }
-  const Slot* find(std::uint64_t k) const {
+  /// The slot holding key k, or the empty slot where it would go.
+  std::size_t probe(std::uint64_t k) const {
     const std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = home(k);; i = (i + 1) & mask) {
-      const Slot& s = slots_[i];
-      if (s.key == k) return &s;
-      if (s.key == kEmpty) return nullptr;
-    }
+    std::size_t i = home(k);
+    while (slots_[i].key != k && slots_[i].key != kEmpty) i = (i + 1) & mask;
+    return i;
+  }
+  const Slot* find(std::uint64_t k) const {
+    const Slot& s = slots_[probe(k)];
+    return s.key == k ? &s : nullptr;
   }
   Slot& slot_for_insert(std::uint64_t k) {
-    const std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = home(k);; i = (i + 1) & mask) {
-      Slot& s = slots_[i];
-      if (s.key == k) return s;
-      if (s.key == kEmpty) {
-        s.key = k;
-        ++used_;
-        return s;
-      }
-    }
+    Slot& s = slots_[probe(k)];
+    if (s.key == kEmpty) s.key = k, ++used_;
+    return s;
   }
   void grow() {
     std::vector<Slot> old(slots_.size() * 2);

@@ -165,18 +165,16 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // whatever the traced lines say: the first step of a line from the saddle
   // jumps over the extremum, so no arc joins them. Positions do not change,
   // so they are found once; liveness is checked when they are used. The
-  // extrema come from the grid (radius padded against rounding, then the
-  // exact test), in increasing index per saddle, so the list is the one an
+  // extrema come from the grid (radius padded against rounding and bounded
+  // with the largest rho of any critical point, then the exact test), in
+  // increasing index per saddle, so the list is the one an
   // all-pairs scan gives.
   std::vector<Cand> coincident;
-  double max_extremum_rho = 0;
-  for (const CriticalPoint& c : ms.critical)
-    if (c.kind != CriticalKind::Saddle) max_extremum_rho = std::max(max_extremum_rho, c.rho);
   std::vector<Index> near;
   for (Index s = 0; s < n; ++s) {
     if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
     near.clear();
-    const double reach = opt.coincident_factor * (ms.critical[s].rho + max_extremum_rho) * (1 + 1e-9);
+    const double reach = opt.coincident_factor * (ms.critical[s].rho + max_rho) * (1 + 1e-9);
     extrema.for_each_near(ms.critical[s].position, reach, [&](Index x, const Vec3&) { near.push_back(x); });
     std::sort(near.begin(), near.end());
     for (const Index x : near) {
