@@ -199,7 +199,7 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
   }
   for (std::size_t j = 0; j < L.size(); ++j)
     for (Vertex v : {L[j], R[j]})
-      if (mesh_.is_boundary(v) && state_[v] != VState::Interior) state_[v] = VState::Front;
+      if (mesh_.is_boundary(v) && state_[v] != VState::Interior) set_state(v, VState::Front);
   // "We update the priority queue Q after a bridge() operation": re-push the
   // free front near the saddle (cheap: lazy deletion), or the quad's corners
   // after a contact.
@@ -224,11 +224,11 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
   }
   for (Vertex v : {a, b, cv, d}) {
     if (mesh_.is_boundary(v) && state_[v] == VState::Front) wing_worklist_.push_back(v);
-    if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+    if (!mesh_.is_boundary(v)) set_state(v, VState::Interior);
   }
   for (std::size_t j = 1; j + 1 < L.size(); ++j)
     for (Vertex v : {L[j], R[j]})
-      if (!mesh_.is_boundary(v)) state_[v] = VState::Interior;
+      if (!mesh_.is_boundary(v)) set_state(v, VState::Interior);
 }
 
 }  // namespace skinmesh::front::detail

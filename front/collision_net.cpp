@@ -35,7 +35,8 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
   const double margin = opt_.contact_margin_deg * kDeg;
   Vertex best;
   double best_d = std::numeric_limits<double>::infinity();
-  vertex_grid_->for_each_near(pv, opt_.contact_radius * r, [&](Index xi, const Vec3& px) {
+  // Every vertex whose state is not Interior is in front_grid_ (set_state).
+  front_grid_->for_each_near(pv, opt_.contact_radius * r, [&](Index xi, const Vec3& px) {
     const Vertex x(xi);
     if (x == v || state_[x] == VState::Interior || mesh_.is_deleted(x) || mesh_.is_isolated(x) ||
         !mesh_.is_boundary(x))
@@ -50,8 +51,10 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
       tracef("contact candidate v%u for v%u: a %.1f of %.1f, ax %.1f of %.1f\n", x.idx(), v.idx(), a / kDeg,
              k.angle / kDeg, ax / kDeg, kx.angle / kDeg);
     if (!(ax > margin && ax < kx.angle - margin)) return;
-    const double d = (px - pv).norm();
-    if (d < best_d) best_d = d, best = x;
+    // The nearest candidate, ties to the lower index: the verdict does not
+    // depend on the order in which the grid visits its points.
+    const double d = (px - pv).squaredNorm();
+    if (d < best_d || (d == best_d && x.idx() < best.idx())) best_d = d, best = x;
   });
   if (!best.is_valid()) return false;
   if (holder_of(best) != kInvalidIndex) {
@@ -97,14 +100,19 @@ bool Sweep::fan_collision(Vertex v, const Corner& k, int m) {
   // is held, or let the front move on and come back.
   const double r = disc_radius(v);
   const Vec3 pv = mesh_.position(v), n = normal_[v];
+  // The first fan point (in fan order) with such a vertex; of its vertices,
+  // the nearest, ties to the lower index (independent of the grid's order).
   Vertex hit;
   for (int i = 1; i < m && !hit.is_valid(); ++i) {
     const Vec3 q = pv + r * rotate(k.dw, n, i * k.angle / m);
-    vertex_grid_->for_each_near(q, opt_.collision_radius * r, [&](Index xi, const Vec3&) {
+    double hit_d = std::numeric_limits<double>::infinity();
+    vertex_grid_->for_each_near(q, opt_.collision_radius * r, [&](Index xi, const Vec3& px) {
       const Vertex x(xi);
-      if (hit.is_valid() || x == v || x == k.u || x == k.w || mesh_.is_deleted(x)) return;
+      if (x == v || x == k.u || x == k.w || mesh_.is_deleted(x)) return;
       if (mesh_.is_isolated(x) || normal_[x].dot(n) <= opt_.min_normal_cosine) return;
-      hit = x;  // a front vertex, or an interior one: the fan would cover meshed surface
+      // a front vertex, or an interior one: the fan would cover meshed surface
+      const double d = (px - q).squaredNorm();
+      if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
     });
   }
   if (!hit.is_valid()) return false;

@@ -27,7 +27,7 @@ void Sweep::creation(Index c) {
   }
   for (int i = 0; i < k; ++i)
     add_triangle(p0, ring[static_cast<std::size_t>(i)], ring[static_cast<std::size_t>((i + 1) % k)]);
-  state_[p0] = VState::Interior;
+  set_state(p0, VState::Interior);
   // "We push all the edges in the front polygons to a priority queue."
   for (Vertex v : ring) push(v);
   ++stats_.creations;

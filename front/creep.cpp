@@ -119,7 +119,7 @@ void Sweep::creep(Vertex v) {
       // fronts meet (small hole) or at the seal, and the final checks decide.
       if (trace_)
         tracef("creep: v%u is stuck: its fan would fold over v%u (Figure 7)\n", v.idx(), (bad_w ? k.w : k.u).idx());
-      state_[v] = VState::Held;
+      set_state(v, VState::Held);
       held_by_[v] = kInvalidIndex;
       ++stats_.stuck;
       return;
@@ -154,7 +154,7 @@ void Sweep::creep(Vertex v) {
   }
   fan.push_back(k.u);
   for (int i = 1; i <= m; ++i) add_triangle(v, fan[i - 1], fan[i]);
-  state_[v] = VState::Interior;
+  set_state(v, VState::Interior);
   // "After each creep() operation, we push the new front edges to the
   // priority queue"; the fan's ends and points are wing candidates.
   for (int i = 1; i < m; ++i) push(fan[i]);

@@ -87,7 +87,7 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
     stack.push_back({i, m});
     stack.push_back({m, j});
   }
-  for (Vertex v : poly) state_[v] = VState::Interior;
+  for (Vertex v : poly) set_state(v, VState::Interior);
   ++stats_.seals;
   if (trace_) tracef("seal loop of %zu by the max-min-angle programme\n", k);
   return true;
@@ -128,7 +128,7 @@ Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
   for (Vertex x : rim) {
     if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
     if (gaps(x) != 1) return Halfedge();
-    state_[x] = VState::Front;
+    set_state(x, VState::Front);
     start = mesh_.halfedge(x);
   }
   return start;
@@ -185,7 +185,7 @@ bool Sweep::reopen_hole(const std::vector<Vertex>& poly) {
     if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
     if (reopenings_[x] < 255) ++reopenings_[x];
     if (held_by_[x] != kInvalidIndex && !resolved_[held_by_[x]] && state_[x] == VState::Held) continue;
-    state_[x] = VState::Front;
+    set_state(x, VState::Front);
     push(x);
   }
   if (trace_) tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());

@@ -203,11 +203,11 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
     const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
     if (trace_) tracef("  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
     add_triangle(v, w, u);
-    state_[v] = VState::Interior;
+    set_state(v, VState::Interior);
     poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
   }
   add_triangle(poly[0], poly[1], poly[2]);
-  for (Vertex v : poly) state_[v] = VState::Interior;
+  for (Vertex v : poly) set_state(v, VState::Interior);
   ++stats_.seals;
 }
 

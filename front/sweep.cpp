@@ -50,6 +50,7 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   // Cells of two disc radii: the contact query (1.5 r) then visits 2-3 cells
   // per axis instead of 4 (crambin probe 0: sweep 1.15 s -> 0.58 s).
   vertex_grid_ = std::make_unique<geometry::PointGrid>(std::max(2 * opt.disc_factor * rho_max, 1e-6));
+  front_grid_ = std::make_unique<geometry::ErasablePointGrid>(vertex_grid_->cell_size());
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
   // factor for the scales below the atoms' that the front has met (new_vertex).
@@ -91,7 +92,7 @@ Vertex Sweep::new_vertex(const Vec3& p, Index cell) {
   normal_[v] = s.gradient.normalized();
   rho_[v] = s.rho;
   cell_[v] = s.cell;
-  state_[v] = VState::Front;
+  set_state(v, VState::Front);
   return v;
 }
 
@@ -151,7 +152,7 @@ Index Sweep::hold_region(Vertex v) const {
 void Sweep::hold(Vertex v, Index c) {
   // Lines 7 and 10: "mark the triangle red / green"; line 4–5: a saddle that
   // is ready is bridged at once.
-  state_[v] = VState::Held;
+  set_state(v, VState::Held);
   held_by_[v] = c;
   held_[c].push_back(v);
   ++stats_.held;
@@ -167,7 +168,7 @@ bool Sweep::release_holds(Index c, bool requeue) {
   bool any = false;
   for (Vertex v : held_[c])
     if (state_[v] == VState::Held && held_by_[v] == c) {
-      state_[v] = VState::Front;
+      set_state(v, VState::Front);
       held_by_[v] = kInvalidIndex;
       if (requeue && mesh_.is_boundary(v)) push(v), any = true;
     }
@@ -295,6 +296,8 @@ SweepResult Sweep::run() {
   if (!opt_.dump_path.empty()) geometry::write_mesh(opt_.dump_path, mesh_.to_indexed_mesh());
   seal_all();
   // The result keeps the properties the refinement needs.
+  vertex_grid_.reset();
+  front_grid_.reset();
   mesh_.remove_vertex_property(state_);
   mesh_.remove_vertex_property(held_by_);
   mesh_.remove_vertex_property(stamp_);

@@ -228,6 +228,16 @@ class Sweep {
  private:
   // Vertices, the queue and the holds (sweep.cpp).
   Vertex new_vertex(const Vec3& p, Index cell);
+  /// Sets v's state, and keeps front_grid_ to the vertices not Interior.
+  void set_state(Vertex v, VState s) {
+    if ((s == VState::Interior) != (state_[v] == VState::Interior)) {
+      if (s == VState::Interior)
+        front_grid_->erase(v.idx());
+      else
+        front_grid_->insert(v.idx(), mesh_.position(v));
+    }
+    state_[v] = s;
+  }
   void push(Vertex v);
   /// Re-queues v a little higher (defer_step · r more per deferral) so that
   /// the front moves on around it first.
@@ -291,6 +301,9 @@ class Sweep {
   std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
   std::unique_ptr<geometry::PointGrid> hold_grid_;
   std::unique_ptr<geometry::PointGrid> vertex_grid_;  ///< every vertex, for the collision safety net
+  /// The vertices whose state is not Interior (the front, free or held): the
+  /// contact search reads only these (set_state keeps it).
+  std::unique_ptr<geometry::ErasablePointGrid> front_grid_;
   double max_hold_radius_ = 0;
   long steps_ = 0;                  ///< departures so far (for max_steps)
   double h_min_ = 0, h_max_ = 0;    ///< height range of the critical points (progress)

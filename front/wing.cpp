@@ -14,7 +14,7 @@ bool Sweep::wing(Vertex v, bool force) {
   if (why) return false;
   const Corner k = corner(v);
   add_triangle(v, k.w, k.u);
-  state_[v] = VState::Interior;
+  set_state(v, VState::Interior);
   wing_worklist_.push_back(k.u);
   wing_worklist_.push_back(k.w);
   ++stats_.wings;

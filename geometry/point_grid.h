@@ -1,7 +1,9 @@
 // geometry/point_grid.h: uniform grids over points for fixed-radius neighbour
 // queries: PointGrid, a hash grid that grows point by point (critical-point
-// lookup, front proximity), and FlatPointGrid, a grid over a fixed point set
-// stored in flat arrays (the verifier's restricted-Delaunay test).
+// lookup, front proximity), ErasablePointGrid, a hash grid whose points can
+// also be removed (the sweep's free front), and FlatPointGrid, a grid over a
+// fixed point set stored in flat arrays (the verifier's restricted-Delaunay
+// test).
 #pragma once
 
 #include <algorithm>
@@ -15,69 +17,62 @@
 
 namespace skinmesh::geometry {
 
-/// Uniform grid of cubic cells of side `cell_size` (Å) hashing point indices.
-/// Points can be added after construction; removal is not supported (callers
-/// filter stale entries). Queries visit the cells overlapping the query box,
-/// and, within a cell, the points in insertion order.
-///
-/// Layout: an open-addressing table (linear probing, at most half full) maps
-/// a cell's key to the first and last of its points; the points live in one
-/// flat array, each linked to the next point of its cell. No allocation per
-/// cell, one probe sequence per visited cell. [measured: it replaced a
-/// node-based std::unordered_map of per-cell vectors; same queries, same
-/// order, byte-identical meshes, the sweep of maltoporin 1.58 -> 1.48 s; most
-/// of the remaining cost is reading the points of the visited cells
-/// (papers/bench/profile.md)]
-class PointGrid {
+namespace detail {
+
+/// The occupied cells of a uniform grid of cubic cells of side `cell_size`
+/// (Å), numbered densely 0, 1, 2, ... in the order they were first added: an
+/// open-addressing table (linear probing, at most half full, Fibonacci
+/// hashing) from a cell's integer coordinates to its number. The grids below
+/// keep their per-cell data in arrays indexed by that number.
+class CellIndex {
  public:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  using Cell = std::array<std::int64_t, 3>;
+
   /// Pre: cell_size > 0.
-  explicit PointGrid(double cell_size) : h_(cell_size), slots_(kInitialSlots) {}
+  explicit CellIndex(double cell_size) : h_(cell_size), slots_(kInitialSlots) {}
 
-  /// Adds point `id` at position p.
-  void insert(Index id, const Vec3& p) {
-    if (2 * (used_ + 1) > slots_.size()) grow();
-    Slot& s = slot_for_insert(key(cell_of(p)));
-    const auto e = static_cast<std::uint32_t>(entries_.size());
-    entries_.push_back({p, id, kNone});
-    if (s.head == kNone) {
-      s.head = e;
-    } else {
-      entries_[s.tail].next = e;
-    }
-    s.tail = e;
+  /// The cell holding p.
+  Cell cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x() / h_)), static_cast<std::int64_t>(std::floor(p.y() / h_)),
+            static_cast<std::int64_t>(std::floor(p.z() / h_))};
   }
-
-  /// Calls fn(id, position) for every point within distance r (Å) of q.
+  /// The number of cell c, or kNone if it was never added.
+  std::uint32_t find(const Cell& c) const {
+    const Slot& s = slots_[probe(key(c))];
+    return s.key == key(c) ? s.cell : kNone;
+  }
+  /// The number of cell c, adding it (as number size()) if it is new.
+  std::uint32_t find_or_add(const Cell& c) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    const std::uint64_t k = key(c);
+    Slot& s = slots_[probe(k)];
+    if (s.key == kEmpty) s.key = k, s.cell = size_++;
+    return s.cell;
+  }
+  /// Calls fn(number) for every added cell meeting the box [q - r, q + r]³, in
+  /// (x, y, z) order of the cells.
   template <class Fn>
-  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
-    const auto lo = cell_of(q - Vec3::Constant(r));
-    const auto hi = cell_of(q + Vec3::Constant(r));
-    const double r2 = r * r;
+  void for_each_cell_near(const Vec3& q, double r, Fn&& fn) const {
+    const Cell lo = cell_of(q - Vec3::Constant(r)), hi = cell_of(q + Vec3::Constant(r));
     for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
       for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
         for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
-          const Slot* s = find(key({i, j, k}));
-          if (!s) continue;
-          for (std::uint32_t e = s->head; e != kNone; e = entries_[e].next)
-            if ((entries_[e].p - q).squaredNorm() <= r2) fn(entries_[e].id, entries_[e].p);
+          const std::uint32_t c = find({i, j, k});
+          if (c != kNone) fn(c);
         }
   }
-
   double cell_size() const { return h_; }
+  /// Number of cells added.
+  std::uint32_t size() const { return size_; }
 
  private:
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   /// Keys use 63 bits, so the all-ones key marks an empty slot.
   static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
   static constexpr std::size_t kInitialSlots = 64;  // a power of two
-  struct Entry {
-    Vec3 p;
-    Index id;
-    std::uint32_t next;  ///< the next point of the same cell, or kNone
-  };
   struct Slot {
     std::uint64_t key = kEmpty;
-    std::uint32_t head = kNone, tail = kNone;
+    std::uint32_t cell = kNone;
   };
   std::size_t home(std::uint64_t k) const {
     // Fibonacci hashing: the high bits of k times 2^64 / golden ratio.
@@ -89,15 +84,6 @@ class PointGrid {
     std::size_t i = home(k);
     while (slots_[i].key != k && slots_[i].key != kEmpty) i = (i + 1) & mask;
     return i;
-  }
-  const Slot* find(std::uint64_t k) const {
-    const Slot& s = slots_[probe(k)];
-    return s.key == k ? &s : nullptr;
-  }
-  Slot& slot_for_insert(std::uint64_t k) {
-    Slot& s = slots_[probe(k)];
-    if (s.key == kEmpty) s.key = k, ++used_;
-    return s;
   }
   void grow() {
     std::vector<Slot> old(slots_.size() * 2);
@@ -111,12 +97,7 @@ class PointGrid {
       slots_[i] = s;
     }
   }
-  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x() / h_)),
-            static_cast<std::int64_t>(std::floor(p.y() / h_)),
-            static_cast<std::int64_t>(std::floor(p.z() / h_))};
-  }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+  static std::uint64_t key(const Cell& c) {
     // 21 bits per axis (cells beyond ±2^20 wrap, which only costs speed).
     const std::uint64_t m = (1u << 21) - 1;
     return (static_cast<std::uint64_t>(c[0]) & m) | ((static_cast<std::uint64_t>(c[1]) & m) << 21) |
@@ -124,9 +105,126 @@ class PointGrid {
   }
   double h_;
   std::vector<Slot> slots_;
+  std::uint32_t size_ = 0;  ///< cells added (occupied slots)
+  int shift_ = 64 - 6;      ///< 64 - log2(slots_.size())
+};
+
+}  // namespace detail
+
+/// Uniform grid of cubic cells of side `cell_size` (Å) hashing point indices.
+/// Points can be added after construction; removal is not supported (callers
+/// filter stale entries, or use ErasablePointGrid). Queries visit the cells
+/// overlapping the query box in (x, y, z) order, and, within a cell, the
+/// points in insertion order.
+///
+/// Layout: detail::CellIndex numbers the occupied cells; each cell keeps the
+/// first and last of its points; the points live in one flat array, each
+/// linked to the next point of its cell. No allocation per cell, one probe
+/// sequence per visited cell. [measured: it replaced a node-based
+/// std::unordered_map of per-cell vectors; same queries, same order,
+/// byte-identical meshes, the sweep of maltoporin 1.58 -> 1.48 s]
+class PointGrid {
+ public:
+  /// Pre: cell_size > 0.
+  explicit PointGrid(double cell_size) : index_(cell_size) {}
+
+  /// Adds point `id` at position p.
+  void insert(Index id, const Vec3& p) {
+    const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
+    if (c == ends_.size()) ends_.push_back({kNone, kNone});
+    const auto e = static_cast<std::uint32_t>(entries_.size());
+    entries_.push_back({p, id, kNone});
+    if (ends_[c].head == kNone) {
+      ends_[c].head = e;
+    } else {
+      entries_[ends_[c].tail].next = e;
+    }
+    ends_[c].tail = e;
+  }
+
+  /// Calls fn(id, position) for every point within distance r (Å) of q.
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+    const double r2 = r * r;
+    index_.for_each_cell_near(q, r, [&](std::uint32_t c) {
+      for (std::uint32_t e = ends_[c].head; e != kNone; e = entries_[e].next)
+        if ((entries_[e].p - q).squaredNorm() <= r2) fn(entries_[e].id, entries_[e].p);
+    });
+  }
+
+  double cell_size() const { return index_.cell_size(); }
+
+ private:
+  static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
+  struct Entry {
+    Vec3 p;
+    Index id;
+    std::uint32_t next;  ///< the next point of the same cell, or kNone
+  };
+  struct Ends {
+    std::uint32_t head, tail;
+  };
+  detail::CellIndex index_;
+  std::vector<Ends> ends_;  ///< per cell number: its first and last point
   std::vector<Entry> entries_;
-  std::size_t used_ = 0;  ///< occupied slots
-  int shift_ = 64 - 6;    ///< 64 - log2(slots_.size())
+};
+
+/// Uniform grid of cubic cells of side `cell_size` (Å) over a changing set of
+/// points: points are added and removed by id. Each cell keeps its points in
+/// a contiguous array (removal moves the cell's last point into the hole), so
+/// a query reads memory sequentially; the order in which a query visits the
+/// points is deterministic but not the insertion order, so callers choose
+/// among the points by their own rule (nearest, ties to the lower id). Used
+/// for the sweep's free front (the contact search of the collision net).
+class ErasablePointGrid {
+ public:
+  /// Pre: cell_size > 0.
+  explicit ErasablePointGrid(double cell_size) : index_(cell_size) {}
+
+  /// Adds point `id` at position p. Pre: id is not in the grid.
+  void insert(Index id, const Vec3& p) {
+    const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
+    if (c == cells_.size()) cells_.emplace_back();
+    if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
+    where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
+    cells_[c].push_back({p, id});
+  }
+  /// Removes point `id`; does nothing if it is not in the grid.
+  void erase(Index id) {
+    if (!contains(id)) return;
+    const Where w = where_[id];
+    std::vector<Entry>& cell = cells_[w.cell];
+    cell[w.slot] = cell.back();
+    where_[cell[w.slot].id].slot = w.slot;
+    cell.pop_back();
+    where_[id] = {kNone, 0};
+  }
+  bool contains(Index id) const { return id < where_.size() && where_[id].cell != kNone; }
+
+  /// Calls fn(id, position) for every point within distance r (Å) of q.
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+    const double r2 = r * r;
+    index_.for_each_cell_near(q, r, [&](std::uint32_t c) {
+      for (const Entry& e : cells_[c])
+        if ((e.p - q).squaredNorm() <= r2) fn(e.id, e.p);
+    });
+  }
+
+  double cell_size() const { return index_.cell_size(); }
+
+ private:
+  static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
+  struct Entry {
+    Vec3 p;
+    Index id;
+  };
+  struct Where {
+    std::uint32_t cell, slot;  ///< cell number (kNone: absent) and place in it
+  };
+  detail::CellIndex index_;
+  std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
+  std::vector<Where> where_;               ///< per id
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the

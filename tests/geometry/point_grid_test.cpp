@@ -92,8 +92,7 @@ TEST_CASE("point_grid: FlatPointGrid and PointGrid queries equal a linear scan")
 }
 
 TEST_CASE("point_grid: PointGrid visits a cell's points in insertion order, across table growth") {
-  // Callers (the sweep's collision safety net) take the first point found, so
-  // the visiting order is part of the contract: cells in (x, y, z) order,
+  // The visiting order is part of the contract: cells in (x, y, z) order,
   // points of a cell in the order they were inserted. 5,000 points in 40
   // cells of side 1 (every other cell, so a query around a cell's centre
   // reaches no other point) force several re-hashes of the table in between.
@@ -112,6 +111,50 @@ TEST_CASE("point_grid: PointGrid visits a cell's points in insertion order, acro
     grid.for_each_near(centre, 0.87, [&](Index id, const Vec3&) { got.push_back(id); });
     CHECK(got == inserted[std::size_t(c)]);  // the whole cell (its corners are 0.866 away), in order
   }
+}
+
+TEST_CASE("point_grid: ErasablePointGrid queries equal a scan of the points present, through inserts and erasures") {
+  // Random clouds, ids inserted and erased in random order (some erased
+  // twice, some re-inserted); after each batch, random balls report exactly
+  // the present points a linear scan reports.
+  std::mt19937_64 rng(20261123);
+  std::uniform_real_distribution<double> u(-12, 12), ur(0, 3);
+  for (int kind = 0; kind < 3; ++kind)
+    for (double cell : {0.4, 1.5, 5.0}) {
+      std::vector<Vec3> pts = cloud(rng, kind, 500);
+      for (Vec3& p : pts)
+        if (!p.allFinite()) p = Vec3::Zero();  // callers insert finite points
+      ErasablePointGrid grid(cell);
+      std::vector<char> present(pts.size(), 0);
+      for (int batch = 0; batch < 6; ++batch) {
+        for (int op = 0; op < 300; ++op) {
+          const Index id = Index(rng() % pts.size());
+          if (present[id] && rng() % 3 != 0) {
+            grid.erase(id);
+            present[id] = 0;
+            grid.erase(id);  // a second erasure does nothing
+          } else if (!present[id]) {
+            grid.insert(id, pts[id]);
+            present[id] = 1;
+          }
+        }
+        for (std::size_t i = 0; i < pts.size(); ++i) CHECK(grid.contains(Index(i)) == bool(present[i]));
+        for (int t = 0; t < 40; ++t) {
+          const Vec3 q(u(rng), u(rng), u(rng));
+          const double r = ur(rng);
+          std::vector<Index> want;
+          for (Index id : scan(pts, q, r))
+            if (present[id]) want.push_back(id);
+          std::vector<Index> got;
+          grid.for_each_near(q, r, [&](Index id, const Vec3& p) {
+            CHECK(p == pts[id]);
+            got.push_back(id);
+          });
+          std::sort(got.begin(), got.end());
+          CHECK(got == want);
+        }
+      }
+    }
 }
 
 TEST_CASE("point_grid: FlatPointGrid on empty, all-non-finite and single-point inputs") {
