@@ -209,7 +209,7 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
     // Every vertex is in vertex_grid_ (new_vertex); the grid makes this local
     // (a scan of all vertices made the sweep quadratic in the bridge count).
     std::vector<Index> near;
-    vertex_grid_->for_each_near(centre, reach, [&](Index xi, const Vec3& q) {
+    vertex_grid_->for_each_near(centre, reach, mesh_.positions().vector(), [&](Index xi, const Vec3& q) {
       if ((q - centre).norm() < reach) near.push_back(xi);
     });
     std::sort(near.begin(), near.end());  // the order of the scan it replaces

@@ -36,7 +36,8 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
   Vertex best;
   double best_d = std::numeric_limits<double>::infinity();
   // Every vertex whose state is not Interior is in front_grid_ (set_state).
-  front_grid_->for_each_near(pv, opt_.contact_radius * r, [&](Index xi, const Vec3& px) {
+  const std::vector<Vec3>& positions = mesh_.positions().vector();
+  front_grid_->for_each_near(pv, opt_.contact_radius * r, positions, [&](Index xi, const Vec3& px) {
     const Vertex x(xi);
     if (x == v || state_[x] == VState::Interior || mesh_.is_deleted(x) || mesh_.is_isolated(x) ||
         !mesh_.is_boundary(x))
@@ -106,7 +107,8 @@ bool Sweep::fan_collision(Vertex v, const Corner& k, int m) {
   for (int i = 1; i < m && !hit.is_valid(); ++i) {
     const Vec3 q = pv + r * rotate(k.dw, n, i * k.angle / m);
     double hit_d = std::numeric_limits<double>::infinity();
-    vertex_grid_->for_each_near(q, opt_.collision_radius * r, [&](Index xi, const Vec3& px) {
+    vertex_grid_->for_each_near(q, opt_.collision_radius * r, mesh_.positions().vector(),
+                                [&](Index xi, const Vec3& px) {
       const Vertex x(xi);
       if (x == v || x == k.u || x == k.w || mesh_.is_deleted(x)) return;
       if (mesh_.is_isolated(x) || normal_[x].dot(n) <= opt_.min_normal_cosine) return;

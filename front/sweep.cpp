@@ -49,7 +49,7 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   for (const auto& wp : skin.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
   // Cells of two disc radii: the contact query (1.5 r) then visits 2-3 cells
   // per axis instead of 4 (crambin probe 0: sweep 1.15 s -> 0.58 s).
-  vertex_grid_ = std::make_unique<geometry::PointGrid>(std::max(2 * opt.disc_factor * rho_max, 1e-6));
+  vertex_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(2 * opt.disc_factor * rho_max, 1e-6));
   front_grid_ = std::make_unique<geometry::ErasablePointGrid>(vertex_grid_->cell_size());
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
@@ -212,7 +212,8 @@ void Sweep::create_initial_front() {
     const morse::CriticalPoint& cp = ms_.critical[c];
     const double r = opt_.disc_factor * cp.rho;
     bool overlaps = false;
-    vertex_grid_->for_each_near(cp.position, r + opt_.disc_factor * rho_max_, [&](Index xi, const Vec3& q) {
+    vertex_grid_->for_each_near(cp.position, r + opt_.disc_factor * rho_max_, mesh_.positions().vector(),
+                                [&](Index xi, const Vec3& q) {
       if ((q - cp.position).norm() < r + disc_radius(Vertex(xi))) overlaps = true;
     });
     if (!overlaps) {

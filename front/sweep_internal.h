@@ -300,7 +300,7 @@ class Sweep {
   std::vector<char> resolved_;              ///< saddle bridged or released (holds no more)
   std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
   std::unique_ptr<geometry::PointGrid> hold_grid_;
-  std::unique_ptr<geometry::PointGrid> vertex_grid_;  ///< every vertex, for the collision safety net
+  std::unique_ptr<geometry::ErasablePointGrid> vertex_grid_;  ///< every vertex, for the collision safety net
   /// The vertices whose state is not Interior (the front, free or held): the
   /// contact search reads only these (set_state keeps it).
   std::unique_ptr<geometry::ErasablePointGrid> front_grid_;

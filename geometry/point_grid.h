@@ -171,23 +171,32 @@ class PointGrid {
 
 /// Uniform grid of cubic cells of side `cell_size` (Å) over a changing set of
 /// points: points are added and removed by id. Each cell keeps its points in
-/// a contiguous array (removal moves the cell's last point into the hole), so
-/// a query reads memory sequentially; the order in which a query visits the
-/// points is deterministic but not the insertion order, so callers choose
-/// among the points by their own rule (nearest, ties to the lower id). Used
-/// for the sweep's free front (the contact search of the collision net).
+/// a contiguous array of 16-byte entries (the position in single precision
+/// and the id); removal moves the cell's last point into the hole. A query
+/// reads a cell's entries sequentially, filters them with a distance bound
+/// padded by the single-precision rounding, and confirms each survivor with
+/// the exact test on the caller's double-precision positions, so it reports
+/// exactly the points a scan of those positions reports. The visiting order
+/// is deterministic but not the insertion order: callers choose among the
+/// points by their own rule (nearest, ties to the lower id). Used for the
+/// sweep's vertices and its free front (the collision safety net).
 class ErasablePointGrid {
  public:
   /// Pre: cell_size > 0.
   explicit ErasablePointGrid(double cell_size) : index_(cell_size) {}
 
-  /// Adds point `id` at position p. Pre: id is not in the grid.
+  /// Adds point `id` at position p (finite). Pre: id is not in the grid; the
+  /// positions passed to the queries hold p at index id.
   void insert(Index id, const Vec3& p) {
     const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
     if (c == cells_.size()) cells_.emplace_back();
     if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
     where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
-    cells_[c].push_back({p, id});
+    cells_[c].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
+    max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
+    // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies within
+    // sqrt(3) 2^-24 max_abs_ of the true one (padded).
+    pad_ = 1.05e-7 * max_abs_ + 1e-300;
   }
   /// Removes point `id`; does nothing if it is not in the grid.
   void erase(Index id) {
@@ -201,13 +210,19 @@ class ErasablePointGrid {
   }
   bool contains(Index id) const { return id < where_.size() && where_[id].cell != kNone; }
 
-  /// Calls fn(id, position) for every point within distance r (Å) of q.
+  /// Calls fn(id, position) for every point whose position (positions[id], Å)
+  /// lies within distance r of q, |position - q|² <= r² in double precision.
   template <class Fn>
-  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+  void for_each_near(const Vec3& q, double r, const std::vector<Vec3>& positions, Fn&& fn) const {
     const double r2 = r * r;
-    index_.for_each_cell_near(q, r, [&](std::uint32_t c) {
-      for (const Entry& e : cells_[c])
-        if ((e.p - q).squaredNorm() <= r2) fn(e.id, e.p);
+    const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
+    index_.for_each_cell_near(q, rp, [&](std::uint32_t c) {
+      for (const Entry& e : cells_[c]) {
+        const double dx = double(e.p[0]) - q.x(), dy = double(e.p[1]) - q.y(), dz = double(e.p[2]) - q.z();
+        if (dx * dx + dy * dy + dz * dz > rp2) continue;
+        const Vec3& p = positions[e.id];
+        if ((p - q).squaredNorm() <= r2) fn(e.id, p);
+      }
     });
   }
 
@@ -216,7 +231,7 @@ class ErasablePointGrid {
  private:
   static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
   struct Entry {
-    Vec3 p;
+    float p[3];
     Index id;
   };
   struct Where {
@@ -225,6 +240,8 @@ class ErasablePointGrid {
   detail::CellIndex index_;
   std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
   std::vector<Where> where_;               ///< per id
+  double max_abs_ = 0;                     ///< largest |coordinate| inserted (Å)
+  double pad_ = 0;                         ///< bound on |stored - true position| (Å)
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the
