@@ -79,6 +79,19 @@ class Refiner {
   }
   bool contract(Edge e);
   bool insert(Face f);
+  /// Records the edges and faces around v as touched.
+  void touch_around(Vertex v) {
+    for (Halfedge h : mesh_.halfedges(v)) {
+      touched_edges_.push_back(mesh_.edge(h));
+      if (!mesh_.is_boundary(h)) touched_faces_.push_back(mesh_.face(h));
+    }
+  }
+  /// The edges violating [L], in index order (as a scan of mesh_.edges()
+  /// gives them): the previous list `prev` and the touched edges, re-tested;
+  /// every edge if `full`. Clears the touched edges.
+  std::vector<Edge> scan_L(const std::vector<Edge>& prev, bool full);
+  /// The same for the faces violating [U].
+  std::vector<Face> scan_U(const std::vector<Face>& prev, bool full);
 
   const skin::SkinSurface& skin_;
   SurfaceMesh& mesh_;
@@ -89,6 +102,13 @@ class Refiner {
   geometry::VertexProperty<std::uint8_t> inserted_;  ///< 1: inserted by this refinement
   std::optional<geometry::PointGrid> inserted_grid_;
   std::vector<Edge> stack_;
+  /// The edges and faces whose corners changed (flip, contraction, insertion)
+  /// since the last scan for [L] (edges) or [U] (faces). The verdicts depend
+  /// only on the corners' positions and rho, which never change for a vertex,
+  /// so a scan needs only these and the previous scan's violators
+  /// (scan_L, scan_U); handles are never reused (deleted elements stay).
+  std::vector<Edge> touched_edges_;
+  std::vector<Face> touched_faces_;
   RefineStats stats_;
 };
 
@@ -128,6 +148,9 @@ void Refiner::lawson() {
     }
     mesh_.flip(e);
     ++stats_.flips;
+    touched_edges_.push_back(e);
+    touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 0)));
+    touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 1)));
     for (unsigned i = 0; i < 2; ++i) {
       const Halfedge h = mesh_.halfedge(e, i);
       stack_.push_back(mesh_.edge(mesh_.next(h)));
@@ -182,6 +205,7 @@ bool Refiner::contract(Edge e) {
   const Vertex keep = mesh_.to_vertex(pick);
   mesh_.collapse(pick);
   ++stats_.contractions;
+  touch_around(keep);
   push_edges_around(keep);
   lawson();
   return true;
@@ -303,31 +327,68 @@ bool Refiner::insert(Face f) {
   inserted_[nv] = 1;
   inserted_grid_->insert(nv.idx(), m);
   ++stats_.insertions;
+  touch_around(nv);
   push_edges_around(nv);
   lawson();
   return true;
 }
 
+std::vector<Edge> Refiner::scan_L(const std::vector<Edge>& prev, bool full) {
+  std::vector<Edge> out;
+  if (full) {
+    for (Edge e : mesh_.edges())
+      if (violates_L(e)) out.push_back(e);
+  } else {
+    std::vector<Edge> cand = prev;
+    cand.insert(cand.end(), touched_edges_.begin(), touched_edges_.end());
+    std::sort(cand.begin(), cand.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    for (Edge e : cand)
+      if (!mesh_.is_deleted(e) && violates_L(e)) out.push_back(e);
+  }
+  touched_edges_.clear();
+  return out;
+}
+
+std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
+  std::vector<Face> out;
+  if (full) {
+    for (Face f : mesh_.faces())
+      if (violates_U(f)) out.push_back(f);
+  } else {
+    std::vector<Face> cand = prev;
+    cand.insert(cand.end(), touched_faces_.begin(), touched_faces_.end());
+    std::sort(cand.begin(), cand.end(), [](Face a, Face b) { return a.idx() < b.idx(); });
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    for (Face f : cand)
+      if (!mesh_.is_deleted(f) && violates_U(f)) out.push_back(f);
+  }
+  touched_faces_.clear();
+  return out;
+}
+
 RefineStats Refiner::run() {
   for (Edge e : mesh_.edges()) stack_.push_back(e);
   lawson();
+  // The first scans read every element; later ones the previous violators
+  // and what changed since (touched_edges_, touched_faces_): the same lists.
+  std::vector<Edge> short_edges;
+  std::vector<Face> big;
+  bool full = true;
   for (int round = 0; round < opt_.max_rounds; ++round) {
     ++stats_.rounds;
     bool changed = false;
-    std::vector<Edge> short_edges;
-    for (Edge e : mesh_.edges())
-      if (violates_L(e)) short_edges.push_back(e);
+    short_edges = scan_L(short_edges, full);
     for (Edge e : short_edges)
       if (!mesh_.is_deleted(e) && violates_L(e) && contract(e)) changed = true;
-    std::vector<Face> big;
-    for (Face f : mesh_.faces())
-      if (violates_U(f)) big.push_back(f);
+    big = scan_U(big, full);
+    full = false;
     for (Face f : big)
       if (!mesh_.is_deleted(f) && violates_U(f) && insert(f)) changed = true;
     if (!changed) break;
   }
-  for (Edge e : mesh_.edges()) stats_.L_left += violates_L(e);
-  for (Face f : mesh_.faces()) stats_.U_left += violates_U(f);
+  stats_.L_left = scan_L(short_edges, full).size();
+  stats_.U_left = scan_U(big, full).size();
   return stats_;
 }
 
