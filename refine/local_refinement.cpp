@@ -368,7 +368,26 @@ std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
 }
 
 RefineStats Refiner::run() {
-  for (Edge e : mesh_.edges()) stack_.push_back(e);
+  // The first Lawson pass. An edge flips only if the apex across it lies in
+  // the surface ball of one of its faces (should_flip), which needs the
+  // filter to fail first: each face's filter is set up once for the apexes
+  // across its three edges, and only the edges where it fails go on the
+  // stack, in index order (the others would be popped and dropped).
+  {
+    std::vector<char> suspect(mesh_.edges_size(), 0);
+    for (Face f : mesh_.faces()) {
+      const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0), h2 = mesh_.next(h1);
+      const SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)), pos(mesh_.to_vertex(h1)),
+                                   skin_.length_scale());
+      for (Halfedge h : {h0, h1, h2}) {
+        const Halfedge o = mesh_.opposite(h);
+        if (!mesh_.is_boundary(o) && !ball.outside(pos(mesh_.to_vertex(mesh_.next(o)))))
+          suspect[mesh_.edge(h).idx()] = 1;
+      }
+    }
+    for (Edge e : mesh_.edges())
+      if (suspect[e.idx()]) stack_.push_back(e);
+  }
   lawson();
   // The first scans read every element; later ones the previous violators
   // and what changed since (touched_edges_, touched_faces_): the same lists.

@@ -23,18 +23,17 @@ bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const
   return skin.project_along_line(cc, n / len, 2.0 * R, m, cell);
 }
 
-bool outside_every_surface_ball(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double length_scale) {
-  const Vec3 nn = (b - a).cross(c - a);
-  const double len = nn.norm();
-  if (!(len > 0)) return false;
-  const Vec3 cc = circumcentre(a, b, c);
-  const double R2 = (a - cc).squaredNorm();
-  const Vec3 y = d - cc;
-  const double lhs = y.squaredNorm() - R2;
+SurfaceBallFilter::SurfaceBallFilter(const Vec3& a, const Vec3& b, const Vec3& c, double length_scale)
+    : nn_((b - a).cross(c - a)), cc_(Vec3::Zero()), len_(nn_.norm()) {
+  if (!(len_ > 0)) return;
+  cc_ = circumcentre(a, b, c);
+  R2_ = (a - cc_).squaredNorm();
   // |t| <= 2R plus the root finder's margin (1e-12 L), rounded up.
-  const double t_max = 2.0 * std::sqrt(R2) * (1 + 1e-9) + 1e-11 * length_scale;
-  const double slack = 2.0 * t_max * std::abs(y.dot(nn)) / len;
-  return lhs > slack + 1e-9 * (y.squaredNorm() + R2);
+  t_max_ = 2.0 * std::sqrt(R2_) * (1 + 1e-9) + 1e-11 * length_scale;
+}
+
+bool outside_every_surface_ball(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double length_scale) {
+  return SurfaceBallFilter(a, b, c, length_scale).outside(d);
 }
 
 }  // namespace skinmesh::refine

@@ -5,6 +5,8 @@
 // Notes: papers/refine/restricted_delaunay.md
 #pragma once
 
+#include <cmath>
+
 #include "geometry/types.h"
 #include "skin/skin_surface.h"
 
@@ -32,5 +34,25 @@ bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const
 /// Uses |d - m|² - |a - m|² = |d - cc|² - R² - 2t (d - cc)·n, with a relative
 /// margin of 1e-9. False for a degenerate triangle (decide by projecting).
 bool outside_every_surface_ball(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double length_scale);
+
+/// outside_every_surface_ball() for many points d against one triangle abc:
+/// the triangle's circumcentre, radius and normal computed once (the same
+/// arithmetic, so the same answers).
+class SurfaceBallFilter {
+ public:
+  SurfaceBallFilter(const Vec3& a, const Vec3& b, const Vec3& c, double length_scale);
+  /// outside_every_surface_ball(a, b, c, d, length_scale).
+  bool outside(const Vec3& d) const {
+    if (!(len_ > 0)) return false;
+    const Vec3 y = d - cc_;
+    const double lhs = y.squaredNorm() - R2_;
+    const double slack = 2.0 * t_max_ * std::abs(y.dot(nn_)) / len_;
+    return lhs > slack + 1e-9 * (y.squaredNorm() + R2_);
+  }
+
+ private:
+  Vec3 nn_, cc_;  ///< (b - a) x (c - a), circumcentre (Å)
+  double len_, R2_ = 0, t_max_ = 0;
+};
 
 }  // namespace skinmesh::refine
