@@ -23,7 +23,8 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
   const double r = disc_radius(v);
   const Vec3 pv = mesh_.position(v), n = normal_[v];
   // Vertices fewer than contact_min_hops hops along the front are the wing's business.
-  std::vector<Vertex> near_hops;
+  std::vector<Vertex>& near_hops = scratch_near_hops_;  // a member: no allocation per call
+  near_hops.clear();
   {
     Halfedge f = k.out, b = k.in;
     for (int i = 0; i + 1 < opt_.contact_min_hops; ++i) {

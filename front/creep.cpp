@@ -137,7 +137,8 @@ void Sweep::creep(Vertex v) {
   // The safety net for the fan (collision_net.cpp).
   if (fan_collision(v, k, m)) return;
   // The fan: p_0 = w, p_1 .. p_{m-1} new, p_m = u (Figure 6).
-  std::vector<Vertex> fan;
+  std::vector<Vertex>& fan = scratch_fan_;  // a member: no allocation per creep
+  fan.clear();
   fan.push_back(k.w);
   for (int i = 1; i < m; ++i) {
     // The same rotation angle as test_fan's for i = 1 (1 * a / m == a / m) and

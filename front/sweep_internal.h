@@ -297,6 +297,10 @@ class Sweep {
   /// (papers/front/open_questions.md Q1.2).
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
   std::vector<Vertex> wing_worklist_;
+  /// Scratch lists of creep() (the fan) and try_contact() (the vertices a
+  /// few hops along the front), kept to reuse their memory; neither call
+  /// re-enters itself.
+  std::vector<Vertex> scratch_fan_, scratch_near_hops_;
   std::vector<char> resolved_;              ///< saddle bridged or released (holds no more)
   std::vector<std::vector<Vertex>> held_;   ///< vertices held per critical point
   std::unique_ptr<geometry::PointGrid> hold_grid_;
