@@ -84,24 +84,23 @@ bool Sweep::quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin
 }
 
 double Sweep::fold_excess(Vertex v) const {
-  // A test with a tolerance of degrees (opt.fold_tolerance_deg): the angles in
-  // single precision (atan2f, ~1e-7 rad) are plenty and cost half as much.
-  auto coarse_ccw_angle = [](const Vec3& a, const Vec3& b, const Vec3& n) {
-    double t = std::atan2(static_cast<float>(a.cross(b).dot(n)), static_cast<float>(a.dot(b)));
-    return t < 0 ? t + 2 * kPi : t;
-  };
+  // A test with a tolerance of degrees (opt.fold_tolerance_deg): the angles of
+  // coarse_ccw_angle (within 2e-5 rad) are plenty and cost a fraction of
+  // atan2's. The tangent vectors need no normalisation.
   const Vec3 pv = mesh_.position(v);
   const Vec3 n = normal_[v];
+  auto tangent = [&](Vertex x) {
+    const Vec3 d = mesh_.position(x) - pv;
+    return Vec3(d - d.dot(n) * n);
+  };
   double covered = 0;
   for (Halfedge h : mesh_.halfedges(v)) {
     if (!mesh_.face(h).is_valid()) continue;  // the face of h has corners v, to(h), to(next(h))
-    const Vertex a = mesh_.to_vertex(h), b = mesh_.to_vertex(mesh_.next(h));
-    covered += coarse_ccw_angle(tangent_dir(pv, n, mesh_.position(a)), tangent_dir(pv, n, mesh_.position(b)), n);
+    covered += coarse_ccw_angle(tangent(mesh_.to_vertex(h)), tangent(mesh_.to_vertex(mesh_.next(h))), n);
   }
   if (mesh_.is_boundary(v)) {  // the hole angle, as corner(v) measures it
     const Halfedge out = mesh_.halfedge(v);
-    covered += coarse_ccw_angle(tangent_dir(pv, n, mesh_.position(mesh_.to_vertex(out))),
-                                tangent_dir(pv, n, mesh_.position(mesh_.from_vertex(mesh_.prev(out)))), n);
+    covered += coarse_ccw_angle(tangent(mesh_.to_vertex(out)), tangent(mesh_.from_vertex(mesh_.prev(out))), n);
   }
   return covered - 2 * kPi;
 }

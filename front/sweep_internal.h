@@ -60,6 +60,24 @@ inline double ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
   return t;
 }
 
+/// ccw_angle() to within 2e-5 rad for tangent vectors a, b of any nonzero
+/// length (zero vectors give 0), for tests with a tolerance of degrees
+/// (fold_excess): a polynomial arctangent on [0, 1] (minimax, degree 9,
+/// odd; the usual octant reduction) instead of std::atan2, and no
+/// normalisation (the angle does not depend on the lengths).
+inline double coarse_ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
+  const double y = a.cross(b).dot(n), x = a.dot(b);
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+  if (!(hi > 0)) return 0.0;
+  const double z = lo / hi, z2 = z * z;
+  double t = z * (0.99986600 + z2 * (-0.33029950 + z2 * (0.18014100 + z2 * (-0.08513300 + z2 * 0.02083510))));
+  if (ay > ax) t = kPi / 2 - t;
+  if (x < 0) t = kPi - t;
+  if (y < 0) t = 2 * kPi - t;
+  return t >= 2 * kPi ? t - 2 * kPi : t;
+}
+
 /// Rotates tangent vector a about unit axis n by angle t (radians).
 inline Vec3 rotate(const Vec3& a, const Vec3& n, double t) {
   return std::cos(t) * a + std::sin(t) * n.cross(a) + (1 - std::cos(t)) * n.dot(a) * n;

@@ -281,4 +281,32 @@ TEST_CASE("a tangent-disc factor outside the window of C and Q is refused") {
   CHECK_THROWS_AS(front::sweep_mesh(fx.skin, fx.ms, fx.opt), std::invalid_argument);
 }
 
+TEST_CASE("coarse_ccw_angle: within 2e-5 rad of ccw_angle for tangents of any length, 0 for a zero tangent") {
+  // Random unit normals and tangent pairs at random lengths (1e-9 to 1e3),
+  // plus the octant boundaries (angles k * 45°), against the exact angle.
+  std::uint64_t seed = 12345;
+  auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) / double(1ull << 53);
+  };
+  double worst = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 n = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
+    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    const double ta = 2 * front::detail::kPi * uniform();
+    const double tb = i % 10 == 0 ? ta + (i / 10 % 8) * front::detail::kPi / 4 : 2 * front::detail::kPi * uniform();
+    const Vec3 a = std::cos(ta) * t1 + std::sin(ta) * t2, b = std::cos(tb) * t1 + std::sin(tb) * t2;
+    const double la = std::pow(10.0, -9 + 12 * uniform()), lb = std::pow(10.0, -9 + 12 * uniform());
+    const double exact = front::detail::ccw_angle(a, b, n);
+    const double coarse = front::detail::coarse_ccw_angle(la * a, lb * b, n);
+    CHECK(coarse >= 0);
+    CHECK(coarse < 2 * front::detail::kPi);
+    // Angles near 0 and 2 pi are the same direction.
+    const double d = std::abs(coarse - exact);
+    worst = std::max(worst, std::min(d, 2 * front::detail::kPi - d));
+  }
+  CHECK(worst < 2e-5);
+  CHECK(front::detail::coarse_ccw_angle(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 0, 1)) == 0.0);
+}
+
 }  // TEST_SUITE
