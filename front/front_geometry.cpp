@@ -53,17 +53,37 @@ bool Sweep::fits_at(Vertex x, Vertex y_from, Vertex y_to) const {
 
 bool Sweep::fits_at(Vertex x, const Vec3& from, const Vec3& to, Vertex y_from, Vertex y_to) const {
   if (!mesh_.is_boundary(x) || mesh_.is_isolated(x)) return mesh_.is_isolated(x);
-  const Corner k = corner(x);
-  const Vec3 px = mesh_.position(x), n = normal_[x];
-  const double tol = kWedgeTolerance;
   // The span [a, b] of the new triangle at x, measured counter-clockwise from
-  // the front edge x -> w, must lie within the hole angle [0, k.angle].
-  const double a = y_from == k.w ? 0.0 : ccw_angle(k.dw, tangent_dir(px, n, from), n);
-  const double b = y_to == k.u ? k.angle : ccw_angle(k.dw, tangent_dir(px, n, to), n);
+  // the front edge x -> w, must lie within the hole angle [0, K]:
+  //   a < b - tol,  b <= K + tol,  K > tol.
+  // Decided from pseudo-angles of the same tangents when they are clear of
+  // the tolerance by a factor of two (almost always), else from the angles
+  // (atan2) as before: the same verdicts (pseudo_angle's slope bounds).
+  const Halfedge out = mesh_.halfedge(x);
+  const Vertex w = mesh_.to_vertex(out), u = mesh_.from_vertex(mesh_.prev(out));
+  const Vec3 px = mesh_.position(x), n = normal_[x];
+  const Vec3 dw = tangent_dir(px, n, mesh_.position(w));
+  const Vec3 du = tangent_dir(px, n, mesh_.position(u));
+  const Vec3 df = y_from == w ? dw : tangent_dir(px, n, from);
+  const Vec3 dt = y_to == u ? du : tangent_dir(px, n, to);
+  const double tol = kWedgeTolerance;
+  if (!trace_) {
+    auto pseudo = [&](const Vec3& d) { return pseudo_angle(dw.cross(d).dot(n), dw.dot(d)); };
+    const double pk = pseudo(du);
+    const double pa = y_from == w ? 0.0 : pseudo(df);
+    const double pb = y_to == u ? pk : pseudo(dt);
+    const int span = pseudo_exceeds(pb, pa, tol), over = pseudo_exceeds(pb, pk, tol),
+              open = pseudo_exceeds(pk, 0.0, tol);
+    if (span == 0 || over == 1 || open == 0) return false;
+    if (span == 1 && over == 0 && open == 1) return true;
+  }
+  const double angle = ccw_angle(dw, du, n);
+  const double a = y_from == w ? 0.0 : ccw_angle(dw, df, n);
+  const double b = y_to == u ? angle : ccw_angle(dw, dt, n);
   if (trace_)
     tracef("fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDeg, b / kDeg,
-           k.angle / kDeg, y_from.idx(), y_to.idx(), k.w.idx(), k.u.idx());
-  return a < b - tol && b <= k.angle + tol && k.angle > tol;
+           angle / kDeg, y_from.idx(), y_to.idx(), w.idx(), u.idx());
+  return a < b - tol && b <= angle + tol && angle > tol;
 }
 
 bool Sweep::quad_fits(Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin, const Vec3& normal) const {

@@ -60,6 +60,31 @@ inline double ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
   return t;
 }
 
+/// A pseudo-angle of the direction (x, y) (a tangent's coordinates along
+/// and across a reference direction): a monotone map of the angle
+/// t = atan2(y, x) taken in [0, 2 pi) as ccw_angle() takes it (including
+/// its treatment of signed zeros) onto [0, 4], with dt/dp between 1 and 2,
+/// so that pseudo-angle differences bound angle differences:
+/// p1 - p0 <= t1 - t0 <= 2 (p1 - p0) for p1 >= p0. Costs a division, no
+/// atan2. (0, 0) gives 0, as atan2(0, 0); a NaN gives NaN.
+inline double pseudo_angle(double y, double x) {
+  const double s = std::abs(x) + std::abs(y);
+  if (s == 0) return 0.0;
+  const double c = x / s;
+  return y >= 0 ? 1 - c : 3 + c;
+}
+
+/// Three-valued test of t1 - t0 > tol from pseudo-angles p1, p0 of t1, t0
+/// (pseudo_angle, angles in radians): 1 if it certainly holds, 0 if it
+/// certainly fails, -1 if the pseudo-angles cannot tell (within a factor of
+/// two of tol, or NaN); 1e-12 covers the rounding of both sides.
+inline int pseudo_exceeds(double p1, double p0, double tol) {
+  const double d = p1 - p0;
+  if (d > tol + 1e-12) return 1;
+  if (2 * d < tol - 1e-12) return 0;
+  return -1;
+}
+
 /// ccw_angle() to within 2e-5 rad for tangent vectors a, b of any nonzero
 /// length (zero vectors give 0), for tests with a tolerance of degrees
 /// (fold_excess): a polynomial arctangent on [0, 1] (minimax, degree 9,

@@ -309,4 +309,45 @@ TEST_CASE("coarse_ccw_angle: within 2e-5 rad of ccw_angle for tangents of any le
   CHECK(front::detail::coarse_ccw_angle(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 0, 1)) == 0.0);
 }
 
+TEST_CASE("pseudo_angle: monotone in the angle with slope between 1 and 2; pseudo_exceeds never contradicts the angles") {
+  // Random tangent pairs plus the axis directions with signed zeros; for
+  // every pair of directions the angle difference lies between the
+  // pseudo-angle difference and twice it, and a certain verdict of
+  // pseudo_exceeds agrees with the angles for tolerances from 1e-9 to 1.
+  std::uint64_t seed = 777;
+  auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) / double(1ull << 53);
+  };
+  const Vec3 n(0, 0, 1), e(1, 0, 0);
+  std::vector<Vec3> dirs = {Vec3(1, 0.0, 0), Vec3(1, -0.0, 0), Vec3(-1, 0.0, 0), Vec3(-1, -0.0, 0),
+                            Vec3(0.0, 1, 0), Vec3(-0.0, 1, 0), Vec3(0.0, -1, 0), Vec3(-0.0, -1, 0)};
+  for (int i = 0; i < 400; ++i) {
+    const double t = 2 * front::detail::kPi * uniform();
+    dirs.push_back(Vec3(std::cos(t), std::sin(t), 0));
+    dirs.push_back(Vec3(std::cos(t), std::sin(t) * 1e-9, 0).normalized());  // near the reference direction
+  }
+  for (const Vec3& a : dirs) {
+    const double ta = front::detail::ccw_angle(e, a, n);
+    const double pa = front::detail::pseudo_angle(e.cross(a).dot(n), e.dot(a));
+    CHECK(pa >= 0);
+    CHECK(pa <= 4);
+    for (const Vec3& b : dirs) {
+      const double tb = front::detail::ccw_angle(e, b, n);
+      const double pb = front::detail::pseudo_angle(e.cross(b).dot(n), e.dot(b));
+      if (pb >= pa) {
+        CHECK(tb - ta >= (pb - pa) - 1e-12);
+        CHECK(tb - ta <= 2 * (pb - pa) + 1e-12);
+      }
+      for (double tol : {1e-9, 1e-6, 1e-3, 0.1, 1.0}) {
+        const int verdict = front::detail::pseudo_exceeds(pb, pa, tol);
+        if (verdict >= 0) CHECK(verdict == int(tb - ta > tol));
+      }
+    }
+  }
+  CHECK(front::detail::pseudo_angle(0.0, 0.0) == 0.0);
+  CHECK(std::isnan(front::detail::pseudo_angle(std::nan(""), 1.0)));
+  CHECK(front::detail::pseudo_exceeds(std::nan(""), 0.0, 1e-6) == -1);
+}
+
 }  // TEST_SUITE
