@@ -12,11 +12,13 @@ bool Sweep::wing(Vertex v, bool force) {
   const char* why = wing_refusal(v, force);
   if (force && why && trace_) tracef("wing v%u refused: %s\n", v.idx(), why);
   if (why) return false;
-  const Corner k = corner(v);
-  add_triangle(v, k.w, k.u);
+  // The front neighbours (the hole angle is not needed here).
+  const Halfedge out = mesh_.halfedge(v);
+  const Vertex w = mesh_.to_vertex(out), u = mesh_.from_vertex(mesh_.prev(out));
+  add_triangle(v, w, u);
   set_state(v, VState::Interior);
-  wing_worklist_.push_back(k.u);
-  wing_worklist_.push_back(k.w);
+  wing_worklist_.push_back(u);
+  wing_worklist_.push_back(w);
   ++stats_.wings;
   return true;
 }
