@@ -60,8 +60,9 @@ SkinTopology dual_complex_topology(const MixedComplex& mc) {
         const MixedCell& Y = mc.cell(p.neighbor);
         if (Y.dim != dim + 1) continue;
         coface_in = coface_in || in_k0[p.neighbor];
+        if (attached) continue;  // decided; a tie only counts for an unattached X
         const Sign s = geometry::orthosphere_power_sign(xs, rt.point(extra_vertex(X, Y)));
-        attached = attached || s == Sign::Negative;
+        attached = s == Sign::Negative;
         tie = tie || s == Sign::Zero;
       }
       // A tie (some k orthogonal to the orthosphere, no strict attachment)
