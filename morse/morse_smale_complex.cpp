@@ -34,7 +34,8 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
   const CriticalPoint& sp = cps[s];
   const CriticalKind target = sgn > 0 ? CriticalKind::Maximum : CriticalKind::Minimum;
   Index cell = sp.cell;
-  Vec3 x = skin.pull_back(sp.position + opt.start_offset * sp.rho * dir, cell);
+  skin::SkinSample sx;  // the sample at x, from the pull-back that found x
+  Vec3 x = skin.pull_back(sp.position + opt.start_offset * sp.rho * dir, cell, &sx);
   line.points.push_back(sp.position);
   line.points.push_back(x);
 
@@ -59,7 +60,6 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
   };
 
   for (int step = 0; step < opt.max_steps; ++step) {
-    const skin::SkinSample sx = skin.sample(x, cell);
     double h = opt.step_factor * sx.rho;
     const Index end = find_end(x, h);
     if (end != kInvalidIndex) {
@@ -71,13 +71,15 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
     bool advanced = false;
     for (int halve = 0; halve < opt.max_step_halvings && !advanced; ++halve, h *= 0.5) {
       Index c2 = sx.cell;
-      const Vec3 xp = skin.pull_back(x + h * t1, c2);
-      const Vec3 t2 = sgn * surface_ascent(skin.normal(xp, c2), e);
+      skin::SkinSample sp, sn;
+      skin.pull_back(x + h * t1, c2, &sp);  // the predictor x_p: only its gradient is needed
+      const Vec3 t2 = sgn * surface_ascent(sp.gradient.normalized(), e);
       Index c3 = c2;
-      const Vec3 xn = skin.pull_back(x + 0.5 * h * (t1 + t2), c3);
+      const Vec3 xn = skin.pull_back(x + 0.5 * h * (t1 + t2), c3, &sn);
       if (sgn * (e.dot(xn) - e.dot(x)) > 0) {
         x = xn;
         cell = c3;
+        sx = sn;
         advanced = true;
       }
     }

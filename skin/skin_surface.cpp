@@ -173,7 +173,7 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
   return true;
 }
 
-Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell) const {
+Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result) const {
   Vec3 x = x0;
   const double tol = 1e-14 * length_scale();
   for (int it = 0; it < 100; ++it) {
@@ -182,12 +182,18 @@ Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell) const {
     const double g2 = s.gradient.squaredNorm();
     if (g2 <= 0) break;
     const double dist = std::abs(s.f) / std::sqrt(g2);
-    if (dist <= tol) return x;
+    if (dist <= tol) {
+      if (at_result) *at_result = s;
+      return x;
+    }
     x -= (s.f / g2) * s.gradient;
   }
   const SkinSample s = sample(x, cell);
   cell = s.cell;
-  if (std::abs(s.f) / s.gradient.norm() <= 1e-11 * length_scale()) return x;
+  if (std::abs(s.f) / s.gradient.norm() <= 1e-11 * length_scale()) {
+    if (at_result) *at_result = s;
+    return x;
+  }
   throw GeometryError("pull_back did not converge near (" + std::to_string(x0.x()) + ", " +
                       std::to_string(x0.y()) + ", " + std::to_string(x0.z()) + ")");
 }

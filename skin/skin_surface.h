@@ -117,8 +117,10 @@ class SkinSurface {
   /// Gradient–Newton pull-back x <- x - f grad f / |grad f|² until
   /// |f| / |grad f| <= 1e-14 L (papers/skin/skin_math.md §7.3). Converges from
   /// offsets up to about rho/2. Throws GeometryError if it does not converge in
-  /// 100 steps.
-  Vec3 pull_back(const Vec3& x, Index& cell) const;
+  /// 100 steps. If `at_result` is given, it receives the sample at the
+  /// returned point (the one the convergence test read: the same as
+  /// sample(result, cell)), so that callers need not sample it again.
+  Vec3 pull_back(const Vec3& x, Index& cell, SkinSample* at_result = nullptr) const;
   /// Distance estimate |f(x)| / |grad f(x)| (Å): first-order distance to the skin.
   double distance_estimate(const Vec3& x, Index hint = kInvalidIndex) const;
 
