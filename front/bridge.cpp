@@ -206,10 +206,11 @@ void Sweep::bridge(Halfedge ab, Halfedge cd, Index c, const Rails& rails) {
   if (c != kInvalidIndex) {
     const double reach = opt_.bridge_requeue_factor * ms_.protect_radius[c];
     const Vec3 centre = ms_.critical[c].position;
-    // Every vertex is in vertex_grid_ (new_vertex); the grid makes this local
-    // (a scan of all vertices made the sweep quadratic in the bridge count).
+    // Every vertex not Interior is in front_grid_ (set_state), so every free
+    // front vertex; the grid makes this local (a scan of all vertices made the
+    // sweep quadratic in the bridge count).
     std::vector<Index> near;
-    vertex_grid_->for_each_near(centre, reach, mesh_.positions().vector(), [&](Index xi, const Vec3& q) {
+    front_grid_->for_each_near(centre, reach, mesh_.positions().vector(), [&](Index xi, const Vec3& q) {
       if ((q - centre).norm() < reach) near.push_back(xi);
     });
     std::sort(near.begin(), near.end());  // the order of the scan it replaces
