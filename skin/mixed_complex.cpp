@@ -316,8 +316,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     const Vec3 n = facet_coface_normal(rt, X, pr.k);
     const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
     SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y};
-    planes_[Y.first_plane + fill[pr.y]++] = {-n, -off, pr.x};
+    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y, pr.k};
+    planes_[Y.first_plane + fill[pr.y]++] = {-n, -off, pr.x, pr.k};
   }
 }
 

@@ -22,12 +22,17 @@ using geometry::WeightedPoint;
 /// One bounding plane of a mixed cell: the cell lies in {x : normal·x <= offset}.
 /// `normal` is a unit vector (Å⁰), `offset` in Å. `neighbor` is the cell on
 /// the other side of the plane (it shares the plane,
-/// papers/skin/skin_math.md §2.3).
+/// papers/skin/skin_math.md §2.3). The two cells are a simplex X and a coface
+/// Y = X ∪ {k}; `extra` is k, the point of the triangulation in Y and not in
+/// X, on both sides' records (it fills the record's padding: 40 bytes either
+/// way).
 struct CellPlane {
   Vec3 normal;
   double offset;
   Index neighbor;
+  Index extra;
 };
+static_assert(sizeof(CellPlane) == 40, "CellPlane: extra must fit in the padding");
 
 /// The mixed cell mu_X of a simplex X of the regular triangulation and the
 /// quadric patch f_X it carries (papers/skin/skin_math.md §3.2 with s = 1/2):
