@@ -51,14 +51,16 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   max_hold_radius_ = rmax;
   double rho_max = 0;
   for (const auto& wp : skin.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
-  // The front grid's cells are two disc radii: the contact query (1.5 r) then
-  // visits 2-3 cells per axis instead of 4 (crambin probe 0: sweep 1.15 s ->
-  // 0.58 s). The vertex grid's are one disc radius: the fan-collision query
+  // The front grid's cells are four disc radii at the largest scale: the
+  // contact query (1.5 r) then probes 1-2 cells per axis, and the front is a
+  // curve, so most probed cells would be empty at a finer size (maltoporin:
+  // sweep 3,000 -> 2,940 million instructions against two disc radii). The
+  // vertex grid's are one disc radius: the fan-collision query
   // (0.5 r) reads a quarter of the points per cell (crambin probe 0: sweep
   // 1,650 -> 1,578 million instructions; maltoporin, whose vertices are mostly
   // at the largest scale: 3,294 -> 3,310 million).
   vertex_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, 1e-6));
-  front_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(2 * opt.disc_factor * rho_max, 1e-6));
+  front_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, 1e-6));
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
   // factor for the scales below the atoms' that the front has met (new_vertex).
