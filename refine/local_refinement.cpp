@@ -340,38 +340,34 @@ bool Refiner::insert(Face f) {
   return true;
 }
 
-std::vector<Edge> Refiner::scan_L(const std::vector<Edge>& prev, bool full) {
-  std::vector<Edge> out;
+/// The elements of `all` (a range of mesh handles in index order) for which
+/// `violates` holds, in index order: every one if `full`, else those of `prev`
+/// and `touched` (sorted, without repeats, not deleted). Clears `touched`.
+template <class Handle, class Range, class Violates>
+std::vector<Handle> rescan(const SurfaceMesh& mesh, Range all, const std::vector<Handle>& prev,
+                           std::vector<Handle>& touched, bool full, Violates violates) {
+  std::vector<Handle> out;
   if (full) {
-    for (Edge e : mesh_.edges())
-      if (violates_L(e)) out.push_back(e);
+    for (Handle x : all)
+      if (violates(x)) out.push_back(x);
   } else {
-    std::vector<Edge> cand = prev;
-    cand.insert(cand.end(), touched_edges_.begin(), touched_edges_.end());
-    std::sort(cand.begin(), cand.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+    std::vector<Handle> cand = prev;
+    cand.insert(cand.end(), touched.begin(), touched.end());
+    std::sort(cand.begin(), cand.end(), [](Handle a, Handle b) { return a.idx() < b.idx(); });
     cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    for (Edge e : cand)
-      if (!mesh_.is_deleted(e) && violates_L(e)) out.push_back(e);
+    for (Handle x : cand)
+      if (!mesh.is_deleted(x) && violates(x)) out.push_back(x);
   }
-  touched_edges_.clear();
+  touched.clear();
   return out;
 }
 
+std::vector<Edge> Refiner::scan_L(const std::vector<Edge>& prev, bool full) {
+  return rescan(mesh_, mesh_.edges(), prev, touched_edges_, full, [&](Edge e) { return violates_L(e); });
+}
+
 std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
-  std::vector<Face> out;
-  if (full) {
-    for (Face f : mesh_.faces())
-      if (violates_U(f)) out.push_back(f);
-  } else {
-    std::vector<Face> cand = prev;
-    cand.insert(cand.end(), touched_faces_.begin(), touched_faces_.end());
-    std::sort(cand.begin(), cand.end(), [](Face a, Face b) { return a.idx() < b.idx(); });
-    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    for (Face f : cand)
-      if (!mesh_.is_deleted(f) && violates_U(f)) out.push_back(f);
-  }
-  touched_faces_.clear();
-  return out;
+  return rescan(mesh_, mesh_.faces(), prev, touched_faces_, full, [&](Face f) { return violates_U(f); });
 }
 
 RefineStats Refiner::run() {
