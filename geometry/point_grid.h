@@ -13,6 +13,7 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/key_index.h"
 #include "geometry/types.h"
 
 namespace skinmesh::geometry {
@@ -20,17 +21,16 @@ namespace skinmesh::geometry {
 namespace detail {
 
 /// The occupied cells of a uniform grid of cubic cells of side `cell_size`
-/// (Å), numbered densely 0, 1, 2, ... in the order they were first added: an
-/// open-addressing table (linear probing, at most half full, Fibonacci
-/// hashing) from a cell's integer coordinates to its number. The grids below
-/// keep their per-cell data in arrays indexed by that number.
+/// (Å), numbered densely 0, 1, 2, ... in the order they were first added (a
+/// KeyIndex of the cells' integer coordinates). The grids below keep their
+/// per-cell data in arrays indexed by that number.
 class CellIndex {
  public:
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::uint32_t kNone = KeyIndex::kNone;
   using Cell = std::array<std::int64_t, 3>;
 
   /// Pre: cell_size > 0.
-  explicit CellIndex(double cell_size) : h_(cell_size), slots_(kInitialSlots) {}
+  explicit CellIndex(double cell_size) : h_(cell_size) {}
 
   /// The cell holding p.
   Cell cell_of(const Vec3& p) const {
@@ -38,18 +38,9 @@ class CellIndex {
             static_cast<std::int64_t>(std::floor(p.z() / h_))};
   }
   /// The number of cell c, or kNone if it was never added.
-  std::uint32_t find(const Cell& c) const {
-    const Slot& s = slots_[probe(key(c))];
-    return s.key == key(c) ? s.cell : kNone;
-  }
+  std::uint32_t find(const Cell& c) const { return keys_.find(key(c)); }
   /// The number of cell c, adding it (as number size()) if it is new.
-  std::uint32_t find_or_add(const Cell& c) {
-    if (2 * (size_ + 1) > slots_.size()) grow();
-    const std::uint64_t k = key(c);
-    Slot& s = slots_[probe(k)];
-    if (s.key == kEmpty) s.key = k, s.cell = size_++;
-    return s.cell;
-  }
+  std::uint32_t find_or_add(const Cell& c) { return keys_.find_or_add(key(c)).first; }
   /// Calls fn(number) for every added cell meeting the box [q - r, q + r]³, in
   /// (x, y, z) order of the cells.
   template <class Fn>
@@ -64,49 +55,17 @@ class CellIndex {
   }
   double cell_size() const { return h_; }
   /// Number of cells added.
-  std::uint32_t size() const { return size_; }
+  std::uint32_t size() const { return keys_.size(); }
 
  private:
-  /// Keys use 63 bits, so the all-ones key marks an empty slot.
-  static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
-  static constexpr std::size_t kInitialSlots = 64;  // a power of two
-  struct Slot {
-    std::uint64_t key = kEmpty;
-    std::uint32_t cell = kNone;
-  };
-  std::size_t home(std::uint64_t k) const {
-    // Fibonacci hashing: the high bits of k times 2^64 / golden ratio.
-    return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_);
-  }
-  /// The slot holding key k, or the empty slot where it would go.
-  std::size_t probe(std::uint64_t k) const {
-    const std::size_t mask = slots_.size() - 1;
-    std::size_t i = home(k);
-    while (slots_[i].key != k && slots_[i].key != kEmpty) i = (i + 1) & mask;
-    return i;
-  }
-  void grow() {
-    std::vector<Slot> old(slots_.size() * 2);
-    old.swap(slots_);
-    --shift_;
-    const std::size_t mask = slots_.size() - 1;
-    for (const Slot& s : old) {
-      if (s.key == kEmpty) continue;
-      std::size_t i = home(s.key);
-      while (slots_[i].key != kEmpty) i = (i + 1) & mask;
-      slots_[i] = s;
-    }
-  }
   static std::uint64_t key(const Cell& c) {
-    // 21 bits per axis (cells beyond ±2^20 wrap, which only costs speed).
+    // 21 bits per axis, 63 in all (cells beyond ±2^20 wrap, which only costs speed).
     const std::uint64_t m = (1u << 21) - 1;
     return (static_cast<std::uint64_t>(c[0]) & m) | ((static_cast<std::uint64_t>(c[1]) & m) << 21) |
            ((static_cast<std::uint64_t>(c[2]) & m) << 42);
   }
   double h_;
-  std::vector<Slot> slots_;
-  std::uint32_t size_ = 0;  ///< cells added (occupied slots)
-  int shift_ = 64 - 6;      ///< 64 - log2(slots_.size())
+  KeyIndex keys_;
 };
 
 }  // namespace detail

@@ -12,6 +12,7 @@
 
 #include "geometry/assert.h"
 #include "geometry/errors.h"
+#include "geometry/key_index.h"
 #include "geometry/predicates.h"
 
 namespace skinmesh::skin {
@@ -68,7 +69,8 @@ void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w) {
 
 namespace {
 
-/// Key of a sorted edge or triangle: vertex ids packed in 21-bit fields.
+/// Key of a sorted edge or triangle: vertex ids packed in 21-bit fields, so
+/// below 2^63 as geometry::KeyIndex requires.
 std::uint64_t simplex_key(const std::array<Index, 4>& v, int dim) {
   std::uint64_t k = 0;
   for (int i = 0; i <= dim; ++i) k = (k << 21) | static_cast<std::uint64_t>(v[i]);
@@ -76,55 +78,6 @@ std::uint64_t simplex_key(const std::array<Index, 4>& v, int dim) {
 }
 
 constexpr Index kMaxPoints = (1u << 21) - 1;
-
-/// Map from simplex_key() to a cell index: open addressing (linear probing,
-/// Fibonacci hashing, at most half full), sized for the expected count and
-/// grown if it is exceeded. A key is below 2^63 (at most three 21-bit
-/// fields, none all ones since ids are below kMaxPoints), so all ones marks an
-/// empty slot. Replaces std::unordered_map, whose node per entry was most of
-/// the construction's own time on large inputs.
-class SimplexIds {
- public:
-  explicit SimplexIds(std::size_t expected) { rehash(expected); }
-  /// The value of key k and whether k was new (then the value is 0; the
-  /// caller sets it). The pointer is valid until the next call.
-  std::pair<Index*, bool> try_emplace(std::uint64_t k) {
-    if (2 * (size_ + 1) > keys_.size()) rehash(2 * size_ + 2);
-    std::size_t i = home(k);
-    while (keys_[i] != k && keys_[i] != kEmpty) i = (i + 1) & mask_;
-    if (keys_[i] == k) return {&values_[i], false};
-    keys_[i] = k;
-    values_[i] = 0;
-    ++size_;
-    return {&values_[i], true};
-  }
-
- private:
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-  std::size_t home(std::uint64_t k) const { return std::size_t((k * 0x9E3779B97F4A7C15ull) >> shift_); }
-  void rehash(std::size_t expected) {
-    std::size_t cap = 16;
-    int bits = 4;
-    while (cap < 2 * expected) cap *= 2, ++bits;
-    std::vector<std::uint64_t> old_keys(cap, kEmpty);
-    std::vector<Index> old_values(cap, 0);
-    old_keys.swap(keys_);
-    old_values.swap(values_);
-    mask_ = cap - 1;
-    shift_ = 64 - bits;
-    for (std::size_t j = 0; j < old_keys.size(); ++j) {
-      if (old_keys[j] == kEmpty) continue;
-      std::size_t i = home(old_keys[j]);
-      while (keys_[i] != kEmpty) i = (i + 1) & mask_;
-      keys_[i] = old_keys[j];
-      values_[i] = old_values[j];
-    }
-  }
-  std::vector<std::uint64_t> keys_;
-  std::vector<Index> values_;
-  std::size_t size_ = 0, mask_ = 0;
-  int shift_ = 60;
-};
 
 /// Unit normal of the plane shared by mu_X and mu_Y, Y = X ∪ {k}: the unit
 /// vector of lin Y orthogonal to lin X, pointing from aff X towards z_k (the
@@ -272,7 +225,12 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
 
   // Euler's formula for the triangulated ball (below): E = V + T + 1 edges and
   // F = 2T + 2 triangles, V <= np.
-  SimplexIds edge_id(std::size_t(np) + nt + 1), tri_id(2 * std::size_t(nt) + 2);
+  // Keys of the edges and triangles met so far, numbered in order; the cell
+  // of number i is edge_cell[i] (tri_cell[i]).
+  geometry::KeyIndex edge_id(std::size_t(np) + nt + 1), tri_id(2 * std::size_t(nt) + 2);
+  std::vector<Index> edge_cell, tri_cell;
+  edge_cell.reserve(std::size_t(np) + nt + 1);
+  tri_cell.reserve(2 * std::size_t(nt) + 2);
   // Facet/coface pairs (X, Y, k) with Y = X + {k}: one shared plane each.
   struct Pair {
     Index x, y, k;
@@ -288,13 +246,13 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
   }
   auto edge_of = [&](Index a, Index b) {
     std::array<Index, 4> v{std::min(a, b), std::max(a, b), kInvalidIndex, kInvalidIndex};
-    auto [id, fresh] = edge_id.try_emplace(simplex_key(v, 1));
+    const auto [i, fresh] = edge_id.find_or_add(simplex_key(v, 1));
     if (fresh) {
-      *id = add_cell(1, v);
-      pairs.push_back({vertex_cell_[v[0]], *id, v[1]});
-      pairs.push_back({vertex_cell_[v[1]], *id, v[0]});
+      edge_cell.push_back(add_cell(1, v));
+      pairs.push_back({vertex_cell_[v[0]], edge_cell[i], v[1]});
+      pairs.push_back({vertex_cell_[v[1]], edge_cell[i], v[0]});
     }
-    return *id;
+    return edge_cell[i];
   };
   for (Index t = 0; t < nt; ++t) {
     const std::array<Index, 4> tv = cells_[tet_cell[t]].vertices;
@@ -302,9 +260,9 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
       std::array<Index, 4> f{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
       for (int i = 0, j = 0; i < 4; ++i)
         if (i != skip) f[j++] = tv[i];
-      auto [id, fresh] = tri_id.try_emplace(simplex_key(f, 2));
-      if (fresh) *id = add_cell(2, f);
-      const Index tc = *id;  // edge_of() below does not touch tri_id
+      const auto [i, fresh] = tri_id.find_or_add(simplex_key(f, 2));
+      if (fresh) tri_cell.push_back(add_cell(2, f));
+      const Index tc = tri_cell[i];
       if (fresh) {
         pairs.push_back({edge_of(f[0], f[1]), tc, f[2]});
         pairs.push_back({edge_of(f[0], f[2]), tc, f[1]});

@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <vector>
 
+#include "geometry/key_index.h"
 #include "geometry/point_grid.h"
 
 using skinmesh::Index;
@@ -159,6 +161,32 @@ TEST_CASE("point_grid: ErasablePointGrid queries equal a scan of the points pres
           }
         }
       }
+}
+
+TEST_CASE("key_index: keys numbered densely in first-insertion order, across growth; absent keys not found") {
+  // 20,000 random keys below 2^63 (with repeats and the largest admissible
+  // key), from a table sized for 10: every number is the key's rank of first
+  // appearance, whatever the growth in between.
+  KeyIndex index(10);
+  std::mt19937_64 rng(99);
+  std::vector<std::uint64_t> order;
+  std::map<std::uint64_t, std::uint32_t> want;
+  for (int i = 0; i < 20000; ++i) {
+    std::uint64_t k = rng() >> 1;
+    if (i % 7 == 3 && !order.empty()) k = order[rng() % order.size()];  // a repeat
+    if (i == 500) k = (std::uint64_t(1) << 63) - 1;
+    const auto [number, fresh] = index.find_or_add(k);
+    const bool is_new = want.find(k) == want.end();
+    CHECK(fresh == is_new);
+    if (is_new) want[k] = std::uint32_t(order.size()), order.push_back(k);
+    CHECK(number == want[k]);
+  }
+  CHECK(index.size() == order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) CHECK(index.find(order[i]) == i);
+  for (int i = 0; i < 1000; ++i) {
+    const std::uint64_t k = rng() >> 1;
+    if (want.find(k) == want.end()) CHECK(index.find(k) == KeyIndex::kNone);
+  }
 }
 
 TEST_CASE("point_grid: FlatPointGrid on empty, all-non-finite and single-point inputs") {
