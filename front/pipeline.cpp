@@ -114,7 +114,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     topology = std::async(std::launch::async, [&skin] { return skin::dual_complex_topology(skin.mixed_complex()); });
   morse::MorseSmaleOptions morse_options = options.morse;
   if (morse_options.threads == morse::MorseSmaleOptions{}.threads) morse_options.threads = threads;
-  auto ms = std::make_unique<const morse::MorseSmaleComplex>(
+  auto ms = std::make_unique<morse::MorseSmaleComplex>(
       morse::build_morse_smale_complex(skin, options.height_direction, morse_options));
   res.expected_topology = topology.valid() ? topology.get() : skin::dual_complex_topology(skin.mixed_complex());
   res.critical = morse::count_critical_points(ms->critical);
@@ -123,6 +123,11 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     throw TopologyError("Morse count " + std::to_string(res.critical.euler()) +
                         " differs from the expected Euler characteristic " +
                         std::to_string(res.expected_topology.euler_skin()));
+  // The sweep reads the critical points, their protecting spheres and which
+  // are live, not the integral lines' polylines (their ends stay for
+  // arc_end()): their memory goes back before the sweep, the stage of the
+  // peak (7 MB on maltoporin).
+  for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
   lap("morse");
 
   // 3. The sweep (§4.1, §4.2).

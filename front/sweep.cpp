@@ -59,7 +59,8 @@ Sweep::Sweep(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, 
   // (0.5 r) reads a quarter of the points per cell (crambin probe 0: sweep
   // 1,650 -> 1,578 million instructions; maltoporin, whose vertices are mostly
   // at the largest scale: 3,294 -> 3,310 million).
-  vertex_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, 1e-6));
+  vertex_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, 1e-6),
+                                                               /*erasable=*/false);
   front_grid_ = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, 1e-6));
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a

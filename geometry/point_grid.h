@@ -13,6 +13,7 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/assert.h"
 #include "geometry/key_index.h"
 #include "geometry/types.h"
 
@@ -141,24 +142,30 @@ class PointGrid {
 /// sweep's vertices and its free front (the collision safety net).
 class ErasablePointGrid {
  public:
-  /// Pre: cell_size > 0.
-  explicit ErasablePointGrid(double cell_size) : index_(cell_size) {}
+  /// Pre: cell_size > 0. With erasable = false the grid keeps no table from
+  /// ids to places (8 bytes per id) and erase() must not be called: for a set
+  /// that only grows (the sweep's vertices).
+  explicit ErasablePointGrid(double cell_size, bool erasable = true) : index_(cell_size), erasable_(erasable) {}
 
   /// Adds point `id` at position p (finite). Pre: id is not in the grid; the
   /// positions passed to the queries hold p at index id.
   void insert(Index id, const Vec3& p) {
     const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
     if (c == cells_.size()) cells_.emplace_back();
-    if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
-    where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
+    if (erasable_) {
+      if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
+      where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
+    }
     cells_[c].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
     max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
     // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies within
     // sqrt(3) 2^-24 max_abs_ of the true one (padded).
     pad_ = 1.05e-7 * max_abs_ + 1e-300;
   }
-  /// Removes point `id`; does nothing if it is not in the grid.
+  /// Removes point `id`; does nothing if it is not in the grid. Pre: the grid
+  /// is erasable.
   void erase(Index id) {
+    SKINMESH_ASSERT_MSG(erasable_, "erase() on a grid made without erasure");
     if (!contains(id)) return;
     const Where w = where_[id];
     std::vector<Entry>& cell = cells_[w.cell];
@@ -167,7 +174,11 @@ class ErasablePointGrid {
     cell.pop_back();
     where_[id] = {kNone, 0};
   }
-  bool contains(Index id) const { return id < where_.size() && where_[id].cell != kNone; }
+  /// True if point `id` is in the grid. Pre: the grid is erasable.
+  bool contains(Index id) const {
+    SKINMESH_ASSERT_MSG(erasable_, "contains() on a grid made without erasure");
+    return id < where_.size() && where_[id].cell != kNone;
+  }
 
   /// Calls fn(id, position) for every point whose position (positions[id], Å)
   /// lies within distance r of q, |position - q|² <= r² in double precision.
@@ -198,7 +209,8 @@ class ErasablePointGrid {
   };
   detail::CellIndex index_;
   std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
-  std::vector<Where> where_;               ///< per id
+  std::vector<Where> where_;               ///< per id (empty unless erasable_)
+  bool erasable_ = true;
   double max_abs_ = 0;                     ///< largest |coordinate| inserted (Å)
   double pad_ = 0;                         ///< bound on |stored - true position| (Å)
 };

@@ -85,18 +85,18 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
     // sigma s <= sigma n·(z_T - z_t) for both cofaces (the mixed complex has
     // put the focus of a flat coface in the order its neighbours require).
     // With the two foci in the wrong order V_t is empty: every s is outside.
-    std::array<const skin::CellPlane*, 2> tets{nullptr, nullptr};
+    std::array<skin::CellPlane, 2> tets{};
     int nt = 0;
     for (const skin::CellPlane& pl : mc.planes(c))
-      if (mc.cell(pl.neighbor).dim == 3 && nt < 2) tets[nt++] = &pl;
+      if (mc.cell(pl.neighbor).dim == 3 && nt < 2) tets[nt++] = pl;
     if (nt != 2) return std::max(mc.violation(c, p), 0.0);
     const Vec3& n = X.axis;
     const Vec3 y = p - X.focus;
     const double s = 2.0 * n.dot(y);
     double out_s = 0.0;
-    for (const skin::CellPlane* pl : tets) {
-      const double sigma = pl->normal.dot(n) >= 0 ? 1.0 : -1.0;
-      const double sT = n.dot(mc.cell(pl->neighbor).focus - X.focus);
+    for (const skin::CellPlane& pl : tets) {
+      const double sigma = pl.normal.dot(n) >= 0 ? 1.0 : -1.0;
+      const double sT = n.dot(mc.cell(pl.neighbor).focus - X.focus);
       out_s = std::max(out_s, sigma * (s - sT));
     }
     const Vec3 x = X.focus + 2.0 * (y - n.dot(y) * n);

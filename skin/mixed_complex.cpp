@@ -204,7 +204,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
   vertex_cell_.assign(np, kInvalidIndex);
   auto add_cell = [&](int dim, std::array<Index, 4> v) {
     MixedCell c;
-    c.dim = dim;
+    c.dim = static_cast<std::uint8_t>(dim);
     c.vertices = v;
     for (int i = 0; i <= dim; ++i) c.bounding = c.bounding || rt.is_bounding(v[i]);
     cells_.push_back(c);
@@ -314,17 +314,26 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     cells_[c].num_planes = count[c];
     total += count[c];
   }
-  planes_.resize(total);
+  // Each plane stored once (as X sees it; Y reads it negated), its uses listed
+  // per cell in the order of `pairs`.
+  SKINMESH_ASSERT_MSG(pairs.size() < (std::size_t{1} << 31), "too many mixed-cell planes");
+  shared_planes_.resize(pairs.size());
+  plane_extra_.resize(pairs.size());
+  plane_uses_.resize(total);
   std::vector<Index> fill(cells_.size(), 0);
-  for (const Pair& pr : pairs) {
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const Pair& pr = pairs[i];
     const MixedCell& X = cells_[pr.x];
     const MixedCell& Y = cells_[pr.y];
     const Vec3& za = rt.point(X.vertices[0]).z;
     const Vec3 n = facet_coface_normal(rt, X, pr.k);
     const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
     SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-    planes_[X.first_plane + fill[pr.x]++] = {n, off, pr.y, pr.k};
-    planes_[Y.first_plane + fill[pr.y]++] = {-n, -off, pr.x, pr.k};
+    shared_planes_[i] = {n, off};
+    plane_extra_[i] = pr.k;
+    const auto id = static_cast<std::uint32_t>(2 * i);
+    plane_uses_[X.first_plane + fill[pr.x]++] = {id, pr.y};
+    plane_uses_[Y.first_plane + fill[pr.y]++] = {id + 1, pr.x};
   }
 }
 
@@ -338,7 +347,12 @@ Index MixedComplex::num_cells_of_dim(int d) const {
 
 double MixedComplex::violation(Index c, const Vec3& x) const {
   double worst = -std::numeric_limits<double>::infinity();
-  for (const CellPlane& p : planes(c)) worst = std::max(worst, p.normal.dot(x) - p.offset);
+  const MixedCell& m = cells_[c];
+  for (Index i = m.first_plane, e = m.first_plane + m.num_planes; i < e; ++i) {
+    const PlaneUse u = plane_uses_[i];
+    const SharedPlane& p = shared_planes_[u.plane_side >> 1];
+    worst = std::max(worst, on_side(p.normal.dot(x) - p.offset, u.plane_side));
+  }
   return worst;
 }
 
@@ -367,11 +381,16 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   for (std::size_t step = 0; step < max_walk_steps_; ++step) {
     double worst = tol;
     Index next = kInvalidIndex;
-    for (const CellPlane& p : planes(c)) {
-      const double v = p.normal.dot(x) - p.offset;
+    // The coface side reads the plane negated: -(n·x - offset) is exactly
+    // (-n)·x - (-offset), the value of a copy stored for that side.
+    const MixedCell& m = cells_[c];
+    for (Index i = m.first_plane, e = m.first_plane + m.num_planes; i < e; ++i) {
+      const PlaneUse u = plane_uses_[i];
+      const SharedPlane& p = shared_planes_[u.plane_side >> 1];
+      const double v = on_side(p.normal.dot(x) - p.offset, u.plane_side);
       if (v > worst) {
         worst = v;
-        next = p.neighbor;
+        next = u.neighbor;
       }
     }
     if (next == kInvalidIndex) return c;

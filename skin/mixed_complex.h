@@ -6,6 +6,9 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -19,20 +22,21 @@ using geometry::WeightedPoint;
 
 // MixedCell Definition
 
-/// One bounding plane of a mixed cell: the cell lies in {x : normal·x <= offset}.
-/// `normal` is a unit vector (Å⁰), `offset` in Å. `neighbor` is the cell on
-/// the other side of the plane (it shares the plane,
-/// papers/skin/skin_math.md §2.3). The two cells are a simplex X and a coface
-/// Y = X ∪ {k}; `extra` is k, the point of the triangulation in Y and not in
-/// X, on both sides' records (it fills the record's padding: 40 bytes either
-/// way).
+/// One bounding plane of a mixed cell, as seen from that cell: the cell lies
+/// in {x : normal·x <= offset}. `normal` is a unit vector (Å⁰), `offset` in Å.
+/// `neighbor` is the cell on the other side of the plane (it shares the
+/// plane, papers/skin/skin_math.md §2.3). The two cells are a simplex X and a
+/// coface Y = X ∪ {k}; `extra` is k, the point of the triangulation in Y and
+/// not in X, on both sides. A value made on the fly by MixedComplex::planes():
+/// the complex stores each plane once, for X, and Y sees it negated (exactly:
+/// negation commutes with rounding, so every test reads the same numbers as
+/// with a copy per side).
 struct CellPlane {
   Vec3 normal;
   double offset;
   Index neighbor;
   Index extra;
 };
-static_assert(sizeof(CellPlane) == 40, "CellPlane: extra must fit in the padding");
 
 /// The mixed cell mu_X of a simplex X of the regular triangulation and the
 /// quadric patch f_X it carries (papers/skin/skin_math.md §3.2 with s = 1/2):
@@ -42,7 +46,6 @@ static_assert(sizeof(CellPlane) == 40, "CellPlane: extra must fit in the padding
 /// hyperboloid about the normal line through z_X) or 3 (tetrahedron: cavity
 /// sphere). `vertices[0..dim]` are point indices of the triangulation (sorted).
 struct MixedCell {
-  int dim = 0;
   std::array<Index, 4> vertices{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
   /// Focus (orthocentre) z_X (Å) and focus weight w_X (Å²),
   /// papers/skin/skin_math.md §2.2.
@@ -53,10 +56,13 @@ struct MixedCell {
   /// Planes of this cell: planes()[first_plane, first_plane + num_planes).
   Index first_plane = 0;
   Index num_planes = 0;
+  /// Dimension of X, 0..3 (one byte, beside `bounding`: 88 bytes per cell).
+  std::uint8_t dim = 0;
   /// True if a vertex of X is one of the triangulation's bounding points: such
   /// cells lie far from the skin (papers/skin/mixed_complex.md).
   bool bounding = false;
 };
+static_assert(sizeof(MixedCell) == 88, "MixedCell: dim and bounding share the last word");
 
 // MixedComplex Definition
 
@@ -72,10 +78,10 @@ class MixedComplex {
 
   Index num_cells() const { return static_cast<Index>(cells_.size()); }
   const MixedCell& cell(Index c) const { return cells_[c]; }
-  std::span<const CellPlane> planes(Index c) const {
-    const MixedCell& m = cells_[c];
-    return {planes_.data() + m.first_plane, m.num_planes};
-  }
+  class PlaneRange;
+  /// The bounding planes of cell c (a forward range of CellPlane values, in
+  /// the same order on every call).
+  PlaneRange planes(Index c) const;
   const geometry::RegularTriangulation& triangulation() const { return *rt_; }
   /// Number of cells of dimension d (0..3) that do not touch a bounding point.
   Index num_cells_of_dim(int d) const;
@@ -119,14 +125,81 @@ class MixedComplex {
   /// edges allow. tet_cell maps a tetrahedron of the triangulation to its cell.
   void order_flat_foci(const std::vector<Index>& tet_cell);
 
+  /// A plane shared by a simplex X and a coface Y = X ∪ {k}, as seen from X.
+  struct SharedPlane {
+    Vec3 normal;
+    double offset;
+  };
+  /// One plane of a cell: the shared plane's number times two, plus one if
+  /// the cell is the coface (it sees the plane negated); and the cell on the
+  /// other side.
+  struct PlaneUse {
+    std::uint32_t plane_side;
+    Index neighbor;
+  };
+  friend class PlaneRange;
+  /// v as seen from a plane's side: v for the simplex, -v for the coface (an
+  /// exact negation: the sign bit flipped, no branch).
+  static double on_side(double v, std::uint32_t plane_side) {
+    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) ^ (std::uint64_t(plane_side & 1u) << 63));
+  }
+
   const geometry::RegularTriangulation* rt_;
   std::vector<MixedCell> cells_;
-  std::vector<CellPlane> planes_;
+  std::vector<SharedPlane> shared_planes_;  ///< one per facet/coface pair (X, Y)
+  std::vector<Index> plane_extra_;          ///< per shared plane: k, Y = X ∪ {k}
+  std::vector<PlaneUse> plane_uses_;        ///< per cell, its planes (first_plane, num_planes)
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
   std::size_t num_reordered_foci_ = 0;
 };
+
+/// The planes of one cell as CellPlane values (MixedComplex::planes()).
+class MixedComplex::PlaneRange {
+ public:
+  class iterator {
+   public:
+    using value_type = CellPlane;
+    using difference_type = std::ptrdiff_t;
+    iterator() = default;
+    iterator(const MixedComplex* mc, const PlaneUse* u) : mc_(mc), u_(u) {}
+    CellPlane operator*() const {
+      const SharedPlane& p = mc_->shared_planes_[u_->plane_side >> 1];
+      const std::uint32_t side = u_->plane_side;
+      return {Vec3(on_side(p.normal.x(), side), on_side(p.normal.y(), side), on_side(p.normal.z(), side)),
+              on_side(p.offset, side), u_->neighbor, mc_->plane_extra_[side >> 1]};
+    }
+    iterator& operator++() {
+      ++u_;
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator t = *this;
+      ++u_;
+      return t;
+    }
+    bool operator==(const iterator& o) const { return u_ == o.u_; }
+
+   private:
+    const MixedComplex* mc_ = nullptr;
+    const PlaneUse* u_ = nullptr;
+  };
+  PlaneRange(const MixedComplex* mc, const PlaneUse* b, const PlaneUse* e) : mc_(mc), b_(b), e_(e) {}
+  iterator begin() const { return {mc_, b_}; }
+  iterator end() const { return {mc_, e_}; }
+  std::size_t size() const { return static_cast<std::size_t>(e_ - b_); }
+
+ private:
+  const MixedComplex* mc_;
+  const PlaneUse *b_, *e_;
+};
+
+inline MixedComplex::PlaneRange MixedComplex::planes(Index c) const {
+  const MixedCell& m = cells_[c];
+  const PlaneUse* b = plane_uses_.data() + m.first_plane;
+  return {this, b, b + m.num_planes};
+}
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices
 /// (1 to 4 weighted points), papers/skin/skin_math.md §2.2: the point of aff X
