@@ -37,7 +37,7 @@ bool Sweep::try_contact(Vertex v, const Corner& k) {
   Vertex best;
   double best_d = std::numeric_limits<double>::infinity();
   // Every vertex whose state is not Interior is in front_grid_ (set_state).
-  const std::vector<Vec3>& positions = mesh_.positions().vector();
+  const auto& positions = mesh_.positions().vector();
   front_grid_->for_each_near(pv, opt_.contact_radius * r, positions, [&](Index xi, const Vec3& px) {
     const Vertex x(xi);
     if (x == v || state_[x] == VState::Interior || mesh_.is_deleted(x) || mesh_.is_isolated(x) ||

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "geometry/assert.h"
@@ -183,7 +184,7 @@ class ErasablePointGrid {
   /// Calls fn(id, position) for every point whose position (positions[id], Å)
   /// lies within distance r of q, |position - q|² <= r² in double precision.
   template <class Fn>
-  void for_each_near(const Vec3& q, double r, const std::vector<Vec3>& positions, Fn&& fn) const {
+  void for_each_near(const Vec3& q, double r, std::span<const Vec3> positions, Fn&& fn) const {
     const double r2 = r * r;
     const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
     index_.for_each_cell_near(q, rp, [&](std::uint32_t c) {
@@ -230,7 +231,7 @@ class FlatPointGrid {
 
   /// Grid over points[i], with id i, for every point with finite coordinates
   /// (the others are left out). Pre: cell_size > 0 (Å).
-  FlatPointGrid(const std::vector<Vec3>& points, double cell_size) {
+  FlatPointGrid(std::span<const Vec3> points, double cell_size) {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     std::size_t n = 0;
     for (const Vec3& p : points)
@@ -259,10 +260,17 @@ class FlatPointGrid {
       ++offsets_[cell_of_point[i] + 1];
     }
     for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+    // offsets_[c + 1] is now the end of cell c. Filling each cell from its end,
+    // points in decreasing index order, keeps them in increasing index order
+    // and leaves offsets_[c + 1] at the start of cell c; the shift below then
+    // makes offsets_[c] the start of cell c. (No second offset array: it was
+    // as large as the first, at the peak of the check's memory.)
     entries_.resize(n);
-    std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (points[i].allFinite()) entries_[fill[cell_of_point[i]]++] = {points[i], Index(i)};
+    for (std::size_t i = points.size(); i-- > 0;)
+      if (points[i].allFinite()) entries_[--offsets_[cell_of_point[i] + 1]] = {points[i], Index(i)};
+    // offsets_[c + 1] = start of cell c; shift down one place, end = n.
+    for (std::size_t c = 0; c + 1 < offsets_.size(); ++c) offsets_[c] = offsets_[c + 1];
+    offsets_.back() = static_cast<std::uint32_t>(n);
   }
 
   /// Calls fn(id, position) for every point p with |p - q|² <= r² (squared

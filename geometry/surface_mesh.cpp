@@ -126,12 +126,12 @@ void SurfaceMesh::clear() {
 }
 
 void SurfaceMesh::reserve(std::size_t nv, std::size_t nf) {
-  // Property arrays grow geometrically; reserving the connectivity is enough
-  // to avoid most reallocations of the large arrays.
-  vconn_.vector().reserve(nv);
-  vpoint_.vector().reserve(nv);
-  hconn_.vector().reserve(2 * (nv + nf));
-  fconn_.vector().reserve(nf);
+  // Every property array of each kind (a closed triangle mesh has about
+  // nv + nf edges).
+  vprops_.reserve(nv);
+  hprops_.reserve(2 * (nv + nf));
+  eprops_.reserve(nv + nf);
+  fprops_.reserve(nf);
 }
 
 void SurfaceMesh::remove_property(detail::PropertyContainer& c,

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/growable_array.h"
 #include "geometry/indexed_mesh.h"
 #include "geometry/types.h"
 
@@ -96,6 +97,8 @@ class BasePropertyArray {
   BasePropertyArray& operator=(const BasePropertyArray&) = delete;
   /// Resize to n elements; new elements get the default value.
   virtual void resize(std::size_t n) = 0;
+  /// Capacity for n elements.
+  virtual void reserve(std::size_t n) = 0;
   /// Append one element with the default value.
   virtual void push_back() = 0;
   /// Keep elements kept[0], kept[1], ... in this order (kept[i] >= i), drop the rest.
@@ -111,12 +114,20 @@ class BasePropertyArray {
   std::string name_;
 };
 
+/// Storage of a property of type T: a GrowableArray (grown by realloc, an
+/// eighth at a time: little unused capacity, no copy for large arrays) for
+/// relocatable types, std::vector for the others.
+template <class T>
+using PropertyStorage = std::conditional_t<kRelocatable<T> && std::is_trivially_destructible_v<T>,
+                                           GrowableArray<T>, std::vector<T>>;
+
 /// Array of values of type T with a default value for new elements.
 template <class T>
 class PropertyArray final : public BasePropertyArray {
  public:
   PropertyArray(std::string name, T init) : BasePropertyArray(std::move(name)), init_(std::move(init)) {}
   void resize(std::size_t n) override { data_.resize(n, init_); }
+  void reserve(std::size_t n) override { data_.reserve(n); }
   void push_back() override { data_.push_back(init_); }
   void compact(const std::vector<Index>& kept) override {
     for (std::size_t i = 0; i < kept.size(); ++i)
@@ -127,10 +138,10 @@ class PropertyArray final : public BasePropertyArray {
     return std::make_unique<PropertyArray<T>>(*this);
   }
   const std::type_info& type() const override { return typeid(T); }
-  std::vector<T>& data() { return data_; }
+  PropertyStorage<T>& data() { return data_; }
 
  private:
-  std::vector<T> data_;
+  PropertyStorage<T> data_;
   T init_;
 };
 
@@ -184,6 +195,9 @@ class PropertyContainer {
     for (auto& a : arrays_) a->resize(n);
     size_ = n;
   }
+  void reserve(std::size_t n) {
+    for (auto& a : arrays_) a->reserve(n);
+  }
   void compact(const std::vector<Index>& kept) {
     for (auto& a : arrays_) a->compact(kept);
     size_ = kept.size();
@@ -210,8 +224,8 @@ class PropertyContainer {
 template <class H, class T>
 class Property {
  public:
-  using reference = typename std::vector<T>::reference;
-  using const_reference = typename std::vector<T>::const_reference;
+  using reference = typename detail::PropertyStorage<T>::reference;
+  using const_reference = typename detail::PropertyStorage<T>::const_reference;
 
   /// An invalid property (what get_*_property returns when the name is unknown).
   Property() = default;
@@ -221,9 +235,10 @@ class Property {
   /// The value of element h. Pre: valid property, h.idx() < number of elements.
   reference operator[](H h) { return array_->data()[h.idx()]; }
   const_reference operator[](H h) const { return array_->data()[h.idx()]; }
-  /// All values, indexed by element number (deleted elements included).
-  std::vector<T>& vector() { return array_->data(); }
-  const std::vector<T>& vector() const { return array_->data(); }
+  /// All values, indexed by element number (deleted elements included): a
+  /// GrowableArray<T> (std::vector<T> for types that are not relocatable).
+  detail::PropertyStorage<T>& vector() { return array_->data(); }
+  const detail::PropertyStorage<T>& vector() const { return array_->data(); }
   /// The property's name.
   const std::string& name() const { return array_->name(); }
 

@@ -189,7 +189,7 @@ bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a
 }
 
 bool mesh_triangles_intersect(const std::array<Index, 3>& t, const std::array<Index, 3>& u,
-                              const std::vector<Vec3>& positions) {
+                              std::span<const Vec3> positions) {
   // Positions in t and u of the shared indices.
   int ti[3], ui[3], n = 0;
   for (int i = 0; i < 3; ++i)

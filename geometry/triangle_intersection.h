@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "geometry/types.h"
@@ -63,6 +64,6 @@ bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a
 /// make the triangles intersect). Pre: indices in range, neither triangle
 /// degenerate nor with a repeated index.
 bool mesh_triangles_intersect(const std::array<Index, 3>& t, const std::array<Index, 3>& u,
-                              const std::vector<Vec3>& positions);
+                              std::span<const Vec3> positions);
 
 }  // namespace skinmesh::geometry

@@ -204,8 +204,8 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   const double cos_t = std::cos(opt_.target_angle_deg * kDegree);
   const double low_factor = 4 * cos_t * cos_t;  // low iff N² > 4 cos_t² D
   const double CQ2 = opt_.size.C * opt_.size.Q * opt_.size.C * opt_.size.Q;
-  const std::vector<Vec3>& P = mesh_.positions().vector();
-  const std::vector<double>& rho = rho_.vector();
+  const auto& P = mesh_.positions().vector();
+  const auto& rho = rho_.vector();
   double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = CQ2;
   Face worst;
   for (Face f : mesh_.faces()) {
@@ -371,7 +371,7 @@ Refusal AngleImprover::admissible(Vertex v, const Trial& t, const std::vector<Ve
   //    p for the test and put back.
   const Vec3 p0 = pos(v);
   mesh_.position(v) = p;
-  const std::vector<Vec3>& P = mesh_.positions().vector();
+  const auto& P = mesh_.positions().vector();
   Refusal verdict = Refusal::None;
   std::vector<std::array<Index, 3>> star(k);
   std::vector<Vec3> scc(k);

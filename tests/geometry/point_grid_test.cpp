@@ -192,9 +192,9 @@ TEST_CASE("key_index: keys numbered densely in first-insertion order, across gro
 TEST_CASE("point_grid: FlatPointGrid on empty, all-non-finite and single-point inputs") {
   const FlatPointGrid empty(std::vector<Vec3>{}, 1.0);
   CHECK_FALSE(empty.any_near(Vec3::Zero(), 1e9, [](Index, const Vec3&) { return true; }));
-  const FlatPointGrid nan({Vec3(std::nan(""), 0, 0)}, 1.0);
+  const FlatPointGrid nan(std::vector<Vec3>{Vec3(std::nan(""), 0, 0)}, 1.0);
   CHECK_FALSE(nan.any_near(Vec3::Zero(), 1e9, [](Index, const Vec3&) { return true; }));
-  const FlatPointGrid one({Vec3(1, 2, 3)}, 1e-9);
+  const FlatPointGrid one(std::vector<Vec3>{Vec3(1, 2, 3)}, 1e-9);
   CHECK(one.num_cells() == 1);
   CHECK(one.any_near(Vec3(1, 2, 3), 0.0, [](Index id, const Vec3&) { return id == 0; }));
   CHECK_FALSE(one.any_near(Vec3(1, 2, 3.5), 0.49, [](Index, const Vec3&) { return true; }));
