@@ -24,30 +24,87 @@ namespace skinmesh::geometry::mesh_checks_detail {
 namespace {
 
 /// One box of the broad phase with its payload `tri` (any struct with an Index
-/// `id`); `first` = its first column (x, y), set by for_each_box_pair().
+/// `id`), as make() gives it: exact bounds.
 template <class Tri>
 struct BoxItem {
   double lo[3], hi[3];
   Tri tri;
+};
+
+/// The stored form of a box: its bounds rounded outwards to single precision
+/// (the stored box contains the exact one), `first` = its first column (x, y),
+/// set by for_each_box_pair(). 48 bytes with a 16-byte payload where the
+/// exact form took 72: the array of these was the largest of the check.
+template <class Tri>
+struct FloatBoxItem {
+  float lo[3], hi[3];
+  Tri tri;
   std::int32_t first[2] = {0, 0};
 };
+
+/// The largest float <= x (-inf below the float range); NaN stays NaN.
+/// Branch-free in the common case (a rounding direction is a coin toss, and
+/// this runs three times per bound): the float nearest x, stepped one unit in
+/// the last place down if it lies above x, by its bits (a float's bits order
+/// its magnitude; stepping down is -1 for a positive float, +1 for a negative
+/// one, and from ±0 lands on the negative denormal).
+inline float float_down(double x) {
+  constexpr double kMax = double(std::numeric_limits<float>::max());
+  if (!(std::abs(x) <= kMax)) {  // beyond the float range, or NaN
+    if (std::isnan(x)) return std::numeric_limits<float>::quiet_NaN();
+    return x > 0 ? std::numeric_limits<float>::max() : -std::numeric_limits<float>::infinity();
+  }
+  const float f = static_cast<float>(x);
+  const std::uint32_t u = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t above = double(f) > x ? 1u : 0u, negative = u >> 31;
+  return std::bit_cast<float>(u - above + 2u * (above & negative));
+}
+/// The smallest float >= x (+inf above the float range); NaN stays NaN.
+/// As float_down(), mirrored.
+inline float float_up(double x) {
+  constexpr double kMax = double(std::numeric_limits<float>::max());
+  if (!(std::abs(x) <= kMax)) {
+    if (std::isnan(x)) return std::numeric_limits<float>::quiet_NaN();
+    return x > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::max();
+  }
+  const float f = static_cast<float>(x);
+  const std::uint32_t u = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t below = double(f) < x ? 1u : 0u, negative = u >> 31;
+  return std::bit_cast<float>(u + below - 2u * (below & negative));
+}
+
+template <class Tri>
+FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
+  FloatBoxItem<Tri> f;
+  for (int k = 0; k < 3; ++k) {
+    f.lo[k] = float_down(b.lo[k]);
+    f.hi[k] = float_up(b.hi[k]);
+  }
+  f.tri = b.tri;
+  return f;
+}
 
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
 // called three times per box, so nothing is stored twice): a grid of square
 // columns (x, y) of side w about the mean extent of the boxes; each box is
 // entered in every column its (x, y) range meets. The boxes are stored once,
-// renumbered by their first column (a counting sort, for locality); each
-// column lists its boxes (4-byte indices) sorted by lower z and is swept along
-// z; a pair is tested only in the first column both ranges share (the
-// componentwise maximum of their first columns), so exactly once.
-// Calls test(p, q, hit) with the payloads of candidate pairs (in either
-// order), hit = true exactly once for every pair of boxes that overlap (closed
-// boxes: touching counts), false for the others.
+// rounded outwards to single precision (FloatBoxItem), renumbered by their
+// first column (a counting sort, for locality); each column lists its boxes
+// (4-byte indices) sorted by lower z and is swept along z; a pair is tested
+// only in the first column both ranges share (the componentwise maximum of
+// their first columns), so exactly once.
+// Calls test(p, q, maybe) with the payloads of candidate pairs (in either
+// order), maybe = true exactly once for every pair whose rounded boxes overlap
+// (closed boxes: touching counts), false for the others. The rounded boxes
+// contain the exact ones, so every pair of overlapping exact boxes is among
+// the `maybe` pairs; the caller decides exactly which of those overlap.
 template <class Tri, class MakeItem, class PairTest>
 void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
   if (n < 2) return;
   Vec3 gmin = Vec3::Constant(std::numeric_limits<double>::infinity()), gmax = -gmin;
   double mean_extent = 0.0;
+  // The grid's extent from the exact boxes (the rounded ones may stick out by
+  // a unit in the last place: col() clamps them to the grid).
   for (std::size_t i = 0; i < n; ++i) {
     const BoxItem<Tri> b = make(i);
     for (int k = 0; k < 3; ++k) {
@@ -72,8 +129,11 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
   double inv = 0.0;
   // Column index along axis k (0: x, 1: y): monotone in the coordinate, so
   // boxes overlapping in (x, y) share a column.
+  // Without a finite grid (inv = 0) every box is in column 0: (x - gmin) * inv
+  // would be inf * 0 = NaN for a bound rounded out to infinity.
   auto col = [&](double x, int k) {
-    return std::int64_t(std::clamp(std::floor((x - gmin[k]) * inv), 0.0, double(dims[k] - 1)));
+    const double t = std::floor((x - gmin[k]) * inv);
+    return t >= 0.0 ? std::int64_t(std::min(t, double(dims[k] - 1))) : std::int64_t{0};
   };
   std::size_t num_entries = 0;
   for (;;) {
@@ -88,7 +148,7 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
     dims[1] = std::int64_t(dy);
     double entries = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      const BoxItem<Tri> b = make(i);
+      const FloatBoxItem<Tri> b = rounded_out(make(i));
       entries += double(col(b.hi[0], 0) - col(b.lo[0], 0) + 1) * double(col(b.hi[1], 1) - col(b.lo[1], 1) + 1);
     }
     if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) {
@@ -101,15 +161,15 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
   auto column = [&](double x, double y) { return std::size_t(col(x, 0) * dims[1] + col(y, 1)); };
   // The boxes renumbered by their first column (counting sort, stable).
   std::vector<std::uint32_t> start(num_columns + 1, 0);
-  std::vector<BoxItem<Tri>> item(n);
+  std::vector<FloatBoxItem<Tri>> item(n);
   {
     for (std::size_t i = 0; i < n; ++i) {
-      const BoxItem<Tri> b = make(i);
+      const FloatBoxItem<Tri> b = rounded_out(make(i));
       ++start[column(b.lo[0], b.lo[1]) + 1];
     }
     for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
     for (std::size_t i = 0; i < n; ++i) {
-      BoxItem<Tri> b = make(i);
+      FloatBoxItem<Tri> b = rounded_out(make(i));
       b.first[0] = std::int32_t(col(b.lo[0], 0));
       b.first[1] = std::int32_t(col(b.lo[1], 1));
       item[start[std::size_t(b.first[0] * dims[1] + b.first[1])]++] = b;
@@ -117,13 +177,13 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
   }
   // Entries per column (CSR of renumbered boxes), each column then sorted by lower z.
   std::fill(start.begin(), start.end(), 0);
-  for (const BoxItem<Tri>& b : item)
+  for (const FloatBoxItem<Tri>& b : item)
     for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
       for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y) ++start[std::size_t(x * dims[1] + y) + 1];
   for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
   std::vector<std::uint32_t> entry(num_entries);
   for (std::size_t i = 0; i < n; ++i) {
-    const BoxItem<Tri>& b = item[i];
+    const FloatBoxItem<Tri>& b = item[i];
     for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
       for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
         entry[start[std::size_t(x * dims[1] + y)]++] = std::uint32_t(i);
@@ -142,9 +202,9 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
       const std::size_t c = std::size_t(cx * dims[1] + cy);
       const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
       for (std::uint32_t a = begin; a + 1 < end; ++a) {
-        const BoxItem<Tri>& p = item[entry[a]];
+        const FloatBoxItem<Tri>& p = item[entry[a]];
         for (std::uint32_t b = a + 1; b < end; ++b) {
-          const BoxItem<Tri>& q = item[entry[b]];
+          const FloatBoxItem<Tri>& q = item[entry[b]];
           if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
           const bool overlap = (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) &
                                (q.lo[1] <= p.hi[1]);
@@ -255,12 +315,32 @@ std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array
         const auto& b = boxes[i];
         return BoxItem<Id>{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {Index(i)}};
       },
-      [&](const Id& i, const Id& j, bool hit) {
-        if (hit) pairs.push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
+      [&](const Id& i, const Id& j, bool maybe) {
+        if (!maybe) return;
+        const auto &a = boxes[i.id], &b = boxes[j.id];
+        bool overlap = true;
+        for (int k = 0; k < 3; ++k) overlap = overlap && a[k] <= b[k + 3] && b[k] <= a[k + 3];
+        if (overlap) pairs.push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
       });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
+
+namespace {
+
+/// True if the exact bounding boxes of triangles a and b (closed) overlap.
+bool exact_boxes_overlap(const std::vector<Vec3>& P, const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
+  for (int k = 0; k < 3; ++k) {
+    const double alo = std::min({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+    const double ahi = std::max({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+    const double blo = std::min({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+    const double bhi = std::max({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+    if (!(alo <= bhi && blo <= ahi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
                              const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
@@ -292,11 +372,15 @@ void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& cla
   const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence);
   std::vector<std::array<Index, 2>> found;
   std::size_t tested = 0;
-  for_each_box_pair<Tri>(good.size(), make, [&](const Tri& ti, const Tri& tj, bool hit) {
+  for_each_box_pair<Tri>(good.size(), make, [&](const Tri& ti, const Tri& tj, bool maybe) {
     // Shared vertices, without branches: m[k] = whether ti.v[k] is a vertex of tj.
     bool m[3];
     for (int k = 0; k < 3; ++k) m[k] = (ti.v[k] == tj.v[0]) | (ti.v[k] == tj.v[1]) | (ti.v[k] == tj.v[2]);
     const int ns = int(m[0]) + int(m[1]) + int(m[2]);
+    // The exact boxes overlap: certainly if the triangles share a vertex (it
+    // lies in both), else decided from the positions (rare: such pairs go on
+    // to the exact triangle test anyway).
+    const bool hit = maybe & ((ns > 0) || (maybe && exact_boxes_overlap(P, ti.v, tj.v)));
     const bool counted = hit & (ns != 3);  // a duplicate is counted separately
     tested += counted;
     // One or two shared vertices, one of them a simple fan: settled.

@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <random>
@@ -160,6 +161,19 @@ TEST_CASE("mesh_checks broad phase: the column sweep reports exactly the overlap
     for (int i = 0; i < 80; ++i) {
       const double x = (unit(rng) - 0.5) * 1.7e308, y = (unit(rng) - 0.5) * 1e300;
       boxes.push_back(Box{x, y, unit(rng), x + 1e307, y + 1e299, 1.0 + unit(rng)});
+    }
+    CHECK(box_overlap_pairs(boxes) == brute_force_pairs(boxes));
+  }
+
+  SUBCASE("bounds a double ulp apart (one single-precision value): touching and not") {
+    // The broad phase stores boxes rounded out to floats: these pairs look
+    // alike there, and only the exact confirmation tells them apart.
+    std::vector<Box> boxes;
+    for (int i = 0; i < 60; ++i) {
+      const double x = 1.0 + std::ldexp(double(i % 7), -40);  // within one float ulp of 1
+      const double gap = (i % 3 == 0) ? 0.0 : std::ldexp(1.0, -52) * double(i % 3);
+      boxes.push_back(Box{x - 0.5, 0, 0, x, 1, 1});
+      boxes.push_back(Box{x + gap, 0, 0, x + gap + 0.5, 1, 1});
     }
     CHECK(box_overlap_pairs(boxes) == brute_force_pairs(boxes));
   }
