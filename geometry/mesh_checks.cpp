@@ -96,9 +96,10 @@ MeshCheckReport check_mesh(const IndexedMesh& mesh, const MeshCheckOptions& opti
   r.small_angle_threshold_deg = options.small_angle_threshold_deg;
   const TriangleClasses classes = classify_triangles(mesh, options.max_examples, r);
   const mesh_checks_detail::VertexIncidence incidence = mesh_checks_detail::build_incidence(mesh, classes);
-  const std::vector<Index> component =
+  std::vector<Index> component =
       mesh_checks_detail::check_topology(mesh, classes, incidence, options.max_examples, r);
   mesh_checks_detail::measure_components(mesh, classes, component, r);
+  std::vector<Index>().swap(component);  // freed before the self-intersection search, the peak
   mesh_checks_detail::measure_angles(mesh, classes, options.small_angle_threshold_deg, r);
   if (options.check_self_intersections)
     mesh_checks_detail::find_self_intersections(mesh, classes, incidence, options.max_examples, r);

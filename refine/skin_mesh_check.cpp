@@ -17,6 +17,12 @@ namespace skinmesh::refine {
 
 namespace {
 
+/// Frees v's memory (clear() keeps the capacity).
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 /// A number for a message: 17 significant digits, "inf"/"nan" as such.
 std::string number_text(double x) {
   std::ostringstream os;
@@ -168,6 +174,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     if (d > rep.max_vertex_distance) rep.max_vertex_distance = d, rep.worst_vertex = static_cast<Index>(v);
     if (d > rep.vertex_distance_tolerance) ++rep.num_far_vertices;
   }
+  release(order);
+  release(order_hint);
   if (rep.num_far_vertices)
     skin_problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
                            number_text(rep.vertex_distance_tolerance) + " Å from the skin (max " +
@@ -186,6 +194,11 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
   }
   rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
+  // What the restricted-Delaunay test below does not read goes back now: it
+  // runs beside the mesh-only checks, at the peak of the whole run's memory.
+  release(edge_start);
+  release(rho);
+  release(normal);
   if (rep.num_inward_triangles)
     skin_problems.push_back(std::to_string(rep.num_inward_triangles) +
                            " triangles face inwards (against the skin normal)");
