@@ -28,14 +28,14 @@ inline constexpr bool kRelocatable = std::is_trivially_copyable_v<T>;
 template <int N>
 inline constexpr bool kRelocatable<Eigen::Matrix<double, N, 1>> = true;
 
-/// A contiguous array of T (kRelocatable<T>, trivially destructible) grown by
-/// an eighth of its capacity at a time. Blocks of 64 KiB and more are mapped
+/// A contiguous array of T (kRelocatable<T>, trivially destructible). Blocks of
+/// 64 KiB and more grow by an eighth of their capacity at a time; they are mapped
 /// pages of their own (Linux: mmap), grown with mremap, which moves the pages
 /// instead of copying them: the array never holds an old and a new block at
 /// once and needs at most 1.125 times its size, where std::vector (doubling,
 /// copying) needs up to 3 times at the moment it grows, and its memory goes
-/// back to the system when freed. Smaller blocks use malloc/realloc.
-/// Elsewhere than Linux every block uses realloc. Indices, data() and spans are
+/// back to the system when freed. Smaller blocks use malloc/realloc and
+/// double. Elsewhere than Linux every block uses realloc. Indices, data() and spans are
 /// invalidated by growth, as with std::vector. Throws std::bad_alloc when
 /// memory runs out.
 template <class T>
@@ -113,7 +113,12 @@ class GrowableArray {
   }
 
  private:
-  void grow(std::size_t need) { reallocate(std::max({need, cap_ + cap_ / 8, std::size_t{16}})); }
+  /// Small blocks double (realloc copies them: an eighth at a time, the
+  /// copies cost 2 % of a small sweep); mapped ones grow by an eighth.
+  void grow(std::size_t need) {
+    const std::size_t step = mapped(cap_) ? cap_ / 8 : cap_;
+    reallocate(std::max({need, cap_ + step, std::size_t{16}}));
+  }
   /// Blocks of at least this many bytes are mapped pages (Linux). Small
   /// enough that the heap never holds the growing arrays (under valgrind,
   /// whose heap is bounded, realloc of ~1 MB blocks failed).

@@ -1,7 +1,7 @@
 // Tests of geometry/growable_array.h: the values survive every kind of growth
 // (realloc below 64 KiB, the move into mapped pages, mremap beyond), copies and
-// moves are deep and independent, and the capacity stays within an eighth of
-// the size (plus the first block) while it grows.
+// moves are deep and independent, and the capacity of a mapped block stays
+// within an eighth of the size while it grows.
 #include "geometry/growable_array.h"
 
 #include <doctest/doctest.h>
@@ -30,7 +30,8 @@ TEST_CASE("growable_array: push_back through realloc, mmap and mremap keeps ever
     a.push_back(value(i));
     ref.push_back(value(i));
     CHECK(a.capacity() >= a.size());
-    if (a.size() > 1000) CHECK(double(a.capacity()) <= 1.126 * double(a.size()) + 16);
+    // Mapped (from 2,731 values on) the capacity grows by an eighth; below, it doubles.
+    if (a.size() > 8192) CHECK(double(a.capacity()) <= 1.126 * double(a.size()) + 16);
   }
   REQUIRE(a.size() == ref.size());
   bool same = true;
