@@ -13,8 +13,20 @@
 #include <type_traits>
 #include <utility>
 
-#if defined(__linux__)
+// Mapped blocks on Linux, except under AddressSanitizer, which checks the
+// bounds of heap blocks and not of pages mapped by hand (make sanitize).
+#if defined(__SANITIZE_ADDRESS__)
+#define SKINMESH_GROWABLE_ARRAY_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)  // clang
+#define SKINMESH_GROWABLE_ARRAY_ASAN 1
+#endif
+#endif
+#if defined(__linux__) && !defined(SKINMESH_GROWABLE_ARRAY_ASAN)
+#define SKINMESH_GROWABLE_ARRAY_MMAP 1
 #include <sys/mman.h>  // mmap, mremap, munmap
+#else
+#define SKINMESH_GROWABLE_ARRAY_MMAP 0
 #endif
 
 namespace skinmesh::geometry {
@@ -35,7 +47,8 @@ inline constexpr bool kRelocatable<Eigen::Matrix<double, N, 1>> = true;
 /// once and needs at most 1.125 times its size, where std::vector (doubling,
 /// copying) needs up to 3 times at the moment it grows, and its memory goes
 /// back to the system when freed. Smaller blocks use malloc/realloc and
-/// double. Elsewhere than Linux every block uses realloc. Indices, data() and spans are
+/// double. Elsewhere than Linux, and under AddressSanitizer, every block uses
+/// realloc and doubles. Indices, data() and spans are
 /// invalidated by growth, as with std::vector. Throws std::bad_alloc when
 /// memory runs out.
 template <class T>
@@ -124,7 +137,7 @@ class GrowableArray {
   /// whose heap is bounded, realloc of ~1 MB blocks failed).
   static constexpr std::size_t kMapBytes = std::size_t{1} << 16;
   static bool mapped(std::size_t cap) {
-#if defined(__linux__)
+#if SKINMESH_GROWABLE_ARRAY_MMAP
     return cap * sizeof(T) >= kMapBytes;
 #else
     (void)cap;
@@ -133,7 +146,7 @@ class GrowableArray {
   }
   static void release(T* p, std::size_t cap) {
     if (p == nullptr) return;
-#if defined(__linux__)
+#if SKINMESH_GROWABLE_ARRAY_MMAP
     if (mapped(cap)) {
       ::munmap(static_cast<void*>(p), cap * sizeof(T));
       return;
@@ -151,7 +164,7 @@ class GrowableArray {
       p = std::realloc(static_cast<void*>(data_), n * sizeof(T));
       if (p == nullptr) throw std::bad_alloc();
     } else {
-#if defined(__linux__)
+#if SKINMESH_GROWABLE_ARRAY_MMAP
       if (mapped(n) && mapped(cap_)) {
         p = ::mremap(static_cast<void*>(data_), cap_ * sizeof(T), n * sizeof(T), MREMAP_MAYMOVE);
         if (p == MAP_FAILED) throw std::bad_alloc();
