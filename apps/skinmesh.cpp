@@ -468,7 +468,7 @@ int main(int argc, char** argv) {
   // By default glibc raises this threshold each time such an array is freed,
   // after which the next ones come from the heap and their memory stays
   // resident after the stage that used them: maltoporin's peak resident size
-  // was 255 MB instead of 230 MB (papers/bench/profile.md, "Memory").
+  // was 255 MB instead of 230 MB (papers/bench/profile.md, "Session of 2026-11-22 (fourth): memory").
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
   CLI::App app{kDescription, "skinmesh"};

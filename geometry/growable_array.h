@@ -1,6 +1,6 @@
 // geometry/growable_array.h: a contiguous array that grows with realloc, for
 // the half-edge mesh's property arrays (geometry/surface_mesh.h).
-// Notes: papers/bench/profile.md, "Memory".
+// Notes: papers/bench/profile.md, "Session of 2026-11-22 (fourth): memory".
 #pragma once
 
 #include <Eigen/Core>

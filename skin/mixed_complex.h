@@ -53,7 +53,8 @@ struct MixedCell {
   double focus_weight = 0.0;
   /// Edge direction (dim 1) or triangle normal (dim 2), unit; zero otherwise.
   Vec3 axis = Vec3::Zero();
-  /// Planes of this cell: planes()[first_plane, first_plane + num_planes).
+  /// This cell's planes: the plane uses [first_plane, first_plane + num_planes)
+  /// of the complex (MixedComplex::planes(c)).
   Index first_plane = 0;
   Index num_planes = 0;
   /// Dimension of X, 0..3 (one byte, beside `bounding`: 88 bytes per cell).
