@@ -111,9 +111,16 @@ class GrowableArray {
   }
   void pop_back() { --size_; }
   /// Sets the size to n; new elements are copies of v.
-  void resize(std::size_t n, const T& v = T()) {
+  void resize(std::size_t n, const T& v) {
     if (n > cap_) grow(n);
     for (std::size_t i = size_; i < n; ++i) ::new (static_cast<void*>(data_ + i)) T(v);
+    size_ = n;
+  }
+  /// Sets the size to n; new elements are value-initialized (T()), as by
+  /// std::vector::resize(n).
+  void resize(std::size_t n) {
+    if (n > cap_) grow(n);
+    for (std::size_t i = size_; i < n; ++i) ::new (static_cast<void*>(data_ + i)) T();
     size_ = n;
   }
   /// Capacity at least n (exactly n if it grows).
@@ -151,6 +158,8 @@ class GrowableArray {
       ::munmap(static_cast<void*>(p), cap * sizeof(T));
       return;
     }
+#else
+    (void)cap;
 #endif
     std::free(static_cast<void*>(p));
   }
