@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -262,9 +263,13 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
         for (std::size_t j = 0; j < n; ++j) {
           const double v = in.next(p.type, context);
           if (role[k] == 7) {
-            if (v < 0 || v > static_cast<double>(std::numeric_limits<Index>::max() - 1))
-              throw InputError(path, in.line(), "face " + std::to_string(i) + ": vertex index " +
-                                                    std::to_string(static_cast<long long>(v)) + " out of range");
+            if (v < 0 || v > static_cast<double>(std::numeric_limits<Index>::max() - 1)) {
+              // Printed from the double: an index near 2^63 has no long long value.
+              char text[64];
+              std::snprintf(text, sizeof text, "%.0f", v);
+              throw InputError(path, in.line(),
+                               "face " + std::to_string(i) + ": vertex index " + text + " out of range");
+            }
             tri[j] = static_cast<Index>(v);
           }
         }

@@ -292,6 +292,12 @@ TEST_CASE("mesh_io: malformed inputs name the file and the line") {
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   CHECK(contains(read_error(scratch().write("idx.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")),
                  "idx.ply:13: face 0: vertex index 3 out of range (3 vertices)"));
+  // Regression (fuzz_mesh_invariants): an index beyond long long's range was
+  // converted to long long for the message, which is undefined behaviour.
+  CHECK(contains(read_error(scratch().write("huge.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 9223372036854775807\n")),
+                 "huge.ply:13: face 0: vertex index 9223372036854775808 out of range"));
+  CHECK(contains(read_error(scratch().write("neg.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 -9223372036854775807\n")),
+                 "neg.ply:13: face 0: vertex index -9223372036854775808 out of range"));
   CHECK(contains(read_error(scratch().write("nan.ply", header + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n")),
                  "nan.ply:11: non-finite y in element 'vertex' 1"));
   CHECK(contains(read_error(scratch().write("abc.ply", header + "0 0 0\n1 abc 0\n0 1 0\n3 0 1 2\n")),
