@@ -98,7 +98,7 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
       const double est_min = std::min({est[0], est[1], est[2]});
       bool settled = !std::isnan(est[0]) && !std::isnan(est[1]) && !std::isnan(est[2]) &&
                      est_min - kMargin > min_angle && !(std::abs(est_min - threshold_deg) <= kMargin);
-      int bins[3];
+      int bins[3] = {0, 0, 0};  // read only when settled, i.e. all three set
       for (int i = 0; i < 3 && settled; ++i) {
         bins[i] = bin_of(est[i] - kMargin);
         settled = bins[i] == bin_of(est[i] + kMargin) && est[i] + kMargin < max_angle;
