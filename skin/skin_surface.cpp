@@ -173,9 +173,9 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
   return true;
 }
 
-Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result) const {
+Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result, double tolerance) const {
   Vec3 x = x0;
-  const double tol = 1e-14 * length_scale();
+  const double tol = tolerance * length_scale();
   for (int it = 0; it < 100; ++it) {
     const SkinSample s = sample(x, cell);
     cell = s.cell;

@@ -115,12 +115,15 @@ class SkinSurface {
   bool project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out,
                           Index& cell) const;
   /// Gradient–Newton pull-back x <- x - f grad f / |grad f|² until
-  /// |f| / |grad f| <= 1e-14 L (papers/skin/skin_math.md §7.3). Converges from
-  /// offsets up to about rho/2. Throws GeometryError if it does not converge in
-  /// 100 steps. If `at_result` is given, it receives the sample at the
-  /// returned point (the one the convergence test read: the same as
-  /// sample(result, cell)), so that callers need not sample it again.
-  Vec3 pull_back(const Vec3& x, Index& cell, SkinSample* at_result = nullptr) const;
+  /// |f| / |grad f| <= tolerance · L (papers/skin/skin_math.md §7.3; the
+  /// default 1e-14 is the surface to rounding, a looser one serves callers that
+  /// need only the gradient near the surface). Converges from offsets up to
+  /// about rho/2. Throws GeometryError if it does not converge in 100 steps. If
+  /// `at_result` is given, it receives the sample at the returned point (the one
+  /// the convergence test read: the same as sample(result, cell)), so that
+  /// callers need not sample it again.
+  Vec3 pull_back(const Vec3& x, Index& cell, SkinSample* at_result = nullptr,
+                 double tolerance = 1e-14) const;
   /// Distance estimate |f(x)| / |grad f(x)| (Å): first-order distance to the skin.
   double distance_estimate(const Vec3& x, Index hint = kInvalidIndex) const;
 
