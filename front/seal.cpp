@@ -78,7 +78,9 @@ void Sweep::seal_all() {
       continue;
     }
     rescanned = false;
+    const std::size_t f0 = mesh_.faces_size();
     seal_loop(start, opt_.max_hole_enlargements);
+    notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
   }
 }
 

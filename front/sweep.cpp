@@ -170,10 +170,15 @@ void Sweep::hold(Vertex v, Index c) {
   ++stats_.held;
   if (trace_) tracef("hold v%u by critical point %u\n", v.idx(), c);
   const std::size_t f0 = mesh_.faces_size();
-  if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) paranoid_check(f0, "bridge");
+  notify(SweepOperation::Hold, v, c, f0);
+  if (ms_.critical[c].kind == CriticalKind::Saddle && try_bridge(c)) {
+    paranoid_check(f0, "bridge");
+    notify(SweepOperation::Bridge, Vertex(), c, f0);
+  }
   const std::size_t f1 = mesh_.faces_size();
   drain_wings();
   paranoid_check(f1, "wings after a hold");
+  if (mesh_.faces_size() > f1) notify(SweepOperation::Wings, v, kInvalidIndex, f1);
 }
 
 bool Sweep::release_holds(Index c, bool requeue) {
@@ -229,7 +234,9 @@ void Sweep::create_initial_front() {
       if ((q - cp.position).norm() < r + disc_radius(Vertex(xi))) overlaps = true;
     });
     if (!overlaps) {
+      const std::size_t f0 = mesh_.faces_size();
       creation(c);
+      notify(SweepOperation::Creation, Vertex(), c, f0);
       continue;
     }
     ++stats_.merged_minima;
@@ -280,17 +287,20 @@ bool Sweep::departure_step() {
       // (papers/front/hole_filling.md).
       close_small_hole(v);
       paranoid_check(f0, "closing a small hole");
+      notify(SweepOperation::SmallHole, v, kInvalidIndex, f0);
       return true;
     }
     // Lines 11–12: creep().
     creep(v);
     paranoid_check(f0, "creep");
+    notify(SweepOperation::Creep, v, kInvalidIndex, f0);
     // Line 14, "refine the newly added triangles": here the wings of the
     // front angles below 90° (Figure 7); the local refinement of §4.3 runs
     // after the seal (papers/front/sweep.md, "Deviations").
     const std::size_t f1 = mesh_.faces_size();
     drain_wings();
     paranoid_check(f1, "wings after a creep");
+    if (mesh_.faces_size() > f1) notify(SweepOperation::Wings, v, kInvalidIndex, f1);
     return true;
   }
   return false;
@@ -323,6 +333,19 @@ SweepResult Sweep::run() {
 }
 
 }  // namespace detail
+
+const char* operation_name(SweepOperation op) {
+  switch (op) {
+    case SweepOperation::Creation: return "creation";
+    case SweepOperation::Creep: return "creep";
+    case SweepOperation::Wings: return "wings";
+    case SweepOperation::Hold: return "hold";
+    case SweepOperation::Bridge: return "bridge";
+    case SweepOperation::SmallHole: return "small hole";
+    case SweepOperation::Seal: return "seal";
+  }
+  return "?";
+}
 
 SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt) {
   detail::Sweep sweep(skin, ms, opt);

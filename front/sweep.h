@@ -19,6 +19,41 @@
 
 namespace skinmesh::front {
 
+struct SweepStats;
+
+/// The operations of the sweep an observer is told about: Algorithm 1's
+/// creation (a bowl at a minimum, Figure 5), creep (a fan at the lowest front
+/// vertex, Figure 6; it may end in a contact, which joins two front parts),
+/// wings (Figure 7), hold (a front vertex stops in a protecting sphere),
+/// bridge (Figure 8) and seal (a hole closed at the end), and the project's
+/// small hole (a hole closed during the sweep, papers/front/hole_filling.md).
+enum class SweepOperation : unsigned char { Creation, Creep, Wings, Hold, Bridge, SmallHole, Seal };
+
+/// Lower-case name of an operation ("creation", "creep", "wings", "hold",
+/// "bridge", "small hole", "seal").
+const char* operation_name(SweepOperation op);
+
+/// One operation of the sweep as an observer sees it, right after it ran
+/// (SweepOptions::observer). The references are valid during the call only.
+struct SweepEvent {
+  SweepOperation op = SweepOperation::Creep;
+  /// The departure vertex (creep, wings after a creep, hold, small hole);
+  /// invalid otherwise.
+  geometry::Vertex vertex;
+  /// The critical point (creation: the minimum; hold and bridge: the
+  /// protecting sphere's critical point); kInvalidIndex otherwise.
+  Index critical = kInvalidIndex;
+  /// Faces with an index >= first_face were added by the operation (some may
+  /// be marked deleted again); faces below it may have been deleted by it
+  /// (a re-opened or enlarged hole).
+  std::size_t first_face = 0;
+  /// The partial mesh after the operation; its boundary is the front.
+  const geometry::SurfaceMesh& mesh;
+  /// The sweep's counters after the operation (a creep that joined two front
+  /// parts raised `contacts`).
+  const SweepStats& stats;
+};
+
 /// Every tuning number of the sweep, with its meaning, unit and the origin of
 /// its default: [paper] Cheng & Shi 2004, [derived] a derivation in papers/,
 /// [measured] chosen by experiment on the bundled molecules and the stress
@@ -130,6 +165,10 @@ struct SweepOptions {
   /// contacts, bridges, seals, the vertices of a hole that cannot be sealed);
   /// empty: no trace.
   std::function<void(const std::string& line)> trace;
+  /// Called after every operation (creation, creep, wings, hold, bridge, small
+  /// hole, seal) with the partial mesh; empty: not called. For the trace
+  /// recorder (apps/trace.h); it must not throw unless the sweep is to stop.
+  std::function<void(const SweepEvent&)> observer;
   /// Stop with TopologyError after this many departures (valid queue entries;
   /// negative: no limit).
   long max_steps = -1;

@@ -259,6 +259,12 @@ class Sweep {
   /// With opt.paranoid, checks fold_excess at the vertices of the faces added
   /// since `first_face` and throws TopologyError naming the operation.
   void paranoid_check(std::size_t first_face, const char* op);
+  /// Tells opt.observer (if any) that `op` ran at departure vertex v (or
+  /// invalid) for critical point c (or kInvalidIndex), adding the faces from
+  /// first_face on.
+  void notify(SweepOperation op, Vertex v, Index c, std::size_t first_face) const {
+    if (opt_.observer) opt_.observer(SweepEvent{op, v, c, first_face, mesh_, stats_});
+  }
 
   // Read access for the unit tests.
   const SurfaceMesh& mesh() const { return mesh_; }

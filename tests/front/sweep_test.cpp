@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "front/pipeline.h"
@@ -69,6 +72,49 @@ TEST_CASE("sweep without refinement: closed, oriented, embedded meshes of the ex
     CHECK(st.seals > 0);
     CHECK(res.refinement.flips == 0);
   }
+}
+
+TEST_CASE("the sweep's observer is told of every operation; replaying its faces gives the swept mesh") {
+  for (const Case& c : cases()) {
+    INFO(c.name);
+    MeshOptions options;
+    options.refine = false;
+    std::map<front::SweepOperation, std::size_t> count;
+    std::set<Index> alive;         // faces replayed from the events
+    std::size_t faces_seen = 0;    // faces_size() after the previous event
+    bool creations_done = false, creation_after_other = false, closed_at_last = false;
+    std::size_t faces_at_last = 0;
+    options.sweep.observer = [&](const front::SweepEvent& e) {
+      ++count[e.op];
+      if (e.op != front::SweepOperation::Creation) creations_done = true;
+      else if (creations_done) creation_after_other = true;
+      // No face appears between two events.
+      CHECK(e.first_face == faces_seen);
+      faces_seen = e.mesh.faces_size();
+      for (std::size_t f = e.first_face; f < e.mesh.faces_size(); ++f)
+        if (!e.mesh.is_deleted(geometry::Face(static_cast<Index>(f)))) alive.insert(static_cast<Index>(f));
+      if (alive.size() != e.mesh.n_faces())  // the operation deleted faces (a re-opened hole)
+        std::erase_if(alive, [&](Index f) { return e.mesh.is_deleted(geometry::Face(f)); });
+      CHECK(alive.size() == e.mesh.n_faces());
+      if (e.op == front::SweepOperation::Creation || e.op == front::SweepOperation::Hold ||
+          e.op == front::SweepOperation::Bridge)
+        CHECK(e.critical != kInvalidIndex);
+      closed_at_last = std::none_of(e.mesh.halfedges().begin(), e.mesh.halfedges().end(),
+                                    [&](geometry::Halfedge h) { return e.mesh.is_boundary(h); });
+      faces_at_last = e.mesh.n_faces();
+    };
+    const MeshResult res = mesh_skin(c.pts, options);
+    test::check_embedded_skin_mesh(res.check);
+    CHECK_FALSE(creation_after_other);
+    CHECK(count[front::SweepOperation::Creation] == res.sweep.creations);
+    CHECK(count[front::SweepOperation::Creep] >= res.sweep.creeps);
+    CHECK(count[front::SweepOperation::Bridge] == res.sweep.bridges);
+    CHECK(count[front::SweepOperation::Seal] + count[front::SweepOperation::SmallHole] == res.sweep.seals);
+    CHECK(closed_at_last);
+    CHECK(faces_at_last == res.mesh.triangles.size());
+    CHECK(alive.size() == res.mesh.triangles.size());
+  }
+  CHECK(std::string(front::operation_name(front::SweepOperation::SmallHole)) == "small hole");
 }
 
 TEST_CASE("sweep + refinement: every check passes, for several height directions") {
