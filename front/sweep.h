@@ -166,8 +166,9 @@ struct SweepOptions {
   /// empty: no trace.
   std::function<void(const std::string& line)> trace;
   /// Called after every operation (creation, creep, wings, hold, bridge, small
-  /// hole, seal) with the partial mesh; empty: not called. For the trace
-  /// recorder (apps/trace.h); it must not throw unless the sweep is to stop.
+  /// hole, seal) with the partial mesh; empty: not called. For recorders of
+  /// the sweep (tests/front/sweep_test.cpp replays it); it must not throw
+  /// unless the sweep is to stop.
   std::function<void(const SweepEvent&)> observer;
   /// Stop with TopologyError after this many departures (valid queue entries;
   /// negative: no limit).

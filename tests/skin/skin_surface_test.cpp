@@ -142,6 +142,29 @@ TEST_CASE("mixed-complex f equals the brute-force definition; cells tile space")
   }
 }
 
+TEST_CASE("pull_back ends within the tolerance it is given, and the sample it returns is the result's") {
+  std::mt19937 rng(11);
+  auto cfg = test::random_points(12, 5.0, 1.0, 3.0, rng);
+  SkinSurface skin(cfg);
+  const double L = skin.length_scale();
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 100; ++i) {
+    const auto& b = cfg[i % cfg.size()];
+    Vec3 dir(u(rng), u(rng), u(rng));
+    if (dir.norm() < 1e-3) continue;
+    const Vec3 x0 = b.z + 1.1 * std::sqrt(b.w / 2) * dir.normalized();  // off the skin
+    for (double tol : {1e-14, 1e-7, 1e-3}) {
+      Index cell = kInvalidIndex;
+      skin::SkinSample at;
+      const Vec3 a = skin.pull_back(x0, cell, &at, tol);
+      const skin::SkinSample s = skin.sample(a, cell);
+      CHECK(std::abs(s.f) / s.gradient.norm() <= tol * L);
+      CHECK(s.f == at.f);
+      CHECK(s.cell == at.cell);
+    }
+  }
+}
+
 TEST_CASE("projection along the normal line lands on the skin within the bracket") {
   std::mt19937 rng(7);
   auto cfg = test::random_points(12, 5.0, 1.0, 3.0, rng);
