@@ -7,6 +7,7 @@
 //   skinmesh info  IN                describe the skin of a molecule
 //   skinmesh mesh  IN -o OUT         mesh the skin (Cheng & Shi 2004)
 //   skinmesh check IN MESH           verify a mesh against the analytic skin
+//   skinmesh trace IN -o trace.html  record the algorithm, step by step, as a page
 //
 // Exit codes: 0 success; 1 bad input or a mesh that fails `check`; 2 bad
 // command line; 3 the algorithm failed (or the mesh failed its checks);
@@ -17,6 +18,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -28,6 +31,7 @@
 #if defined(__GLIBC__)
 #include <malloc.h>  // mallopt
 #endif
+#include <unistd.h>  // readlink
 
 #include "apps/output.h"
 #include "dynamic/dynamic_skin.h"
@@ -41,6 +45,7 @@
 #include "skin/dual_complex.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
+#include "trace/trace_recorder.h"
 
 using namespace skinmesh;
 using json = nlohmann::ordered_json;
@@ -451,6 +456,94 @@ int run_mesh(MeshArgs& a) {
   return failed ? 3 : 0;
 }
 
+// trace
+
+struct TraceArgs {
+  MoleculeArgs mol;
+  std::string out, viewer;
+  std::vector<double> direction;
+  trace::TraceOptions opt;
+  bool no_check = false, no_angle_improvement = false, no_growth = false;
+};
+
+/// The folder of this executable ("" if unknown).
+std::string executable_folder() {
+  char buf[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return {};
+  return std::filesystem::path(std::string(buf, static_cast<std::size_t>(n))).parent_path().string();
+}
+
+/// The viewer template: --viewer, else $SKINMESH_VIEWER, else
+/// trace_viewer.html beside the executable (the build tree) or in
+/// ../share/skinmesh/ (an installation). Throws InputError if none is found.
+std::string find_viewer(const std::string& given) {
+  if (!given.empty()) return given;
+  if (const char* env = std::getenv("SKINMESH_VIEWER"); env && *env) return env;
+  const std::string dir = executable_folder();
+  for (const std::string& candidate : {dir + "/trace_viewer.html", dir + "/../share/skinmesh/trace_viewer.html"})
+    if (!dir.empty() && std::filesystem::exists(candidate)) return candidate;
+  throw InputError("trace_viewer.html", 0,
+                   "the trace viewer page is not built: run 'make viewer' (needs node and npm), or give --viewer "
+                   "FILE, or write the data alone with -o trace.json");
+}
+
+int run_trace(TraceArgs& a) {
+  const std::string ext = std::filesystem::path(a.out).extension().string();
+  if (ext != ".html" && ext != ".json")
+    throw InputError(a.out, 0, "unknown trace format '" + ext + "' (.html: the page, .json: the data alone)");
+  app::require_writable(a.out);
+  std::string viewer_template;
+  if (ext == ".html") {
+    const std::string path = find_viewer(a.viewer);
+    viewer_template = app::read_text_file(path);
+    if (viewer_template.find(trace::kTracePlaceholder) == std::string::npos)
+      throw InputError(path, 0, std::string("not a trace viewer template (no ") + trace::kTracePlaceholder + ")");
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const skin::Molecule mol = load_molecule(a.mol);
+  trace::TraceOptions& o = a.opt;
+  o.input = std::filesystem::path(a.mol.input).filename().string();
+  o.probe = a.mol.probe;
+  o.title = o.input + ", probe " + CLI::detail::to_string(a.mol.probe) + " Å, " + o.algorithm;
+  o.mesh.probe_radius = a.mol.probe;
+  o.mesh.height_direction = height_direction(a.direction);
+  o.mesh.check = !a.no_check;
+  o.mesh.improve_angles = !a.no_angle_improvement;
+  o.dynamic.probe_radius = a.mol.probe;
+  o.dynamic.size = o.mesh.size;
+  o.dynamic.growth = !a.no_growth;
+  o.dynamic.check = !a.no_check;
+  o.dynamic.checks.threads = o.mesh.threads;
+  app::ProgressReporter progress(!a.mol.quiet);
+  o.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
+  trace::TraceSummary summary;
+  const nlohmann::json doc = trace::record_trace(skin::weighted_points(mol, a.mol.probe), o, &summary);
+  progress.finish();
+  const std::string text = ext == ".html" ? trace::fill_viewer_template(viewer_template, doc) : doc.dump() + "\n";
+  app::write_text_file(a.out, text);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (!a.mol.quiet) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "wrote %s: %zu steps of %zu operations, %zu vertices, %zu face records, %.1f MB, %.2f s; final mesh "
+                  "%zu triangles, min angle %.4f°%s\n",
+                  a.out.c_str(), summary.steps, summary.operations, summary.vertices, summary.face_records,
+                  double(text.size()) / 1e6, seconds, summary.triangles, summary.min_angle_deg,
+                  summary.checked ? (summary.ok ? ", every check passed" : " (FAILED its checks)") : ", not checked");
+    std::cerr << line;
+    if (text.size() > 50u << 20)
+      std::cerr << "note: the page is above 50 MB; --every N records every N-th operation only\n";
+  }
+  if (!summary.ok) {
+    for (const std::string& p : summary.problems) std::cerr << "problem: " << p << "\n";
+    std::cerr << "error: the traced mesh failed its checks (the trace was written and shows it)\n";
+    return 3;
+  }
+  return 0;
+}
+
 /// One line, at most ~300 characters: details belong in --trace.
 std::string one_line(std::string s) {
   for (char& c : s)
@@ -552,12 +645,44 @@ int main(int argc, char** argv) {
   check_cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   check_cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
 
+  TraceArgs tr;
+  CLI::App* trace_cmd = app.add_subcommand(
+      "trace",
+      "run the algorithm and record it step by step as one self-contained page (.html: the Morse–Smale complex, "
+      "every operation of the sweep, the refinement, the final mesh's quality; opens offline in a browser) or as "
+      "its data alone (.json; format in trace/FORMAT.md)");
+  add_molecule_options(*trace_cmd, tr.mol);
+  trace_cmd->add_option("-o,--output", tr.out, "output page (.html) or data (.json)")->required();
+  trace_cmd->add_option("--algorithm", tr.opt.algorithm, "sweep (Cheng & Shi 2004) or dynamic (the dynamic-skin baseline)")
+      ->check(CLI::IsMember({"sweep", "dynamic"}))
+      ->capture_default_str();
+  trace_cmd->add_option("--steps", tr.opt.max_steps,
+                        "record at most about this many steps: beyond it, consecutive operations are merged")
+      ->check(CLI::Range(10, 1000000))
+      ->capture_default_str();
+  trace_cmd->add_option("--every", tr.opt.every,
+                        "record every N-th operation (default: chosen from --steps by a first, counting run)")
+      ->check(CLI::Range(1, 1000000000));
+  trace_cmd->add_option("--viewer", tr.viewer,
+                        "the viewer template (default: trace_viewer.html beside the program, built by 'make viewer')");
+  add_direction_option(*trace_cmd, tr.direction);
+  add_size_options(*trace_cmd, tr.opt.mesh.size);
+  trace_cmd->add_flag("--no-angle-improvement", tr.no_angle_improvement, "skip the angle improvement (sweep)");
+  trace_cmd->add_flag("--no-growth", tr.no_growth, "with --algorithm dynamic: the static variant");
+  trace_cmd->add_flag("--no-check", tr.no_check, "do not verify the final mesh");
+  trace_cmd
+      ->add_option("--threads", tr.opt.mesh.threads,
+                   "threads (0: every core); the trace is the same for every count")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+
   if (argc < 2) {
     std::cerr << app.help();
     return 2;
   }
-  if (const std::string first = argv[1]; first[0] != '-' && first != "info" && first != "mesh" && first != "check") {
-    std::cerr << "skinmesh: unknown command '" << first << "' (commands: info, mesh, check; see 'skinmesh --help')\n";
+  if (const std::string first = argv[1]; first[0] != '-' && first != "info" && first != "mesh" && first != "check" &&
+      first != "trace") {
+    std::cerr << "skinmesh: unknown command '" << first << "' (commands: info, mesh, check, trace; see 'skinmesh --help')\n";
     return 2;
   }
   try {
@@ -584,9 +709,21 @@ int main(int argc, char** argv) {
       }
     }
   }
+  if (trace_cmd->parsed()) {
+    const bool dynamic = tr.opt.algorithm == "dynamic";
+    for (const char* name : {"--direction", "--no-angle-improvement", "--no-growth"}) {
+      const bool sweep_only = std::string(name) != "--no-growth";
+      if (trace_cmd->count(name) > 0 && sweep_only == dynamic) {
+        std::cerr << "skinmesh trace: " << name << " applies to --algorithm " << (sweep_only ? "sweep" : "dynamic")
+                  << " only (see 'skinmesh trace --help')\n";
+        return 2;
+      }
+    }
+  }
   try {
     if (info_cmd->parsed()) return run_info(info);
     if (check_cmd->parsed()) return run_check(check);
+    if (trace_cmd->parsed()) return run_trace(tr);
     return run_mesh(mesh);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "skinmesh: " << one_line(e.what()) << "\n";

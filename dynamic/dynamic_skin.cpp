@@ -100,6 +100,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     stats.peak_samples = st.triangulation().num_vertices();
     stats.peak_tets = st.triangulation().num_tets();
     stats.converged = st.refine(opt.final_rounds);
+    if (opt.observer) opt.observer("refine", st);
     stats.peak_samples = std::max<std::size_t>(stats.peak_samples, st.triangulation().num_vertices());
     stats.peak_tets = std::max<std::size_t>(stats.peak_tets, st.triangulation().num_tets());
     stats.samples = st.stats();
@@ -129,6 +130,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
       }
       st.mark_all_as_seeds();
       st.refine(opt.growth_rounds);
+      if (opt.observer) opt.observer("growth", st);
       stats.peak_samples = std::max<std::size_t>(stats.peak_samples, st.triangulation().num_vertices());
       stats.peak_tets = std::max<std::size_t>(stats.peak_tets, st.triangulation().num_tets());
       if (c >= 0) break;
@@ -163,6 +165,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     st.set_rho_floor(0.0);
     st.mark_all_as_seeds();
     stats.converged = st.refine(opt.final_rounds);
+    if (opt.observer) opt.observer("refine", st);
     stats.samples = st.stats();
     stats.delaunay = st.triangulation().stats();
     stats.kinetic_moves = st.triangulation().stats().kinetic_moves;

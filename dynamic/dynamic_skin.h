@@ -60,6 +60,13 @@ struct DynamicOptions {
   /// Called with a stage name ("skin", "growth", "refine", "check") and the
   /// fraction done (0..1); empty: no reports. The library prints nothing.
   std::function<void(const std::string& stage, double fraction)> progress;
+  /// Called with the sample and its restricted Delaunay triangulation
+  /// (SampleTriangulation::extract) after the refinement of every growth step
+  /// ("growth") and after the final refinement ("refine"); empty: not
+  /// called. For recorders (trace/trace_recorder.h); positions are in the
+  /// local frame (DynamicResult::frame_centre). The run is the same with or
+  /// without an observer.
+  std::function<void(const char* stage, const SampleTriangulation&)> observer;
 };
 
 /// What the baseline did.

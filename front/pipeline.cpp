@@ -135,6 +135,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     throw TopologyError("Morse count " + std::to_string(res.critical.euler()) +
                         " differs from the expected Euler characteristic " +
                         std::to_string(res.expected_topology.euler_skin()));
+  if (options.observers.morse) options.observers.morse(skin, *ms);
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
@@ -148,6 +149,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   if (!sweep_options.progress) sweep_options.progress = options.progress;
   front::SweepResult swept = front::sweep_mesh(skin, *ms, sweep_options);
   res.sweep = swept.stats;
+  if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   lap("sweep");
 
@@ -155,12 +157,14 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   if (options.refine) {
     stage("refine");
     res.refinement = refine::refine_mesh(skin, swept.mesh, with_size(options.refinement, options.size));
+    if (options.observers.stage_end) options.observers.stage_end("refine", skin, swept.mesh);
     lap("refine");
     // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
     if (options.improve_angles) {
       stage("angles");
       res.angle_improvement =
           refine::improve_angles(skin, swept.mesh, with_size(options.angle_improvement, options.size));
+      if (options.observers.stage_end) options.observers.stage_end("angles", skin, swept.mesh);
       lap("angles");
     }
   }

@@ -34,6 +34,20 @@
 
 namespace skinmesh {
 
+/// Observers of the pipeline's stages, for recorders (trace/trace_recorder.h);
+/// an empty one is not called. Everything they see is in the local frame
+/// (MeshResult::frame_centre). They must not throw unless the pipeline is to
+/// stop, and the pipeline computes the same with or without them.
+struct PipelineObservers {
+  /// After stage 2, with the skin and the Morse–Smale complex, before the
+  /// integral lines' polylines are freed.
+  std::function<void(const skin::SkinSurface&, const morse::MorseSmaleComplex&)> morse;
+  /// At the end of the sweep, the refinement and the angle improvement
+  /// ("sweep", "refine", "angles"), with the half-edge mesh before it is
+  /// compacted (deleted elements still present, marked deleted).
+  std::function<void(const char* stage, const skin::SkinSurface&, const geometry::SurfaceMesh&)> stage_end;
+};
+
 /// Options of the whole pipeline, one struct per stage.
 struct MeshOptions {
   /// Probe radius (Å) used by the Molecule overload of mesh_skin: atom weight
@@ -77,6 +91,9 @@ struct MeshOptions {
   /// and the fraction of it done (0..1); empty: no reports. The library
   /// itself prints nothing.
   std::function<void(const std::string& stage, double fraction)> progress;
+  /// Observers of whole stages; the sweep's operations are observed through
+  /// sweep.observer, the refinement's through refinement.observer.
+  PipelineObservers observers;
 };
 
 /// What the pipeline produced and measured.

@@ -155,6 +155,7 @@ void Refiner::lawson() {
     }
     mesh_.flip(e);
     ++stats_.flips;
+    if (opt_.observer) opt_.observer(RefineOperation::Flip, mesh_);
     touched_edges_.push_back(e);
     touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 0)));
     touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 1)));
@@ -212,6 +213,7 @@ bool Refiner::contract(Edge e) {
   const Vertex keep = mesh_.to_vertex(pick);
   mesh_.collapse(pick);
   ++stats_.contractions;
+  if (opt_.observer) opt_.observer(RefineOperation::Contraction, mesh_);
   touch_around(keep);
   push_edges_around(keep);
   lawson();
@@ -334,6 +336,7 @@ bool Refiner::insert(Face f) {
   inserted_[nv] = 1;
   inserted_grid_->insert(nv.idx(), m);
   ++stats_.insertions;
+  if (opt_.observer) opt_.observer(RefineOperation::Insertion, mesh_);
   touch_around(nv);
   push_edges_around(nv);
   lawson();
@@ -415,6 +418,15 @@ RefineStats Refiner::run() {
 }
 
 }  // namespace
+
+const char* operation_name(RefineOperation op) {
+  switch (op) {
+    case RefineOperation::Flip: return "flip";
+    case RefineOperation::Contraction: return "contraction";
+    case RefineOperation::Insertion: return "insertion";
+  }
+  return "?";
+}
 
 RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt) {
   Refiner r(skin, mesh, opt);

@@ -6,12 +6,21 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include "geometry/surface_mesh.h"
 #include "refine/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::refine {
+
+/// The operations of the local refinement an observer is told about
+/// (Cheng & Shi §4.3): an edge flip towards the restricted Delaunay
+/// triangulation, an edge contraction for [L], a vertex insertion for [U].
+enum class RefineOperation : unsigned char { Flip, Contraction, Insertion };
+
+/// Lower-case name of an operation ("flip", "contraction", "insertion").
+const char* operation_name(RefineOperation op);
 
 /// Options of the local refinement.
 struct RefineOptions {
@@ -44,6 +53,12 @@ struct RefineOptions {
   /// triangle is below this splits the opposite edge instead of the
   /// triangle (no sliver next to the edge). [measured]
   double split_edge_barycentric = 0.15;
+  /// Called after every flip, contraction and insertion with the mesh as it
+  /// is then (a contraction or insertion is told before the flips that
+  /// follow it); empty: not called. For recorders (trace/trace_recorder.h);
+  /// the mesh must not be changed, and the refinement does the same with or
+  /// without an observer.
+  std::function<void(RefineOperation, const geometry::SurfaceMesh&)> observer;
 };
 
 /// What the refinement did and what it left.
