@@ -10,7 +10,7 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 20
 FUZZ_CXX ?= clang++-14
 
-.PHONY: all deps configure build mesh test sanitize fuzz bench table1 stress clean
+.PHONY: all deps configure build mesh test sanitize fuzz bench table1 stress viewer viewer-if-possible clean
 
 all: build
 
@@ -27,9 +27,27 @@ build: configure
 mesh: build
 	$(BUILD)/skinmesh mesh $(MOLECULE) -o $(OUT) --stats -
 
-# Run the whole test suite through ctest.
+# Run the whole test suite through ctest. The headless-Chromium test of the
+# trace viewer runs when chromium, node and npm are present (.ci/run installs
+# them: bash .ci/install-deps --browser); otherwise it is skipped, and says so.
 test: build
+	@$(MAKE) --no-print-directory viewer-if-possible
 	cd $(BUILD) && ctest --output-on-failure
+	@[ -x "$${CHROMIUM:-/usr/bin/chromium}" ] || echo "note: the trace viewer's headless-Chromium test was SKIPPED:" \
+	  "chromium is not installed (bash .ci/install-deps --browser installs it)"
+
+# The trace viewer (trace/viewer): three.js and esbuild from the npm registry,
+# bundled into one page template, $(BUILD)/trace_viewer.html, that
+# `skinmesh trace IN -o trace.html` fills with the recorded trace.
+viewer:
+	@command -v npm >/dev/null 2>&1 || { echo "make viewer needs node and npm (bash .ci/install-deps --browser)"; exit 1; }
+	@mkdir -p $(BUILD)
+	cd trace/viewer && npm ci --no-audit --no-fund --loglevel=error && node build.mjs $(abspath $(BUILD))/trace_viewer.html
+
+viewer-if-possible:
+	@if command -v npm >/dev/null 2>&1; then $(MAKE) --no-print-directory viewer || \
+	  echo "note: the trace viewer could not be built (npm registry unreachable?); its browser test will be skipped"; \
+	else echo "note: node/npm not found: the trace viewer is not built and its browser test will be skipped"; fi
 
 # The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (any report fails the run), then the input readers under libFuzzer (make fuzz).

@@ -181,4 +181,43 @@ TEST_CASE("help of each command lists its own options only") {
   CHECK(check.out.find("--stats") == std::string::npos);
 }
 
+TEST_CASE("trace writes the data (.json) or the filled viewer page (.html); a missing viewer or format is an error") {
+  Scratch s;
+  const std::string neck = quoted(std::string(SKINMESH_TEST_DATA) + "/two_atoms_neck.xyzr");
+  const Run data = run(s, "trace " + neck + " --probe 0 -o t.json --quiet");
+  REQUIRE(data.exit_code == 0);
+  const nlohmann::json doc = nlohmann::json::parse(slurp(s.dir / "t.json"));
+  CHECK(doc.at("format") == "skinmesh-trace");
+  CHECK(doc.at("algorithm") == "sweep");
+  CHECK(doc.at("input") == "two_atoms_neck.xyzr");
+  CHECK(doc.at("steps").size() >= 3);
+  {
+    std::ofstream t(s.dir / "viewer.html");
+    t << "<html><script id=\"skinmesh-trace\" type=\"application/json\">__SKINMESH_TRACE_JSON__</script></html>";
+  }
+  const Run page = run(s, "trace " + neck + " --probe 0 -o t.html --viewer viewer.html");
+  REQUIRE(page.exit_code == 0);
+  CHECK(page.err.find("wrote t.html") != std::string::npos);
+  const std::string html = slurp(s.dir / "t.html");
+  const std::size_t open = html.find("application/json\">") + 18, close = html.find("</script>", open);
+  CHECK(nlohmann::json::parse(html.substr(open, close - open)).at("steps") == doc.at("steps"));
+  // No viewer: exit 1, one line naming what is missing, no file.
+  const Run missing = run(s, "trace " + neck + " --probe 0 -o u.html --viewer nowhere.html");
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.err.find("nowhere.html") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "u.html"));
+  const Run not_viewer = run(s, "trace " + neck + " --probe 0 -o u.html --viewer t.json");
+  CHECK(not_viewer.exit_code == 1);
+  CHECK(not_viewer.err.find("not a trace viewer template") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "u.html"));
+  const Run format = run(s, "trace " + neck + " --probe 0 -o u.txt");
+  CHECK(format.exit_code == 1);
+  CHECK(format.err.find("unknown trace format") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "u.txt"));
+  const Run mixed = run(s, "trace " + neck + " --probe 0 -o u.json --algorithm dynamic --direction 0,0,1");
+  CHECK(mixed.exit_code == 2);
+  CHECK(lines(mixed.err) == 1);
+  CHECK_FALSE(fs::exists(s.dir / "u.json"));
+}
+
 }  // TEST_SUITE
