@@ -597,13 +597,11 @@ std::string fill_viewer_template(const std::string& viewer_template, const json&
   std::string data = document.dump(-1, ' ', false, json::error_handler_t::replace);
   std::string escaped;
   escaped.reserve(data.size() + data.size() / 64);
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    if (data[i] == '<' && i + 1 < data.size() && data[i + 1] == '/') {
-      escaped += "<\\/";
-      ++i;
-    } else {
-      escaped += data[i];
-    }
+  for (char c : data) {
+    if (c == '<')
+      escaped += "\\u003c";  // a '<' only occurs inside JSON strings
+    else
+      escaped += c;
   }
   std::string page;
   page.reserve(viewer_template.size() + escaped.size());

@@ -72,8 +72,8 @@ nlohmann::json record_trace(const std::vector<geometry::WeightedPoint>& points, 
 inline constexpr const char* kTracePlaceholder = "__SKINMESH_TRACE_JSON__";
 
 /// The page: `viewer_template` (the built trace/viewer page) with the
-/// placeholder replaced by the document (every "</" written "<\/", so that no
-/// string in it can end the script element). Throws std::runtime_error if
+/// placeholder replaced by the document, every "<" written "\u003c" (so that
+/// no string in it can end the script element or open a comment). Throws std::runtime_error if
 /// the template does not hold the placeholder exactly once.
 std::string fill_viewer_template(const std::string& viewer_template, const nlohmann::json& document);
 
