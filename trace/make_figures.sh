@@ -49,19 +49,19 @@ fig() {  # fig PAGE OUT.png STEP LAYERS [extra render options]
 }
 
 "$bin" trace "$root/tests/data/cube_corners.xyzr" --probe 0 -o "$tmp/cube.html"
-"$bin" trace "$root/tests/data/two_atoms_neck.xyzr" --probe 0 -o "$tmp/neck.html"
-"$bin" trace "$root/tests/data/two_atoms_neck.xyzr" --probe 0 --algorithm dynamic -o "$tmp/neck_dynamic.html"
+"$bin" trace "$root/tests/data/two_atoms_neck.xyzr" -o "$tmp/neck.html"
+"$bin" trace "$root/tests/data/two_atoms_neck.xyzr" --algorithm dynamic -o "$tmp/neck_dynamic.html"
 "$bin" trace "$root/data/adna_3dna_fiber_30bp.pdb" -o "$tmp/adna.html"
 "$bin" trace "$root/data/ligand_1hpv_amprenavir.pdb" -o "$tmp/amprenavir.html"
 
 # The sweep's operations on Figure 4's configuration (eight weighted points at the corners of a cube).
-fig "$tmp/cube.html" "$front/creation.png" "$(step_of "$tmp/cube.html" creation last)" skin,front,critical
+fig "$tmp/cube.html" "$front/creation.png" "$(step_of "$tmp/cube.html" creation last)" skin,front,critical --view 30,-25,1
 fig "$tmp/cube.html" "$front/creep.png" "$(fraction_step "$tmp/cube.html" sweep 0.3)" skin,front,critical,arcs
-fig "$tmp/cube.html" "$front/wing.png" "$(step_of "$tmp/cube.html" wings)" skin,front,critical --view 30,20,0.6
+fig "$tmp/cube.html" "$front/wing.png" "$(step_of "$tmp/cube.html" wings)" skin,front,critical --view 30,-25,1
 fig "$tmp/cube.html" "$front/sweep_late.png" "$(fraction_step "$tmp/cube.html" sweep 0.8)" skin,front,critical,spheres
 fig "$tmp/cube.html" "$front/seal.png" "$(step_of "$tmp/cube.html" seal before)" skin,front,critical
-fig "$tmp/neck.html" "$front/bridge_before.png" "$(step_of "$tmp/neck.html" bridge before)" skin,front,critical,spheres
-fig "$tmp/neck.html" "$front/bridge.png" "$(step_of "$tmp/neck.html" bridge)" skin,front,critical,spheres
+fig "$tmp/neck.html" "$front/bridge_before.png" "$(step_of "$tmp/neck.html" bridge before)" skin,front,critical,spheres --view 20,-30,0.8
+fig "$tmp/neck.html" "$front/bridge.png" "$(step_of "$tmp/neck.html" bridge)" skin,front,critical,spheres --view 20,-30,0.8
 fig "$tmp/cube.html" "$front/refinement.png" -1 skin --quality min_angle
 fig "$tmp/neck_dynamic.html" "$front/dynamic_growth.png" "$(fraction_step "$tmp/neck_dynamic.html" growth 0.5)" skin,front
 
