@@ -328,6 +328,38 @@ long stride(std::size_t operations, double steps) {
   return std::max<long>(1, static_cast<long>(std::ceil(double(operations) / std::max(1.0, steps))));
 }
 
+/// The last step (the output mesh, with its check's verdict; the quality
+/// was set at the end of the last stage) and the document's remaining keys;
+/// fills `summary`. `Result` is MeshResult or dynamic::DynamicResult.
+template <class Result>
+void finish(const Result& res, json counters, json every, std::size_t operations, History& history,
+            std::vector<json>& steps, json& doc, TraceSummary& summary) {
+  Pending last;
+  last.add("final mesh",
+           "final mesh: " + std::to_string(res.mesh.triangles.size()) + " triangles, " +
+               std::to_string(res.mesh.positions.size()) + " vertices" +
+               (res.checked ? (res.ok() ? ", every check passed" : ", FAILED its checks") : ", not checked"),
+           std::nullopt, kInvalidIndex);
+  counters["triangles"] = history.alive_faces();
+  steps.push_back(last.take("final", std::move(counters)));
+  doc["frame_centre"] = point_json(res.frame_centre);
+  doc["every"] = std::move(every);
+  doc["operations"] = operations;
+  json check = {{"ran", res.checked}, {"ok", res.ok()}, {"problems", res.check.problems}};
+  if (res.checked) check["min_angle"] = round_to(res.check.mesh.min_angle_deg, 1e6);
+  doc["check"] = std::move(check);
+  history.write(doc);
+  doc["steps"] = std::move(steps);
+  summary.checked = res.checked;
+  summary.ok = res.ok();
+  summary.problems = res.check.problems;
+  summary.triangles = res.mesh.triangles.size();
+  summary.operations = operations;
+  summary.min_angle_deg = res.checked ? res.check.mesh.min_angle_deg : history.min_angle();
+  summary.face_records = history.face_records();
+  summary.vertices = history.vertex_records();
+}
+
 /// The sweep pipeline, recorded.
 json record_sweep(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                   TraceSummary& summary) {
@@ -458,33 +490,11 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
   if (options.progress) run.progress = options.progress;
   const MeshResult res = mesh_skin(points, run);
 
-  // The final step: the mesh as written, coloured by quality.
-  summary.checked = res.checked;
-  summary.ok = res.ok();
-  summary.problems = res.check.problems;
-  summary.triangles = res.mesh.triangles.size();
-  pending.add("final mesh",
-              "final mesh: " + std::to_string(res.mesh.triangles.size()) + " triangles, " +
-                  std::to_string(res.mesh.positions.size()) + " vertices" +
-                  (res.checked ? (res.ok() ? ", every check passed" : ", FAILED its checks") : ", not checked"),
-              std::nullopt, kInvalidIndex);
-  steps.push_back(pending.take("final", json{{"triangles", history.alive_faces()},
-                                             {"vertices", res.mesh.positions.size()},
-                                             {"flips", flips},
-                                             {"contractions", contractions},
-                                             {"insertions", insertions}}));
-  doc["frame_centre"] = point_json(res.frame_centre);
-  doc["every"] = {{"sweep", every_sweep}, {"refine", every_refine}};
-  doc["operations"] = operations;
-  json check = {{"ran", res.checked}, {"ok", res.ok()}, {"problems", res.check.problems}};
-  if (res.checked) check["min_angle"] = round_to(res.check.mesh.min_angle_deg, 1e6);
-  doc["check"] = std::move(check);
-  history.write(doc);
-  doc["steps"] = std::move(steps);
-  summary.operations = operations;
-  summary.min_angle_deg = res.checked ? res.check.mesh.min_angle_deg : history.min_angle();
-  summary.face_records = history.face_records();
-  summary.vertices = history.vertex_records();
+  finish(res, json{{"vertices", res.mesh.positions.size()},
+                   {"flips", flips},
+                   {"contractions", contractions},
+                   {"insertions", insertions}},
+         json{{"sweep", every_sweep}, {"refine", every_refine}}, operations, history, steps, doc, summary);
   return doc;
 }
 
@@ -540,28 +550,7 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
   };
   if (options.progress) run.progress = options.progress;
   const dynamic::DynamicResult res = dynamic::mesh_skin_dynamic(points, run);
-  summary.checked = res.checked;
-  summary.ok = res.ok();
-  summary.problems = res.check.problems;
-  summary.triangles = res.mesh.triangles.size();
-  pending.add("final mesh",
-              "final mesh: " + std::to_string(res.mesh.triangles.size()) + " triangles, " +
-                  std::to_string(res.mesh.positions.size()) + " vertices" +
-                  (res.checked ? (res.ok() ? ", every check passed" : ", FAILED its checks") : ", not checked"),
-              std::nullopt, kInvalidIndex);
-  steps.push_back(pending.take("final", json{{"triangles", history.alive_faces()}, {"growth_steps", growth}}));
-  doc["frame_centre"] = point_json(res.frame_centre);
-  doc["every"] = {{"growth", every}};
-  doc["operations"] = growth + 1;
-  json check = {{"ran", res.checked}, {"ok", res.ok()}, {"problems", res.check.problems}};
-  if (res.checked) check["min_angle"] = round_to(res.check.mesh.min_angle_deg, 1e6);
-  doc["check"] = std::move(check);
-  history.write(doc);
-  doc["steps"] = std::move(steps);
-  summary.operations = growth + 1;
-  summary.min_angle_deg = res.checked ? res.check.mesh.min_angle_deg : history.min_angle();
-  summary.face_records = history.face_records();
-  summary.vertices = history.vertex_records();
+  finish(res, json{{"growth_steps", growth}}, json{{"growth", every}}, growth + 1, history, steps, doc, summary);
   return doc;
 }
 
