@@ -399,6 +399,7 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
                 {"held", s.held},           {"bridges", s.bridges},   {"seals", s.seals},       {"deferred", s.deferred},
                 {"collisions", s.collisions}, {"stuck", s.stuck}};
   };
+  json last_sweep_counters = json::object();
   auto refine_counters = [&] { return json{{"flips", flips}, {"contractions", contractions}, {"insertions", insertions}}; };
 
   run.observers.morse = [&](const skin::SkinSurface&, const morse::MorseSmaleComplex& ms) {
@@ -446,7 +447,8 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     pending.add(name, text, focus, ev.critical);
     const bool key = ev.op == front::SweepOperation::Creation || ev.op == front::SweepOperation::Bridge ||
                      ev.op == front::SweepOperation::Seal;
-    if (key || pending.n >= every_sweep) record("sweep", ev.mesh, sweep_counters(ev.stats));
+    last_sweep_counters = sweep_counters(ev.stats);
+    if (key || pending.n >= every_sweep) record("sweep", ev.mesh, last_sweep_counters);
   };
   run.refinement.observer = [&](refine::RefineOperation op, const SurfaceMesh& mesh) {
     ++operations;
@@ -483,7 +485,7 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
       pending.text += " (" + std::to_string(moved) + " vertices moved)";
       steps.push_back(pending.take("angles", json{{"moved", moved}, {"triangles", history.alive_faces()}}));
     } else if (pending.n > 0) {
-      record(stage, mesh, s == "sweep" ? json::object() : refine_counters());
+      record(stage, mesh, s == "sweep" ? last_sweep_counters : refine_counters());
     }
     rho_quality(skin, mesh);
   };

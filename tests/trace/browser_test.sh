@@ -11,7 +11,7 @@ bin=$1
 build=$2
 root=$(cd "$(dirname "$0")/../.." && pwd)
 chromium=${CHROMIUM:-/usr/bin/chromium}
-skip() { echo "SKIP: $*"; exit 77; }
+skip() { echo "SKIP: $*" | tee "$build/browser_test.log"; exit 77; }
 [ -x "$chromium" ] || skip "chromium not found at $chromium (bash .ci/install-deps --browser installs it)"
 command -v node >/dev/null 2>&1 || skip "node not found (bash .ci/install-deps --browser installs it)"
 [ -f "$build/trace_viewer.html" ] || skip "the viewer is not built: $build/trace_viewer.html (make viewer)"
@@ -22,4 +22,6 @@ trap 'rm -rf "$tmp"' EXIT
 "$bin" trace "$root/tests/data/two_atoms_neck.xyzr" --probe 0 --algorithm dynamic -o "$tmp/two_atoms_neck_dynamic.html" -q
 "$bin" trace "$root/data/gramicidinA_1grm_model1.pdb" -o "$tmp/gramicidin_sweep.html" -q
 ls -l "$tmp"/*.html
-CHROMIUM=$chromium node "$root/trace/viewer/test/browser_test.mjs" "$tmp"/*.html
+# The log is kept beside the build (make test prints it: ctest shows the
+# output of failed tests only).
+CHROMIUM=$chromium node "$root/trace/viewer/test/browser_test.mjs" "$tmp"/*.html 2>&1 | tee "$build/browser_test.log"
