@@ -60,7 +60,9 @@ constexpr const char* kFormats =
     "\nInput formats (by extension, optionally .gz): .pdb .ent (PDB), .cif .mmcif (mmCIF),\n"
     ".pqr (PQR, radius from the file), .xyzr (x y z r per line). Radii: Bondi by element;\n"
     "atom weight w = 2 (r + probe)^2 (shrink factor 1/2).\n"
-    "Output meshes (by extension): .ply (binary, with normals and atom index), .off, .obj.\n"
+    "Output meshes (by extension): .ply (binary, with normals and atom index), .off, .obj,\n"
+    ".stl (binary, for 3D printing), .vtk (legacy VTK with normals, atom, rho and min angle), and\n"
+    ".vert (MSMS: NAME.vert and NAME.face, with normals and the 1-based atom of each vertex).\n"
     "Exit codes: 0 ok, 1 bad input or failed check, 2 bad command line, 3 the algorithm\n"
     "failed or the mesh failed its checks, 4 internal error.";
 
@@ -236,12 +238,31 @@ struct CheckArgs {
   std::string report;
   refine::SkinCheckOptions opt;
   bool no_self_intersections = false, no_rdt = false;
+  bool max_vertex_distance_given = false;
 };
 
 int run_check(CheckArgs& a) {
   if (!a.report.empty()) app::require_writable(a.report);
   const skin::Molecule mol = load_molecule(a.mol);
   geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
+  // Formats that round positions: the vertices' distance to the skin is
+  // checked to the rounding (unless --max-vertex-distance says otherwise).
+  if (!a.max_vertex_distance_given) {
+    const geometry::MeshFormat format = geometry::mesh_format_from_extension(a.mesh);
+    double rounding = 0;
+    if (format == geometry::MeshFormat::Msms) rounding = 1e-3;  // three decimals
+    if (format == geometry::MeshFormat::Stl) {                  // float32: half an ulp per coordinate
+      double largest = 0;
+      for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+      rounding = 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
+    }
+    if (rounding > a.opt.max_vertex_distance) {
+      a.opt.max_vertex_distance = rounding;
+      if (!a.mol.quiet)
+        std::cerr << "note: " << a.mesh << " stores rounded positions: vertex distances to the skin are checked to "
+                  << rounding << " Å (--max-vertex-distance)\n";
+    }
+  }
   // The check works in the molecule's local frame, as the mesher does.
   const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
   const Vec3 centre = skin::local_frame_centre(points);
@@ -580,9 +601,13 @@ int main(int argc, char** argv) {
   CLI::App* mesh_cmd = app.add_subcommand(
       "mesh",
       "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
-      "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off or .obj)");
+      "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off, .obj, .stl, "
+      ".vtk, or MSMS .vert/.face)");
   add_molecule_options(*mesh_cmd, mesh.mol);
-  mesh_cmd->add_option("-o,--output", mesh.out, "output mesh (.ply, .off or .obj)")->required();
+  mesh_cmd
+      ->add_option("-o,--output", mesh.out,
+                   "output mesh, format by extension: .ply .off .obj .stl .vtk, or .vert (MSMS: NAME.vert and NAME.face)")
+      ->required();
   mesh_cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
   add_direction_option(*mesh_cmd, mesh.direction);
   add_size_options(*mesh_cmd, mesh.opt.size);
@@ -632,7 +657,8 @@ int main(int argc, char** argv) {
       "exact self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay; exit 0 "
       "if every check passes, 1 otherwise");
   add_molecule_options(*check_cmd, check.mol);
-  check_cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off or .obj)")->required();
+  check_cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)")
+      ->required();
   check_cmd->add_option("-o,--output", check.report, "also write the report to this file");
   add_size_options(*check_cmd, check.opt.size);
   check_cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
@@ -644,6 +670,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   check_cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   check_cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
+  check_cmd
+      ->add_option("--max-vertex-distance", check.opt.max_vertex_distance,
+                   "largest admissible distance of a vertex to the skin in Å (default: 1e-9, or the rounding of the "
+                   "format: 1e-3 for MSMS, the float32 rounding for STL)")
+      ->check(number_at_least_zero(true));
 
   TraceArgs tr;
   CLI::App* trace_cmd = app.add_subcommand(
@@ -722,7 +753,10 @@ int main(int argc, char** argv) {
   }
   try {
     if (info_cmd->parsed()) return run_info(info);
-    if (check_cmd->parsed()) return run_check(check);
+    if (check_cmd->parsed()) {
+      check.max_vertex_distance_given = check_cmd->count("--max-vertex-distance") > 0;
+      return run_check(check);
+    }
     if (trace_cmd->parsed()) return run_trace(tr);
     return run_mesh(mesh);
   } catch (const CLI::ValidationError& e) {

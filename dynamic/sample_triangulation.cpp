@@ -393,9 +393,13 @@ geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_id
     if (DelaunayTriangulation::is_bounding(v)) {
       mesh.normals.push_back(Vec3::UnitZ());
       mesh.atom.push_back(-1);
+      mesh.rho.push_back(0);
+      mesh.patch.push_back(0);
     } else {
       mesh.normals.push_back(mc.gradient(cell_[v], x).normalized());
       mesh.atom.push_back(static_cast<std::int32_t>(skin_->atom_of(cell_[v], x)));
+      mesh.rho.push_back(rho_[v]);
+      mesh.patch.push_back(mc.cell(cell_[v]).dim);
     }
     if (vertex_ids) vertex_ids->push_back(v);
   }

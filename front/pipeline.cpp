@@ -27,8 +27,8 @@ namespace skinmesh {
 namespace {
 
 /// The output mesh of a closed SurfaceMesh of the skin: positions, triangles,
-/// and per vertex the normal from "v:normal" and the atom of its mixed cell
-/// ("v:cell"). Deleted elements are left out.
+/// and per vertex the normal from "v:normal", the atom and the dimension of
+/// its mixed cell ("v:cell") and rho ("v:rho"). Deleted elements are left out.
 geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh) {
   // No garbage_collection(): to_indexed_mesh() and vertices() skip deleted
   // elements in index order, which is the order the compaction keeps (the same
@@ -36,12 +36,17 @@ geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry:
   geometry::IndexedMesh out = mesh.to_indexed_mesh();
   const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
   const auto cell = mesh.get_vertex_property<Index>("v:cell");
+  const auto rho = mesh.get_vertex_property<double>("v:rho");
   out.normals.resize(out.positions.size());
   out.atom.resize(out.positions.size());
+  out.rho.resize(out.positions.size());
+  out.patch.resize(out.positions.size());
   Index i = 0;
   for (geometry::Vertex v : mesh.vertices()) {
     out.normals[i] = normal[v];
     out.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
+    out.rho[i] = rho[v];
+    out.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
     ++i;
   }
   return out;

@@ -14,15 +14,20 @@
 namespace skinmesh::geometry {
 
 /// Triangle mesh as arrays. Triangles are counter-clockwise seen from outside
-/// (their normal (b-a)x(c-a) points out of the body). `normals` and `atom` are
-/// either empty or have one entry per vertex: the unit outward surface normal,
-/// and the index (0-based, into the input atom list) of the atom whose skin
-/// patch holds the vertex (-1 if none).
+/// (their normal (b-a)x(c-a) points out of the body). `normals`, `atom`,
+/// `rho` and `patch` are either empty or have one entry per vertex: the unit
+/// outward surface normal; the index (0-based, into the input atom list) of
+/// the atom whose skin patch holds the vertex (-1 if none); the local length
+/// scale rho of the skin at the vertex (Å, Cheng & Shi §2.2); the dimension
+/// (0..3) of the Delaunay simplex of the vertex's mixed cell — 0: an atom's
+/// sphere patch, 1 and 2: hyperboloid patches, 3: a concave sphere patch.
 struct IndexedMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<Vec3> normals;
   std::vector<std::int32_t> atom;
+  std::vector<double> rho;
+  std::vector<std::uint8_t> patch;
 };
 
 }  // namespace skinmesh::geometry

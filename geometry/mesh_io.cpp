@@ -91,12 +91,19 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
 
 namespace {
 
+using mesh_io_detail::msms_text;
 using mesh_io_detail::obj_text;
 using mesh_io_detail::off_text;
 using mesh_io_detail::ply_bytes;
 using mesh_io_detail::read_obj;
 using mesh_io_detail::read_off;
+using mesh_io_detail::read_msms;
+using mesh_io_detail::read_msms_concatenated;
 using mesh_io_detail::read_ply;
+using mesh_io_detail::read_stl;
+using mesh_io_detail::read_vtk;
+using mesh_io_detail::stl_bytes;
+using mesh_io_detail::vtk_text;
 
 /// The lower-case copy of `s` (ASCII letters only).
 std::string lowercase(std::string_view s) {
@@ -114,6 +121,8 @@ void check_writable(const IndexedMesh& m) {
                       "too many vertices for PLY int indices");
   SKINMESH_ASSERT_MSG(m.normals.empty() || m.normals.size() == n, "one normal per vertex");
   SKINMESH_ASSERT_MSG(m.atom.empty() || m.atom.size() == n, "one atom id per vertex");
+  SKINMESH_ASSERT_MSG(m.rho.empty() || m.rho.size() == n, "one rho per vertex");
+  SKINMESH_ASSERT_MSG(m.patch.empty() || m.patch.size() == n, "one patch dimension per vertex");
   for (const auto& t : m.triangles)
     for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
 }
@@ -171,7 +180,18 @@ MeshFormat mesh_format_from_extension(const std::string& path) {
   if (p.ends_with(".ply")) return MeshFormat::Ply;
   if (p.ends_with(".off")) return MeshFormat::Off;
   if (p.ends_with(".obj")) return MeshFormat::Obj;
-  throw InputError(path, 0, "unknown mesh format (expected .ply, .off or .obj)");
+  if (p.ends_with(".stl")) return MeshFormat::Stl;
+  if (p.ends_with(".vtk")) return MeshFormat::Vtk;
+  if (p.ends_with(".vert") || p.ends_with(".face")) return MeshFormat::Msms;
+  throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)");
+}
+
+std::pair<std::string, std::string> msms_paths(const std::string& path) {
+  const std::string p = lowercase(path);
+  if (!p.ends_with(".vert") && !p.ends_with(".face"))
+    throw InputError(path, 0, "an MSMS mesh is named NAME.vert or NAME.face");
+  const std::string base = path.substr(0, path.size() - 5);
+  return {base + ".vert", base + ".face"};
 }
 
 void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWriteOptions& opt) {
@@ -187,11 +207,35 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
     case MeshFormat::Obj:
       write_file_atomically(path, obj_text(mesh, opt), "mesh");
       return;
+    case MeshFormat::Stl:
+      write_file_atomically(path, stl_bytes(mesh), "mesh");
+      return;
+    case MeshFormat::Vtk:
+      write_file_atomically(path, vtk_text(mesh, opt), "mesh");
+      return;
+    case MeshFormat::Msms: {
+      const auto [vert_path, face_path] = msms_paths(path);
+      const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
+      const auto [vert, face] = msms_text(mesh, name.substr(0, name.size() - 5));
+      write_file_atomically(face_path, face, "mesh");
+      try {
+        write_file_atomically(vert_path, vert, "mesh");
+      } catch (...) {
+        std::remove(face_path.c_str());  // no half of a mesh left behind
+        throw;
+      }
+      return;
+    }
   }
 }
 
 IndexedMesh read_mesh(const std::string& path) {
   const MeshFormat format = mesh_format_from_extension(path);
+  if (format == MeshFormat::Msms) {
+    const auto [vert_path, face_path] = msms_paths(path);
+    const std::string vert = read_bytes(vert_path);  // the .vert first: errors name it first
+    return read_msms(vert_path, vert, face_path, read_bytes(face_path));
+  }
   return read_mesh_from_bytes(read_bytes(path), format, path);
 }
 
@@ -203,6 +247,12 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
       return read_off(name, data);
     case MeshFormat::Obj:
       return read_obj(name, data);
+    case MeshFormat::Stl:
+      return read_stl(name, data);
+    case MeshFormat::Vtk:
+      return read_vtk(name, data);
+    case MeshFormat::Msms:
+      return read_msms_concatenated(name, data);
   }
   return {};
 }

@@ -1,12 +1,15 @@
-// geometry/mesh_io.h: writing and reading IndexedMesh as PLY, OFF or OBJ, the last
-// stage of the pipeline (papers/conventions.md §2) and the verifier's way back in.
-// Formats: PLY (G. Turk, "The PLY Polygon File Format", 1994), OFF (Geomview),
-// Wavefront OBJ. Implemented in geometry/mesh_io.cpp (dispatch, file writing and
-// reading) and one file per format, geometry/mesh_io_{ply,off,obj}.cpp (see
+// geometry/mesh_io.h: writing and reading IndexedMesh as PLY, OFF, OBJ, STL, VTK
+// or MSMS, the last stage of the pipeline (papers/conventions.md §2) and the
+// verifier's way back in. Formats: PLY (G. Turk, "The PLY Polygon File Format",
+// 1994), OFF (Geomview), Wavefront OBJ, STL (3D Systems), legacy VTK (Kitware,
+// "VTK File Formats"), MSMS .vert/.face (M. F. Sanner, Biopolymers 38, 1996).
+// Implemented in geometry/mesh_io.cpp (dispatch, file writing and reading) and
+// one file per format, geometry/mesh_io_{ply,off,obj,stl,vtk,msms}.cpp (see
 // geometry/mesh_io_internal.h).
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "geometry/indexed_mesh.h"
 
@@ -15,7 +18,7 @@ namespace skinmesh::geometry {
 // Mesh Format Types
 
 /// The mesh file formats, chosen by file extension.
-enum class MeshFormat { Ply, Off, Obj };
+enum class MeshFormat { Ply, Off, Obj, Stl, Vtk, Msms };
 
 /// How write_mesh() stores numbers.
 struct MeshWriteOptions {
@@ -30,9 +33,14 @@ struct MeshWriteOptions {
 
 // Mesh I/O Public Functions
 
-/// The format of `path` by its extension, case-insensitive: .ply, .off, .obj.
-/// Throws InputError(path, 0, "unknown mesh format (expected .ply, .off or .obj)").
+/// The format of `path` by its extension, case-insensitive: .ply, .off, .obj,
+/// .stl, .vtk, and .vert or .face (MSMS). Throws InputError(path, 0, "unknown
+/// mesh format (expected ...)").
 MeshFormat mesh_format_from_extension(const std::string& path);
+
+/// The two files of the MSMS mesh `path` (NAME.vert or NAME.face): NAME.vert
+/// and NAME.face. Throws InputError if `path` ends in neither.
+std::pair<std::string, std::string> msms_paths(const std::string& path);
 
 /// Writes `mesh` to `path` in the format of its extension:
 /// - .ply: binary little-endian PLY; element vertex with x, y, z, then nx, ny, nz
@@ -43,6 +51,16 @@ MeshFormat mesh_format_from_extension(const std::string& path);
 ///   are not stored.
 /// - .obj: `v` lines, `vn` lines (one per vertex, faces written `f a//a b//b c//c`)
 ///   if normals are set; atom ids are not stored.
+/// - .stl: binary STL, float32 corners and facet normals (the usual format of 3D
+///   printing); one record per triangle, no shared vertices, no attributes.
+/// - .vtk: legacy VTK, ascii POLYDATA (ParaView, VTK): POINTS, POLYGONS, and as
+///   attributes POINT_DATA `normals`, `atom` and `rho` (those set) and CELL_DATA
+///   `min_angle` (degrees).
+/// - .vert or .face (MSMS): both NAME.vert and NAME.face, in the layout MSMS
+///   writes (three header lines; per vertex position, normal, component, 1-based
+///   atom, patch type; per face 1-based vertices, type, component; positions to
+///   1e-3 Å; geometry/mesh_io_msms.cpp). Written one after the other, each
+///   atomically; if the second fails the first is removed.
 /// The file is written to a temporary file next to `path` and renamed onto `path`
 /// only once complete, so a failure never leaves a partial file.
 /// Pre (checked, std::logic_error): normals and atom empty or one per vertex,
@@ -61,6 +79,13 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
 /// - OBJ: `v`, `vn` and `f` with the index forms a, a/b, a//c, a/b/c, negative
 ///   (relative) indices allowed; other statements ignored. Normals are per
 ///   vertex: kept only if every vertex gets exactly one normal through the faces.
+/// - STL: binary (recognised by its size, 84 + 50 · triangles bytes) or ascii;
+///   corners with identical coordinates are merged into one vertex; no normals.
+/// - VTK: legacy ascii POLYDATA with POINTS and POLYGONS (triangles), POINT_DATA
+///   NORMALS and SCALARS `atom` and `rho` kept, other attributes skipped;
+///   binary legacy files and other datasets are refused.
+/// - MSMS: NAME.vert and NAME.face (either name given): positions, normals and
+///   the 1-based atom (stored 0-based in `atom`).
 /// Only triangles are accepted. Throws InputError(path, line, problem) for an
 /// unreadable file, a malformed header or record, a non-numeric or non-finite
 /// number, a face that is not a triangle, an index out of range, or a truncated
@@ -71,7 +96,8 @@ IndexedMesh read_mesh(const std::string& path);
 /// Reads a triangle mesh from `data`, the whole content of a mesh file in
 /// `format`, exactly as read_mesh() reads a file; `name` stands for the path in
 /// every InputError(name, line, problem) (empty: the problem alone). The
-/// in-memory entry point of read_mesh(), which reads the file and calls it.
+/// in-memory entry point of read_mesh(), which reads the file and calls it. For
+/// MSMS, `data` is the .vert file's content followed by the .face file's.
 IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name = "");
 
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto

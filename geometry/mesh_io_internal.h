@@ -6,6 +6,9 @@
 //   mesh_io_ply.cpp  PLY: binary little-endian writer; ascii / binary reader
 //   mesh_io_off.cpp  OFF / NOFF writer and reader
 //   mesh_io_obj.cpp  Wavefront OBJ writer and reader
+//   mesh_io_stl.cpp  STL: binary writer; binary / ascii reader
+//   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
+//   mesh_io_msms.cpp MSMS .vert / .face writer and reader
 // Numbers go through std::to_chars / std::from_chars: shortest text that reads
 // back to the same double, and correctly rounded parsing, so text round trips are
 // bit-exact. Only geometry/mesh_io*.cpp include this header.
@@ -15,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "geometry/indexed_mesh.h"
@@ -68,5 +72,32 @@ std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt);
 
 /// Reads a Wavefront OBJ file (`v`, `vn`, `f`; other statements ignored).
 IndexedMesh read_obj(const std::string& path, const std::string& data);
+
+/// The binary STL file of `m` (80-byte header, triangle count, per triangle
+/// the unit facet normal and the three corners as float32, 2 zero bytes).
+std::string stl_bytes(const IndexedMesh& m);
+
+/// Reads a binary or ascii STL file; corners with identical coordinates
+/// become one vertex (in order of first appearance). No normals.
+IndexedMesh read_stl(const std::string& path, const std::string& data);
+
+/// The legacy VTK file of `m` (ascii POLYDATA; POINT_DATA normals, atom, rho
+/// when set; CELL_DATA min_angle in degrees).
+std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+
+/// Reads an ascii legacy VTK POLYDATA file (POINTS, POLYGONS of triangles;
+/// VERTICES and LINES skipped; POINT_DATA NORMALS, SCALARS atom and rho kept,
+/// other SCALARS skipped).
+IndexedMesh read_vtk(const std::string& path, const std::string& data);
+
+/// The MSMS .vert and .face files of `m`; `name` goes into the comment lines.
+std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const std::string& name);
+
+/// Reads the MSMS .vert and .face files (their paths for messages).
+IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, const std::string& face_path,
+                      const std::string& face);
+
+/// read_msms() of the .vert file's content followed by the .face file's.
+IndexedMesh read_msms_concatenated(const std::string& name, const std::string& data);
 
 }  // namespace skinmesh::geometry::mesh_io_detail

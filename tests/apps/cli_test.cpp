@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/mesh_io.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -96,11 +98,11 @@ TEST_CASE("bad values, unknown commands and missing files: one line each, docume
   CHECK(missing.exit_code == 1);
   CHECK(lines(missing.err) == 1);
   CHECK(missing.err.find("no_such_file.pdb") != std::string::npos);
-  const Run ext = run(s, "mesh " + kAtom + " -o out.stl");
+  const Run ext = run(s, "mesh " + kAtom + " -o out.stp");
   CHECK(ext.exit_code == 1);
   CHECK(lines(ext.err) == 1);
   CHECK_FALSE(fs::exists(s.dir / "out.ply"));
-  CHECK_FALSE(fs::exists(s.dir / "out.stl"));
+  CHECK_FALSE(fs::exists(s.dir / "out.stp"));
   // An unwritable --stats path fails before the work: no mesh is left behind.
   const Run stats = run(s, "mesh " + kAtom + " -o out.ply --stats no_such_dir/s.json");
   CHECK(stats.exit_code == 1);
@@ -218,6 +220,53 @@ TEST_CASE("trace writes the data (.json) or the filled viewer page (.html); a mi
   CHECK(mixed.exit_code == 2);
   CHECK(lines(mixed.err) == 1);
   CHECK_FALSE(fs::exists(s.dir / "u.json"));
+}
+
+TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY mesh, and check reads them") {
+  Scratch s;
+  const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb");
+  REQUIRE(run(s, "mesh " + mol + " -o a.ply --quiet").exit_code == 0);
+  const skinmesh::geometry::IndexedMesh ply = skinmesh::geometry::read_mesh((s.dir / "a.ply").string());
+  REQUIRE(ply.triangles.size() > 1000);
+  for (const char* name : {"a.stl", "a.vtk", "a.vert"}) {
+    CAPTURE(name);
+    const Run r = run(s, "mesh " + mol + " -o " + name + " --quiet");
+    REQUIRE(r.exit_code == 0);
+    const skinmesh::geometry::IndexedMesh back = skinmesh::geometry::read_mesh((s.dir / name).string());
+    CHECK(back.triangles.size() == ply.triangles.size());
+    const std::string n = name;
+    if (n == "a.stl") {
+      // A triangle soup of float32 corners: the same corners, merged again.
+      REQUIRE(back.positions.size() == ply.positions.size());
+      double worst = 0;
+      for (std::size_t t = 0; t < ply.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+          worst = std::max(worst, (back.positions[back.triangles[t][k]] - ply.positions[ply.triangles[t][k]]).norm());
+      CHECK(worst < 1e-5);
+    } else {
+      REQUIRE(back.positions.size() == ply.positions.size());
+      CHECK(back.triangles == ply.triangles);
+      CHECK(back.atom == ply.atom);
+      double worst = 0;
+      for (std::size_t v = 0; v < ply.positions.size(); ++v)
+        worst = std::max(worst, (back.positions[v] - ply.positions[v]).cwiseAbs().maxCoeff());
+      if (n == "a.vtk") CHECK(worst == 0);  // shortest round-trip decimals: exact
+      if (n == "a.vert") CHECK(worst <= 5.0001e-4);  // MSMS's three decimals
+      if (n == "a.vtk") CHECK(back.rho.size() == ply.positions.size());
+    }
+  }
+  // check reads every format; STL's float32 corners are checked to their rounding.
+  for (const char* name : {"a.stl", "a.vtk"}) {
+    CAPTURE(name);
+    const Run c = run(s, "check " + mol + " " + name);
+    CHECK(c.exit_code == 0);
+    CHECK(nlohmann::json::parse(c.out).at("problems").empty());
+  }
+  // MSMS keeps three decimals: the check reads it, with the distance tolerance
+  // of that rounding (its [L] and [U] margins see the rounded positions).
+  const Run msms = run(s, "check " + mol + " a.face");
+  CHECK(msms.err.find("checked to 0.001") != std::string::npos);
+  CHECK(nlohmann::json::parse(msms.out).at("num_far_vertices") == 0);
 }
 
 }  // TEST_SUITE

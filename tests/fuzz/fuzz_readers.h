@@ -58,7 +58,7 @@ inline void check_molecule(const skin::Molecule& m, skin::ReadOptions::Format fo
 }
 
 /// The invariants of an IndexedMesh returned by read_mesh() (mesh_io.h): every
-/// position finite; normals and atom ids empty or one per vertex, normals
+/// position finite; normals, atom ids and rho empty or one per vertex, normals
 /// finite; every triangle index < the number of vertices. (read_mesh() does not
 /// bound coordinates by geometry::kMaxCoordinate: a mesh file may hold any
 /// finite position.)
@@ -70,6 +70,7 @@ inline void check_mesh(const geometry::IndexedMesh& m) {
   for (std::size_t i = 0; i < m.normals.size(); ++i)
     if (!m.normals[i].allFinite()) invariant_failed("vertex normal not finite", i);
   if (!m.atom.empty() && m.atom.size() != n) invariant_failed("atom ids not one per vertex", m.atom.size());
+  if (!m.rho.empty() && m.rho.size() != n) invariant_failed("rho not one per vertex", m.rho.size());
   for (std::size_t i = 0; i < m.triangles.size(); ++i)
     for (const Index v : m.triangles[i])
       if (v >= n) invariant_failed("triangle index out of range", i);

@@ -317,7 +317,7 @@ TEST_CASE("mesh_io: malformed inputs name the file and the line") {
                  "zero.obj:5: vertex index 0 out of range"));
   CHECK(contains(read_error(scratch().write("inf.obj", "v 0 0 inf\n")), "inf.obj:1: non-numeric or non-finite"));
   CHECK(contains(read_error(scratch().path("missing.ply")), "missing.ply: cannot open file"));
-  CHECK(contains(read_error(scratch().write("mesh.stl", "solid\n")), "unknown mesh format (expected .ply, .off or .obj)"));
+  CHECK(contains(read_error(scratch().write("mesh.stp", "solid\n")), "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk"));
 }
 
 TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
@@ -358,8 +358,8 @@ TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
     CHECK(read_mesh(path).triangles == m.triangles);
   }
   SUBCASE("unknown extension") {
-    CHECK_THROWS_AS(write_mesh(scratch().path("out.stl"), m), InputError);
-    CHECK_FALSE(std::filesystem::exists(scratch().path("out.stl")));
+    CHECK_THROWS_AS(write_mesh(scratch().path("out.stp"), m), InputError);
+    CHECK_FALSE(std::filesystem::exists(scratch().path("out.stp")));
   }
 }
 
