@@ -119,8 +119,8 @@ class SampleTriangulation {
   /// The restricted Delaunay triangulation as a mesh: the facets between a
   /// tetrahedron whose circumcentre is inside F_c and one outside, oriented
   /// towards the outside one (outward), vertices compacted (samples in id
-  /// order), with unit normals grad f / |grad f| and the atom of each
-  /// vertex's patch. `vertex_ids` (if not null) receives the sample id of
+  /// order), with unit normals grad f / |grad f|, and the atom, rho and
+  /// mixed-cell dimension of each vertex's patch. `vertex_ids` (if not null) receives the sample id of
   /// each mesh vertex.
   geometry::IndexedMesh extract(std::vector<Index>* vertex_ids = nullptr) const;
 
