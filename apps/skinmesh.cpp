@@ -38,6 +38,7 @@
 #include "front/pipeline.h"
 #include "geometry/errors.h"
 #include "geometry/mesh_io.h"
+#include "geometry/mesh_measures.h"
 #include "geometry/parallel.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
@@ -312,6 +313,21 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
   j["probe_radius"] = a.mol.probe;
   j["vertices"] = res.mesh.positions.size();
   j["triangles"] = res.mesh.triangles.size();
+  {
+    // Area and enclosed volume from the mesh, per component and in all.
+    json parts = json::array();
+    double area = 0, volume = 0;
+    for (const geometry::ComponentMeasure& c : geometry::component_measures(res.mesh)) {
+      parts.push_back({{"vertices", c.vertices},
+                       {"triangles", c.triangles},
+                       {"area_A2", c.area},
+                       {"volume_A3", c.volume},
+                       {"kind", c.volume >= 0 ? "body" : "cavity"}});
+      area += c.area;
+      volume += c.volume;
+    }
+    j["surface"] = {{"area_A2", area}, {"volume_A3", volume}, {"components", std::move(parts)}};
+  }
   if (res.checked) {
     j["min_angle_deg"] = res.check.mesh.min_angle_deg;
     j["max_angle_deg"] = res.check.mesh.max_angle_deg;

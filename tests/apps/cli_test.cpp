@@ -4,6 +4,7 @@
 // JSON that parses whatever the paths contain.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -267,6 +268,22 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
   const Run msms = run(s, "check " + mol + " a.face");
   CHECK(msms.err.find("checked to 0.001") != std::string::npos);
   CHECK(nlohmann::json::parse(msms.out).at("num_far_vertices") == 0);
+}
+
+TEST_CASE("--stats reports the area and enclosed volume of the mesh, per component and in all") {
+  Scratch s;
+  // One atom of radius 1.6 Å with probe 1.4: the skin is the sphere of radius 3 Å.
+  const Run r = run(s, "mesh " + kAtom + " -o one.ply --stats s.json --quiet");
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "s.json"));
+  const nlohmann::json& surface = j.at("surface");
+  REQUIRE(surface.at("components").size() == 1);
+  const double area = surface.at("area_A2"), volume = surface.at("volume_A3");
+  CHECK(area == doctest::Approx(4 * M_PI * 9).epsilon(0.01));
+  CHECK(volume == doctest::Approx(4 * M_PI * 27 / 3).epsilon(0.015));
+  CHECK(area < 4 * M_PI * 9);  // an inscribed polyhedron
+  CHECK(surface.at("components")[0].at("kind") == "body");
+  CHECK(surface.at("components")[0].at("triangles") == j.at("triangles"));
 }
 
 }  // TEST_SUITE
