@@ -22,8 +22,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,6 +89,8 @@ CLI::Validator number_at_least_zero(bool strictly) {
 /// The molecule options of every command.
 struct MoleculeArgs {
   std::string input;
+  /// `mesh` only: every IN given (one: input; several: a batch run).
+  std::vector<std::string> inputs;
   double probe = 1.4;
   bool keep_water = false;
   bool no_hydrogens = false;
@@ -91,10 +98,14 @@ struct MoleculeArgs {
   bool quiet = false;
 };
 
-void add_molecule_options(CLI::App& cmd, MoleculeArgs& m) {
+void add_molecule_options(CLI::App& cmd, MoleculeArgs& m, bool many = false) {
   cmd.footer(kFormats);
-  cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz)")
-      ->required();
+  if (many)
+    cmd.add_option("IN", m.inputs,
+                   "molecule file(s) (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz); several: a batch run "
+                   "(-O DIR)");
+  else
+    cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz)")->required();
   cmd.add_option("--probe", m.probe, "probe radius in Å; atom weight w = 2 (r + probe)²")
       ->check(number_at_least_zero(false))
       ->capture_default_str();
@@ -292,6 +303,10 @@ struct MeshArgs {
   std::string algorithm = "sweep";
   bool no_growth = false;
   double growth_step = dynamic::DynamicOptions{}.max_step_motion;
+  // Batch runs (several IN or --list): outputs DIR/<name>.<format>.
+  std::string out_dir, list, batch_format = "ply";
+  int jobs = 1;
+  bool threads_given = false;
 };
 
 /// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
@@ -429,6 +444,31 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
   return j;
 }
 
+/// Meshes `mol` with the algorithm of `a` (sweep: mesh_skin with `opt`;
+/// dynamic: mesh_skin_dynamic, whose result is also kept in `dyn`) and returns
+/// the fields the writer and the summary share.
+MeshResult run_algorithm(const MeshArgs& a, const skin::Molecule& mol, const MeshOptions& opt,
+                         std::optional<dynamic::DynamicResult>& dyn) {
+  if (a.algorithm != "dynamic") return mesh_skin(mol, opt);
+  dynamic::DynamicOptions d;
+  d.probe_radius = a.mol.probe;
+  d.size = opt.size;
+  d.growth = !a.no_growth;
+  d.max_step_motion = a.growth_step;
+  d.check = opt.check;
+  d.checks.threads = opt.threads;
+  d.progress = opt.progress;
+  dyn = dynamic::mesh_skin_dynamic(mol, d);
+  MeshResult res;
+  res.mesh = std::move(dyn->mesh);
+  res.expected_topology = dyn->expected_topology;
+  res.checked = dyn->checked;
+  res.check = std::move(dyn->check);
+  res.seconds = dyn->seconds;
+  res.frame_centre = dyn->frame_centre;
+  return res;
+}
+
 int run_mesh(MeshArgs& a) {
   // Unknown extension or unwritable folder: fail before the work.
   geometry::mesh_format_from_extension(a.out);
@@ -447,28 +487,8 @@ int run_mesh(MeshArgs& a) {
   if (a.trace) a.opt.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   app::ProgressReporter progress(!a.mol.quiet);
   a.opt.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
-  MeshResult res;
   std::optional<dynamic::DynamicResult> dyn;
-  if (a.algorithm == "dynamic") {
-    dynamic::DynamicOptions d;
-    d.probe_radius = a.mol.probe;
-    d.size = a.opt.size;
-    d.growth = !a.no_growth;
-    d.max_step_motion = a.growth_step;
-    d.check = a.opt.check;
-    d.checks.threads = a.opt.threads;
-    d.progress = a.opt.progress;
-    dyn = dynamic::mesh_skin_dynamic(mol, d);
-    // The fields the summary and the writer share with the sweep's result.
-    res.mesh = std::move(dyn->mesh);
-    res.expected_topology = dyn->expected_topology;
-    res.checked = dyn->checked;
-    res.check = std::move(dyn->check);
-    res.seconds = dyn->seconds;
-    res.frame_centre = dyn->frame_centre;
-  } else {
-    res = mesh_skin(mol, a.opt);
-  }
+  MeshResult res = run_algorithm(a, mol, a.opt, dyn);
   progress.finish();
 
   const bool failed = !res.ok();
@@ -581,6 +601,206 @@ int run_trace(TraceArgs& a) {
   return 0;
 }
 
+// mesh: batch runs
+
+std::string one_line(std::string s);
+
+/// One input of a batch run and what became of it.
+struct BatchItem {
+  std::string input, output;
+  std::size_t atoms = 0, triangles = 0;
+  double min_angle = 0, area = 0, volume = 0, seconds = 0;
+  bool checked = false;
+  int exit_code = -1;      ///< as `skinmesh mesh` on this input alone; -1: not run
+  std::string status = "not run", message;
+};
+
+/// The inputs of a batch: the IN arguments, then the lines of --list (blank
+/// lines and '#' comments skipped; relative paths are relative to the list's
+/// folder). Throws InputError naming the list's line for an unreadable list.
+std::vector<std::string> batch_inputs(const MeshArgs& a) {
+  std::vector<std::string> inputs = a.mol.inputs;
+  if (!a.list.empty()) {
+    const std::string text = app::read_text_file(a.list);
+    const std::filesystem::path folder = std::filesystem::path(a.list).parent_path();
+    std::size_t line = 0, at = 0;
+    while (at <= text.size()) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      ++line;
+      std::string entry = text.substr(at, end - at);
+      if (const std::size_t hash = entry.find('#'); hash != std::string::npos) entry.resize(hash);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back()))) entry.pop_back();
+      std::size_t first = 0;
+      while (first < entry.size() && std::isspace(static_cast<unsigned char>(entry[first]))) ++first;
+      entry = entry.substr(first);
+      if (!entry.empty()) {
+        const std::filesystem::path p(entry);
+        inputs.push_back(p.is_absolute() || folder.empty() ? entry : (folder / p).string());
+      }
+      at = end + 1;
+    }
+  }
+  if (inputs.empty()) throw InputError(a.list, 0, "no molecule files listed");
+  return inputs;
+}
+
+/// The output name of an input: its file name without .gz and its extension
+/// (run_batch keeps the whole file name when two inputs share this name).
+std::string batch_stem(const std::string& input) {
+  std::filesystem::path p = std::filesystem::path(input).filename();
+  if (p.extension() == ".gz" || p.extension() == ".GZ") p = p.stem();
+  return p.stem().string();
+}
+
+/// Meshes one input of a batch (never throws: the outcome is in the item).
+void run_batch_item(const MeshArgs& a, const MeshOptions& base, BatchItem& item) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  try {
+    MoleculeArgs m = a.mol;
+    m.input = item.input;
+    m.quiet = true;
+    const skin::Molecule mol = load_molecule(m);
+    item.atoms = mol.atoms.size();
+    std::optional<dynamic::DynamicResult> dyn;
+    const MeshResult res = run_algorithm(a, mol, base, dyn);
+    item.triangles = res.mesh.triangles.size();
+    item.checked = res.checked;
+    if (res.checked) item.min_angle = res.check.mesh.min_angle_deg;
+    for (const geometry::ComponentMeasure& c : geometry::component_measures(res.mesh))
+      item.area += c.area, item.volume += c.volume;
+    if (!res.ok()) {
+      item.exit_code = 3;
+      item.status = "failed check";
+      item.message = res.check.problems.empty() ? std::string() : res.check.problems.front();
+      if (!a.force) {
+        item.message += " (not written; --force writes it)";
+        item.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return;
+      }
+    }
+    geometry::write_mesh(item.output, res.mesh);
+    if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
+  } catch (const InputError& e) {
+    item.exit_code = 1, item.status = "bad input", item.message = e.what();
+  } catch (const TopologyError& e) {
+    item.exit_code = 3, item.status = "topology error", item.message = e.what();
+  } catch (const GeometryError& e) {
+    item.exit_code = 3, item.status = "geometry error", item.message = e.what();
+  } catch (const std::exception& e) {
+    item.exit_code = 4, item.status = "internal error", item.message = e.what();
+  }
+  item.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// A CSV field, quoted if it needs to be (RFC 4180).
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// `skinmesh mesh IN IN ... -O DIR` (or --list): every input meshed by --jobs
+/// workers, one failing input does not stop the others; a summary table on
+/// stdout and in DIR/summary.csv and DIR/summary.json. Exit code: 0 if every
+/// input succeeded, else the largest of their exit codes.
+int run_batch(MeshArgs& a) {
+  if (a.out_dir.empty()) throw CLI::ValidationError("-O", "several inputs (or --list) need an output folder -O DIR");
+  const std::vector<std::string> inputs = batch_inputs(a);
+  std::vector<BatchItem> items(inputs.size());
+  // Outputs DIR/NAME.FORMAT; inputs that share a NAME (crambin.pdb and
+  // crambin.pqr) keep their whole file name (crambin.pdb.ply, crambin.pqr.ply).
+  std::map<std::string, int> stems;
+  for (const std::string& in : inputs) ++stems[batch_stem(in)];
+  std::map<std::string, std::string> taken;  // output -> input
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    items[i].input = inputs[i];
+    const std::string stem = batch_stem(inputs[i]);
+    const std::string name = stems[stem] > 1 ? std::filesystem::path(inputs[i]).filename().string() : stem;
+    items[i].output = (std::filesystem::path(a.out_dir) / (name + "." + a.batch_format)).string();
+    if (auto [it, fresh] = taken.emplace(items[i].output, inputs[i]); !fresh)
+      throw InputError(inputs[i], 0, "would write " + items[i].output + " as " + it->second + " does (rename one)");
+  }
+  std::filesystem::create_directories(a.out_dir);
+  app::require_writable(items.front().output);
+  MeshOptions base = a.opt;
+  base.probe_radius = a.mol.probe;
+  base.height_direction = height_direction(a.direction);
+  base.check = !a.no_check;
+  base.improve_angles = !a.no_angle_improvement;
+  if (!a.threads_given) base.threads = 1;  // the workers share the cores
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  std::atomic<std::size_t> next{0}, done{0};
+  std::mutex print;
+  const int jobs = std::max(1, std::min<int>(a.jobs, static_cast<int>(items.size())));
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < items.size();) {
+      run_batch_item(a, base, items[i]);
+      const std::size_t k = ++done;
+      if (a.mol.quiet) continue;
+      const BatchItem& it = items[i];
+      std::lock_guard<std::mutex> lock(print);
+      std::fprintf(stderr, "[%zu/%zu] %s: %s", k, items.size(), it.input.c_str(), it.status.c_str());
+      if (it.exit_code == 0) std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
+      if (!it.message.empty()) std::fprintf(stderr, ": %s", one_line(it.message).c_str());
+      std::fprintf(stderr, "\n");
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+
+  // The summary: a table on stdout, CSV and JSON in the output folder.
+  std::string table, csv = "input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
+  json rows = json::array();
+  char line[512];
+  std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle", "seconds",
+                "status");
+  table += line;
+  int exit_code = 0;
+  double sum = 0;
+  for (const BatchItem& it : items) {
+    const std::string name = std::filesystem::path(it.input).filename().string();
+    std::snprintf(line, sizeof line, "%-36s %8zu %10zu %9.3f %8.2f  %s\n", name.c_str(), it.atoms, it.triangles,
+                  it.min_angle, it.seconds, it.status.c_str());
+    table += line;
+    char num[160];
+    std::snprintf(num, sizeof num, ",%zu,%zu,%.6f,%.6f,%.6f,%.3f,", it.atoms, it.triangles, it.min_angle, it.area,
+                  it.volume, it.seconds);
+    csv += csv_field(it.input) + "," + csv_field(it.exit_code == 0 || a.force ? it.output : "") + num +
+           csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
+    json row = {{"input", it.input},       {"atoms", it.atoms},         {"triangles", it.triangles},
+                {"min_angle_deg", it.min_angle}, {"area_A2", it.area}, {"volume_A3", it.volume},
+                {"seconds", it.seconds},   {"status", it.status},       {"exit_code", it.exit_code}};
+    if (it.exit_code == 0 || (a.force && it.status == "failed check")) row["output"] = it.output;
+    if (!it.message.empty()) row["message"] = it.message;
+    rows.push_back(std::move(row));
+    exit_code = std::max(exit_code, it.exit_code);
+    sum += it.seconds;
+  }
+  const std::size_t failed = static_cast<std::size_t>(
+      std::count_if(items.begin(), items.end(), [](const BatchItem& it) { return it.exit_code != 0; }));
+  std::snprintf(line, sizeof line, "%zu inputs, %zu failed; wall %.2f s with %d jobs (sum of the inputs' times %.2f s)\n",
+                items.size(), failed, wall, jobs, sum);
+  table += line;
+  std::cout << table << std::flush;
+  const std::string csv_path = (std::filesystem::path(a.out_dir) / "summary.csv").string();
+  const std::string json_path = (std::filesystem::path(a.out_dir) / "summary.json").string();
+  app::write_text_file(csv_path, csv);
+  app::write_text_file(json_path, json{{"inputs", std::move(rows)},
+                                       {"failed", failed},
+                                       {"jobs", jobs},
+                                       {"wall_seconds", wall},
+                                       {"sum_seconds", sum}}
+                                      .dump(2) + "\n");
+  if (!a.mol.quiet) std::cerr << "wrote " << csv_path << " and " << json_path << "\n";
+  return exit_code;
+}
+
 /// One line, at most ~300 characters: details belong in --trace.
 std::string one_line(std::string s) {
   for (char& c : s)
@@ -619,11 +839,25 @@ int main(int argc, char** argv) {
       "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
       "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off, .obj, .stl, "
       ".vtk, or MSMS .vert/.face)");
-  add_molecule_options(*mesh_cmd, mesh.mol);
-  mesh_cmd
-      ->add_option("-o,--output", mesh.out,
-                   "output mesh, format by extension: .ply .off .obj .stl .vtk, or .vert (MSMS: NAME.vert and NAME.face)")
-      ->required();
+  add_molecule_options(*mesh_cmd, mesh.mol, /*many=*/true);
+  mesh_cmd->add_option("-o,--output", mesh.out,
+                       "output mesh, format by extension: .ply .off .obj .stl .vtk, or .vert (MSMS: NAME.vert and "
+                       "NAME.face)");
+  const char* batch = "Batch runs (several IN, or --list)";
+  mesh_cmd->add_option("-O,--output-dir", mesh.out_dir,
+                       "output folder of a batch run: DIR/NAME.FORMAT per input, DIR/summary.csv and DIR/summary.json")
+      ->group(batch);
+  mesh_cmd->add_option("--list", mesh.list,
+                       "a file of molecule files, one per line ('#' comments; relative to the list's folder)")
+      ->group(batch);
+  mesh_cmd->add_option("--jobs,-j", mesh.jobs, "inputs meshed at the same time (each on one thread unless --threads)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str()
+      ->group(batch);
+  mesh_cmd->add_option("--out-format", mesh.batch_format, "format of a batch run's meshes")
+      ->check(CLI::IsMember({"ply", "off", "obj", "stl", "vtk", "vert"}))
+      ->capture_default_str()
+      ->group(batch);
   mesh_cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
   add_direction_option(*mesh_cmd, mesh.direction);
   add_size_options(*mesh_cmd, mesh.opt.size);
@@ -742,6 +976,27 @@ int main(int argc, char** argv) {
     std::cerr << "skinmesh" << cmd << ": " << one_line(e.what()) << " (see 'skinmesh" << cmd << " --help')\n";
     return 2;
   }
+  // One input and -o, or a batch run (several inputs or --list, and -O).
+  bool batch_run = false;
+  if (mesh_cmd->parsed()) {
+    mesh.threads_given = mesh_cmd->count("--threads") > 0;
+    batch_run = mesh.mol.inputs.size() > 1 || !mesh.list.empty() || !mesh.out_dir.empty();
+    std::string problem;
+    if (mesh.mol.inputs.empty() && mesh.list.empty()) problem = "IN is required (a molecule file, or several with -O DIR)";
+    else if (!batch_run && mesh.out.empty()) problem = "-o OUT is required (or -O DIR for a batch run)";
+    else if (batch_run && mesh.out_dir.empty()) problem = "several inputs (or --list) need -O DIR, the output folder";
+    else if (batch_run)
+      for (const char* name : {"--output", "--stats", "--trace", "--paranoid", "--max-steps", "--dump-partial"})
+        if (mesh_cmd->count(name) > 0) {
+          problem = std::string(name) + " applies to one input, not to a batch run (-O)";
+          break;
+        }
+    if (!problem.empty()) {
+      std::cerr << "skinmesh mesh: " << problem << " (see 'skinmesh mesh --help')\n";
+      return 2;
+    }
+    if (!batch_run) mesh.mol.input = mesh.mol.inputs.front();
+  }
   // Options of one algorithm given with the other: an error, not silently ignored.
   if (mesh_cmd->parsed()) {
     const bool dynamic = mesh.algorithm == "dynamic";
@@ -774,7 +1029,7 @@ int main(int argc, char** argv) {
       return run_check(check);
     }
     if (trace_cmd->parsed()) return run_trace(tr);
-    return run_mesh(mesh);
+    return batch_run ? run_batch(mesh) : run_mesh(mesh);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "skinmesh: " << one_line(e.what()) << "\n";
     return 2;

@@ -286,4 +286,63 @@ TEST_CASE("--stats reports the area and enclosed volume of the mesh, per compone
   CHECK(surface.at("components")[0].at("triangles") == j.at("triangles"));
 }
 
+TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not stop the others, a summary") {
+  Scratch s;
+  const std::string data = std::string(SKINMESH_DATA) + "/";
+  const std::string a = quoted(data + "ligand_2zmm.pdb"), b = quoted(data + "ligand_1hpv_amprenavir.pdb");
+  const Run r = run(s, "mesh " + a + " missing.pdb " + b + " -O out --jobs 2 --quiet");
+  CHECK(r.exit_code == 1);  // the missing input's exit code
+  CHECK(r.out.find("3 inputs, 1 failed") != std::string::npos);
+  // The meshes are those of single runs, byte for byte.
+  REQUIRE(run(s, "mesh " + a + " -o single.ply --quiet").exit_code == 0);
+  CHECK(slurp(s.dir / "out/ligand_2zmm.ply") == slurp(s.dir / "single.ply"));
+  CHECK(fs::exists(s.dir / "out/ligand_1hpv_amprenavir.ply"));
+  CHECK_FALSE(fs::exists(s.dir / "out/missing.ply"));
+  // summary.csv: a header and one row per input, in the order given.
+  const std::string csv = slurp(s.dir / "out/summary.csv");
+  CHECK(lines(csv) == 4);
+  CHECK(csv.rfind("input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n", 0) == 0);
+  const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "out/summary.json"));
+  REQUIRE(j.at("inputs").size() == 3);
+  CHECK(j.at("failed") == 1);
+  CHECK(j.at("inputs")[0].at("status") == "ok");
+  CHECK(j.at("inputs")[1].at("status") == "bad input");
+  CHECK(j.at("inputs")[1].at("message").get<std::string>().find("missing.pdb") != std::string::npos);
+  CHECK(j.at("inputs")[2].at("triangles").get<int>() > 1000);
+  CHECK(j.at("inputs")[0].at("volume_A3").get<double>() > 0);
+  // All good: exit 0. A --list with a comment, relative to the list's folder.
+  {
+    std::ofstream list(s.dir / "inputs.txt");
+    list << "# two ligands\n" << data << "ligand_2zmm.pdb\n\n  " << data << "ligand_1hvr_xk263.pdb  # the second\n";
+  }
+  const Run listed = run(s, "mesh --list inputs.txt -O out2 --out-format vtk --quiet");
+  CHECK(listed.exit_code == 0);
+  CHECK(fs::exists(s.dir / "out2/ligand_1hvr_xk263.vtk"));
+  CHECK(listed.out.find("2 inputs, 0 failed") != std::string::npos);
+}
+
+TEST_CASE("batch runs: the command line's mistakes are caught before any work") {
+  Scratch s;
+  const std::string a = quoted(std::string(SKINMESH_DATA) + "/ligand_2zmm.pdb");
+  const Run no_dir = run(s, "mesh " + a + " " + kAtom);
+  CHECK(no_dir.exit_code == 2);
+  CHECK(no_dir.err.find("-O DIR") != std::string::npos);
+  const Run stats = run(s, "mesh " + a + " " + kAtom + " -O out --stats s.json");
+  CHECK(stats.exit_code == 2);
+  CHECK(lines(stats.err) == 1);
+  const Run same = run(s, "mesh " + kAtom + " " + kAtom + " -O out");
+  CHECK(same.exit_code == 1);
+  CHECK(same.err.find("would write") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "out"));
+  // Two inputs with the same name and different formats keep their extensions.
+  const std::string data = std::string(SKINMESH_DATA) + "/";
+  const Run two = run(s, "mesh " + quoted(data + "crambin_1crn.pdb") + " " + quoted(data + "crambin_1crn.pqr") +
+                             " -O both --quiet --no-check");
+  CHECK(two.exit_code == 0);
+  CHECK(fs::exists(s.dir / "both/crambin_1crn.pdb.ply"));
+  CHECK(fs::exists(s.dir / "both/crambin_1crn.pqr.ply"));
+  const Run none = run(s, "mesh -o x.ply");
+  CHECK(none.exit_code == 2);
+}
+
 }  // TEST_SUITE
