@@ -1,0 +1,280 @@
+// python/skinmesh_python.cpp: the Python module `skinmesh` (pybind11) — the
+// pipeline's entry points with numpy arrays in and out:
+//   skinmesh.mesh(path_or_atoms, probe=1.4, algorithm="sweep", check=True,
+//                 threads=0) -> Mesh
+//   skinmesh.check(path_or_atoms, mesh_or_path, probe=1.4) -> dict
+//   skinmesh.read_mesh(path) -> Mesh,  Mesh.write(path)
+// Errors are Python exceptions carrying the command line's one-line messages:
+// skinmesh.InputError (a ValueError: bad file, bad array, bad option),
+// skinmesh.TopologyError and skinmesh.GeometryError (RuntimeErrors: the
+// algorithm failed). The GIL is released while C++ runs.
+// Notes: papers/python.md
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dynamic/dynamic_skin.h"
+#include "front/pipeline.h"
+#include "geometry/errors.h"
+#include "geometry/mesh_io.h"
+#include "geometry/mesh_measures.h"
+#include "refine/skin_mesh_check.h"
+#include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
+
+namespace py = pybind11;
+using namespace skinmesh;
+
+namespace {
+
+/// A mesh as numpy arrays, and what the run measured.
+struct PyMesh {
+  geometry::IndexedMesh mesh;
+  py::dict stats;
+  bool ok = true;
+};
+
+/// The atoms of `source`: a path (str or os.PathLike) read with
+/// read_molecule, or an array (n, 4) of x, y, z (Å) and radius (Å).
+skin::Molecule molecule_of(const py::object& source) {
+  const py::module_ os = py::module_::import("os");
+  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
+    const std::string path = py::str(os.attr("fspath")(source));
+    py::gil_scoped_release release;
+    return skin::read_molecule(path);
+  }
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(source);
+  if (!a || a.ndim() != 2 || a.shape(1) != 4)
+    throw InputError("", 0, "atoms must be a path or an array of shape (n, 4): x, y, z, radius (Å)");
+  if (a.shape(0) == 0) throw InputError("", 0, "no atoms");
+  skin::Molecule mol;
+  const auto v = a.unchecked<2>();
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+    skin::Atom atom;
+    atom.centre = Vec3(v(i, 0), v(i, 1), v(i, 2));
+    atom.radius = v(i, 3);
+    if (!atom.centre.allFinite() || std::abs(atom.centre.x()) > geometry::kMaxCoordinate ||
+        std::abs(atom.centre.y()) > geometry::kMaxCoordinate || std::abs(atom.centre.z()) > geometry::kMaxCoordinate)
+      throw InputError("", 0, "atom " + std::to_string(i) + ": coordinates must be finite and within ±" +
+                                  std::to_string(geometry::kMaxCoordinate) + " Å");
+    if (!(atom.radius > 0 && atom.radius <= skin::kMaxRadius))
+      throw InputError("", 0, "atom " + std::to_string(i) + ": the radius must lie in (0, " +
+                                  std::to_string(skin::kMaxRadius) + "] Å");
+    mol.atoms.push_back(atom);
+  }
+  return mol;
+}
+
+/// A copy of `rows` × `cols` values as a numpy array of T.
+template <class T, class Get>
+py::array_t<T> array_of(std::size_t rows, std::size_t cols, const Get& get) {
+  py::array_t<T> out(cols == 1 ? std::vector<py::ssize_t>{py::ssize_t(rows)}
+                               : std::vector<py::ssize_t>{py::ssize_t(rows), py::ssize_t(cols)});
+  T* p = out.mutable_data();
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t k = 0; k < cols; ++k) p[i * cols + k] = get(i, k);
+  return out;
+}
+
+py::dict surface_stats(const geometry::IndexedMesh& m) {
+  py::list parts;
+  double area = 0, volume = 0;
+  for (const geometry::ComponentMeasure& c : geometry::component_measures(m)) {
+    py::dict d;
+    d["vertices"] = c.vertices;
+    d["triangles"] = c.triangles;
+    d["area_A2"] = c.area;
+    d["volume_A3"] = c.volume;
+    d["kind"] = c.volume >= 0 ? "body" : "cavity";
+    parts.append(d);
+    area += c.area, volume += c.volume;
+  }
+  py::dict s;
+  s["area_A2"] = area;
+  s["volume_A3"] = volume;
+  s["components"] = parts;
+  return s;
+}
+
+PyMesh mesh(const py::object& source, double probe, const std::string& algorithm, bool check, int threads) {
+  if (algorithm != "sweep" && algorithm != "dynamic")
+    throw InputError("", 0, "algorithm must be 'sweep' or 'dynamic', not '" + algorithm + "'");
+  if (!(probe >= 0 && probe <= skin::kMaxRadius)) throw InputError("", 0, "the probe radius must lie in [0, 100] Å");
+  if (threads < 0) throw InputError("", 0, "threads must be >= 0");
+  const skin::Molecule mol = molecule_of(source);
+  PyMesh out;
+  py::dict stats;
+  MeshResult res;
+  {
+    py::gil_scoped_release release;
+    if (algorithm == "sweep") {
+      MeshOptions opt;
+      opt.probe_radius = probe;
+      opt.check = check;
+      opt.threads = threads;
+      res = mesh_skin(mol, opt);
+    } else {
+      dynamic::DynamicOptions opt;
+      opt.probe_radius = probe;
+      opt.check = check;
+      opt.checks.threads = threads;
+      dynamic::DynamicResult d = dynamic::mesh_skin_dynamic(mol, opt);
+      res.mesh = std::move(d.mesh);
+      res.checked = d.checked;
+      res.check = std::move(d.check);
+      res.seconds = d.seconds;
+    }
+  }
+  stats["atoms"] = mol.atoms.size();
+  stats["probe_radius"] = probe;
+  stats["algorithm"] = algorithm;
+  stats["vertices"] = res.mesh.positions.size();
+  stats["triangles"] = res.mesh.triangles.size();
+  stats["checked"] = res.checked;
+  if (res.checked) {
+    stats["checks_passed"] = res.check.ok();
+    stats["min_angle_deg"] = res.check.mesh.min_angle_deg;
+    stats["max_angle_deg"] = res.check.mesh.max_angle_deg;
+    stats["problems"] = res.check.problems;
+  }
+  if (algorithm == "sweep") {
+    py::dict ops;
+    ops["creations"] = res.sweep.creations;
+    ops["creeps"] = res.sweep.creeps;
+    ops["wings"] = res.sweep.wings;
+    ops["bridges"] = res.sweep.bridges;
+    ops["seals"] = res.sweep.seals;
+    ops["flips"] = res.refinement.flips;
+    ops["contractions"] = res.refinement.contractions;
+    ops["insertions"] = res.refinement.insertions;
+    stats["operations"] = ops;
+    py::dict cp;
+    cp["minima"] = res.critical.minima;
+    cp["saddles"] = res.critical.saddles;
+    cp["maxima"] = res.critical.maxima;
+    stats["critical_points"] = cp;
+  }
+  py::dict seconds;
+  for (const auto& [stage, t] : res.seconds) seconds[py::str(stage)] = t;
+  stats["seconds"] = seconds;
+  stats["surface"] = surface_stats(res.mesh);
+  out.mesh = std::move(res.mesh);
+  out.stats = stats;
+  out.ok = res.ok();
+  return out;
+}
+
+/// The check's report as a Python dict (through its JSON).
+py::dict check(const py::object& source, const py::object& mesh_or_path, double probe) {
+  const skin::Molecule mol = molecule_of(source);
+  geometry::IndexedMesh m;
+  if (py::isinstance<PyMesh>(mesh_or_path)) {
+    m = mesh_or_path.cast<const PyMesh&>().mesh;
+  } else {
+    const std::string path = py::str(py::module_::import("os").attr("fspath")(mesh_or_path));
+    py::gil_scoped_release release;
+    m = geometry::read_mesh(path);
+  }
+  std::string json;
+  {
+    py::gil_scoped_release release;
+    const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, probe);
+    const Vec3 centre = skin::local_frame_centre(points);
+    for (Vec3& p : m.positions) p -= centre;
+    const skin::SkinSurface skin(skin::translated(points, centre));
+    json = refine::check_skin_mesh(skin, m, {}).to_json();
+  }
+  return py::module_::import("json").attr("loads")(json);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(skinmesh, m) {
+  m.doc() =
+      "skinmesh: guaranteed-quality triangle meshes of molecular skin surfaces (Cheng & Shi, IEEE Visualization "
+      "2004). mesh() meshes a molecule file or an array of atoms; check() verifies a mesh against the analytic skin.";
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<TopologyError> topology_error(m, "TopologyError", PyExc_RuntimeError);
+  static py::exception<GeometryError> geometry_error(m, "GeometryError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    } catch (const TopologyError& e) {
+      topology_error((std::string("topology: ") + e.what()).c_str());
+    } catch (const GeometryError& e) {
+      geometry_error((std::string("geometry: ") + e.what()).c_str());
+    }
+  });
+
+  py::class_<PyMesh>(m, "Mesh",
+                     "A triangle mesh of the skin: vertices (n, 3) float64 in Å, triangles (m, 3) int32 "
+                     "counter-clockwise seen from outside, unit outward normals (n, 3), atom (n,) int32 (0-based "
+                     "index of the atom whose skin patch holds the vertex, -1 if unknown), rho (n,) local length "
+                     "scale in Å; stats: a dict of what the run measured; ok: False if the mesh failed its check.")
+      .def_property_readonly("vertices", [](const PyMesh& s) {
+        return array_of<double>(s.mesh.positions.size(), 3, [&](std::size_t i, std::size_t k) { return s.mesh.positions[i][k]; });
+      })
+      .def_property_readonly("triangles", [](const PyMesh& s) {
+        return array_of<std::int32_t>(s.mesh.triangles.size(), 3, [&](std::size_t i, std::size_t k) {
+          return static_cast<std::int32_t>(s.mesh.triangles[i][k]);
+        });
+      })
+      .def_property_readonly("normals", [](const PyMesh& s) {
+        return array_of<double>(s.mesh.normals.size(), 3, [&](std::size_t i, std::size_t k) { return s.mesh.normals[i][k]; });
+      })
+      .def_property_readonly("atom", [](const PyMesh& s) {
+        return array_of<std::int32_t>(s.mesh.atom.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.atom[i]; });
+      })
+      .def_property_readonly("rho", [](const PyMesh& s) {
+        return array_of<double>(s.mesh.rho.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.rho[i]; });
+      })
+      .def_readonly("stats", &PyMesh::stats)
+      .def_readonly("ok", &PyMesh::ok)
+      .def(
+          "write",
+          [](const PyMesh& s, const py::object& path) {
+            const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
+            py::gil_scoped_release release;
+            geometry::write_mesh(p, s.mesh);
+          },
+          py::arg("path"),
+          "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face).")
+      .def("__repr__", [](const PyMesh& s) {
+        return "<skinmesh.Mesh: " + std::to_string(s.mesh.positions.size()) + " vertices, " +
+               std::to_string(s.mesh.triangles.size()) + " triangles" + (s.ok ? "" : ", FAILED its check") + ">";
+      });
+
+  m.def("mesh", &mesh, py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("algorithm") = "sweep",
+        py::arg("check") = true, py::arg("threads") = 0,
+        "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr, optionally .gz) or an "
+        "array (n, 4) of x, y, z, radius in Å. Atom weights are 2 (r + probe)². algorithm: 'sweep' (Cheng & Shi "
+        "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
+        "whether it passed. threads=0: every core; the mesh is the same for every count. Raises InputError for a "
+        "bad file, array or option, TopologyError or GeometryError if the algorithm fails.");
+  m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4,
+        "Verifies a mesh (a Mesh, or a mesh file) against the skin of the molecule: closed, manifold, oriented, "
+        "no self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay. Returns "
+        "the report as a dict; report['problems'] is empty if every check passed.");
+  m.def(
+      "read_mesh",
+      [](const py::object& path) {
+        const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
+        PyMesh out;
+        {
+          py::gil_scoped_release release;
+          out.mesh = geometry::read_mesh(p);
+        }
+        out.stats["vertices"] = out.mesh.positions.size();
+        out.stats["triangles"] = out.mesh.triangles.size();
+        return out;
+      },
+      py::arg("path"), "Reads a mesh file (.ply .off .obj .stl .vtk .vert/.face).");
+}

@@ -1,0 +1,123 @@
+"""Tests of the Python module `skinmesh` (python/skinmesh_python.cpp), run by
+`make test` (ctest `python`) with Debian's /usr/bin/python3 and pytest.
+They check real properties: shapes and dtypes, a closed and outward mesh,
+the vertices on the skin, agreement with the command line's meshes, and the
+errors' one-line messages."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import skinmesh
+
+DATA = os.environ.get("SKINMESH_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+CRAMBIN = os.path.join(DATA, "crambin_1crn.pdb")
+LIGAND = os.path.join(DATA, "ligand_2zmm.pdb")
+
+
+def edge_counts(triangles):
+    """How many triangles use each undirected edge."""
+    e = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+    e.sort(axis=1)
+    _, counts = np.unique(e, axis=0, return_counts=True)
+    return counts
+
+
+def test_crambin_arrays_shapes_types_and_a_closed_outward_mesh():
+    m = skinmesh.mesh(CRAMBIN)
+    assert m.ok
+    v, t = m.vertices, m.triangles
+    assert v.dtype == np.float64 and v.ndim == 2 and v.shape[1] == 3
+    assert t.dtype == np.int32 and t.ndim == 2 and t.shape[1] == 3
+    assert m.normals.shape == v.shape
+    assert m.atom.shape == (v.shape[0],) and m.atom.dtype == np.int32
+    assert m.rho.shape == (v.shape[0],) and (m.rho > 0).all()
+    assert t.min() >= 0 and t.max() < v.shape[0]
+    # Closed: every edge in exactly two triangles; Euler characteristic 2 (one sphere).
+    assert (edge_counts(t) == 2).all()
+    n_edges = len(edge_counts(t))
+    assert v.shape[0] - n_edges + t.shape[0] == 2
+    # Outward: the enclosed volume is positive and matches the stats.
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
+    assert volume > 0
+    assert volume == pytest.approx(m.stats["surface"]["volume_A3"], rel=1e-9)
+    # Unit normals, agreeing with the triangles' normals.
+    assert np.allclose(np.linalg.norm(m.normals, axis=1), 1)
+    face_n = np.cross(b - a, c - a)
+    assert (np.einsum("ij,ij->i", face_n, m.normals[t[:, 0]]) > 0).all()
+    # The atom indices point into crambin's 327 atoms.
+    assert m.stats["atoms"] == 327
+    assert m.atom.min() >= 0 and m.atom.max() < 327
+    assert m.stats["triangles"] == t.shape[0]
+    assert m.stats["min_angle_deg"] > 21.5
+    assert m.stats["checks_passed"]
+
+
+def test_atoms_array_single_atom_is_a_sphere_of_radius_r_plus_probe():
+    m = skinmesh.mesh(np.array([[1.0, 2.0, 3.0, 1.6]]), probe=1.4)
+    r = np.linalg.norm(m.vertices - [1, 2, 3], axis=1)
+    assert np.allclose(r, 3.0, atol=1e-9)  # every vertex on the skin, a sphere of radius 3 Å
+    assert (m.atom == 0).all()
+
+
+def test_same_mesh_as_the_command_line(tmp_path):
+    exe = os.environ.get("SKINMESH_BINARY", os.path.join(os.path.dirname(skinmesh.__file__), "..", "skinmesh"))
+    if not os.path.exists(exe):
+        pytest.skip("skinmesh executable not found")
+    out = tmp_path / "cli.ply"
+    subprocess.run([exe, "mesh", LIGAND, "-o", str(out), "-q"], check=True)
+    cli = skinmesh.read_mesh(out)
+    py = skinmesh.mesh(LIGAND)
+    assert np.array_equal(cli.vertices, py.vertices)
+    assert np.array_equal(cli.triangles, py.triangles)
+
+
+def test_write_and_check_round_trip(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1)
+    for name in ["l.ply", "l.vtk"]:
+        m.write(tmp_path / name)
+        report = skinmesh.check(LIGAND, tmp_path / name)
+        assert report["problems"] == []
+    report = skinmesh.check(LIGAND, m)
+    assert report["problems"] == [] and report["ok"]
+    assert report["mesh"]["num_triangles"] == m.triangles.shape[0]
+    assert report["max_vertex_distance"] < 1e-9
+    # A damaged mesh fails: one vertex pushed 0.1 Å off the skin.
+    v = m.vertices
+    v[0] += 0.1 * m.normals[0]
+    damaged = tmp_path / "damaged.off"
+    with open(damaged, "w") as f:
+        f.write("OFF\n%d %d 0\n" % (len(v), len(m.triangles)))
+        for p in v:
+            f.write("%.17g %.17g %.17g\n" % tuple(p))
+        for t in m.triangles:
+            f.write("3 %d %d %d\n" % tuple(t))
+    report = skinmesh.check(LIGAND, damaged)
+    assert report["num_far_vertices"] == 1
+    assert report["problems"]
+
+
+def test_dynamic_algorithm():
+    m = skinmesh.mesh(np.array([[0, 0, 0, 1.6], [3.0, 0, 0, 1.6]]), algorithm="dynamic")
+    assert m.ok
+    assert m.stats["algorithm"] == "dynamic"
+    assert (edge_counts(m.triangles) == 2).all()
+
+
+def test_errors_are_python_exceptions_with_one_line_messages(tmp_path):
+    with pytest.raises(skinmesh.InputError, match="no_such_file.pdb"):
+        skinmesh.mesh("no_such_file.pdb")
+    with pytest.raises(ValueError):  # InputError is a ValueError
+        skinmesh.mesh(np.zeros((3, 3)))
+    with pytest.raises(skinmesh.InputError, match="radius"):
+        skinmesh.mesh(np.array([[0, 0, 0, -1.0]]))
+    with pytest.raises(skinmesh.InputError, match="algorithm"):
+        skinmesh.mesh(LIGAND, algorithm="marching cubes")
+    bad = tmp_path / "bad.pdb"
+    bad.write_text("ATOM      1  CA  ALA A   1      11.104  xx.xxx  -1.000  1.00  0.00           C\n")
+    with pytest.raises(skinmesh.InputError) as e:
+        skinmesh.mesh(bad)
+    assert "\n" not in str(e.value)
+    assert "bad.pdb" in str(e.value)
