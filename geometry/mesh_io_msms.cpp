@@ -3,7 +3,9 @@
 // Biopolymers 38, 1996), which electrostatics solvers and surface-learning
 // pipelines read: a pair of text files NAME.vert and NAME.face.
 //   NAME.vert: three header lines ("# ...", "#vertex #sphere density probe_r",
-//     then the counts), then per vertex
+//     then the counts: vertices, atoms — the largest atom index of a vertex
+//     plus one, as the mesh does not know atoms without vertices — and 0 0,
+//     the skin having neither density nor probe), then per vertex
 //     "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d": position (Å), unit
 //     normal, the number of its surface component (1-based), the 1-based index
 //     of its atom, and the MSMS type of its patch.
