@@ -260,14 +260,7 @@ int run_check(CheckArgs& a) {
   // Formats that round positions: the vertices' distance to the skin is
   // checked to the rounding (unless --max-vertex-distance says otherwise).
   if (!a.max_vertex_distance_given) {
-    const geometry::MeshFormat format = geometry::mesh_format_from_extension(a.mesh);
-    double rounding = 0;
-    if (format == geometry::MeshFormat::Msms) rounding = 1e-3;  // three decimals
-    if (format == geometry::MeshFormat::Stl) {                  // float32: half an ulp per coordinate
-      double largest = 0;
-      for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-      rounding = 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
-    }
+    const double rounding = geometry::position_rounding(a.mesh, mesh);
     if (rounding > a.opt.max_vertex_distance) {
       a.opt.max_vertex_distance = rounding;
       if (!a.mol.quiet)
@@ -578,7 +571,8 @@ int run_trace(TraceArgs& a) {
   trace::TraceSummary summary;
   const nlohmann::json doc = trace::record_trace(skin::weighted_points(mol, a.mol.probe), o, &summary);
   progress.finish();
-  const std::string text = ext == ".html" ? trace::fill_viewer_template(viewer_template, doc) : doc.dump() + "\n";
+  const std::string text = ext == ".html" ? trace::fill_viewer_template(viewer_template, doc)
+                                          : doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   app::write_text_file(a.out, text);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (!a.mol.quiet) {
@@ -617,16 +611,15 @@ struct BatchItem {
 
 /// The inputs of a batch: the IN arguments, then the lines of --list (blank
 /// lines and '#' comments skipped; relative paths are relative to the list's
-/// folder). Throws InputError naming the list's line for an unreadable list.
+/// folder). Throws InputError for an unreadable or empty list.
 std::vector<std::string> batch_inputs(const MeshArgs& a) {
   std::vector<std::string> inputs = a.mol.inputs;
   if (!a.list.empty()) {
     const std::string text = app::read_text_file(a.list);
     const std::filesystem::path folder = std::filesystem::path(a.list).parent_path();
-    std::size_t line = 0, at = 0;
+    std::size_t at = 0;
     while (at <= text.size()) {
       const std::size_t end = std::min(text.find('\n', at), text.size());
-      ++line;
       std::string entry = text.substr(at, end - at);
       if (const std::size_t hash = entry.find('#'); hash != std::string::npos) entry.resize(hash);
       while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back()))) entry.pop_back();
@@ -687,6 +680,8 @@ void run_batch_item(const MeshArgs& a, const MeshOptions& base, BatchItem& item)
     item.exit_code = 3, item.status = "topology error", item.message = e.what();
   } catch (const GeometryError& e) {
     item.exit_code = 3, item.status = "geometry error", item.message = e.what();
+  } catch (const std::invalid_argument& e) {
+    item.exit_code = 2, item.status = "bad option", item.message = e.what();
   } catch (const std::exception& e) {
     item.exit_code = 4, item.status = "internal error", item.message = e.what();
   }
@@ -722,7 +717,9 @@ int run_batch(MeshArgs& a) {
     if (auto [it, fresh] = taken.emplace(items[i].output, inputs[i]); !fresh)
       throw InputError(inputs[i], 0, "would write " + items[i].output + " as " + it->second + " does (rename one)");
   }
-  std::filesystem::create_directories(a.out_dir);
+  std::error_code made;
+  std::filesystem::create_directories(a.out_dir, made);
+  if (made) throw InputError(a.out_dir, 0, "cannot create the output folder (" + made.message() + ")");
   app::require_writable(items.front().output);
   MeshOptions base = a.opt;
   base.probe_radius = a.mol.probe;
@@ -771,12 +768,13 @@ int run_batch(MeshArgs& a) {
     char num[160];
     std::snprintf(num, sizeof num, ",%zu,%zu,%.6f,%.6f,%.6f,%.3f,", it.atoms, it.triangles, it.min_angle, it.area,
                   it.volume, it.seconds);
-    csv += csv_field(it.input) + "," + csv_field(it.exit_code == 0 || a.force ? it.output : "") + num +
+    const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
+    csv += csv_field(it.input) + "," + csv_field(written ? it.output : "") + num +
            csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
     json row = {{"input", it.input},       {"atoms", it.atoms},         {"triangles", it.triangles},
                 {"min_angle_deg", it.min_angle}, {"area_A2", it.area}, {"volume_A3", it.volume},
                 {"seconds", it.seconds},   {"status", it.status},       {"exit_code", it.exit_code}};
-    if (it.exit_code == 0 || (a.force && it.status == "failed check")) row["output"] = it.output;
+    if (written) row["output"] = it.output;
     if (!it.message.empty()) row["message"] = it.message;
     rows.push_back(std::move(row));
     exit_code = std::max(exit_code, it.exit_code);
@@ -796,7 +794,7 @@ int run_batch(MeshArgs& a) {
                                        {"jobs", jobs},
                                        {"wall_seconds", wall},
                                        {"sum_seconds", sum}}
-                                      .dump(2) + "\n");
+                                      .dump(2, ' ', false, json::error_handler_t::replace) + "\n");
   if (!a.mol.quiet) std::cerr << "wrote " << csv_path << " and " << json_path << "\n";
   return exit_code;
 }

@@ -7,6 +7,7 @@
 
 #include <unistd.h>  // getpid: unique temporary file names
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cctype>
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -129,7 +131,12 @@ void check_writable(const IndexedMesh& m) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what) {
+namespace {
+
+/// Writes `bytes` to a fresh temporary file beside `path` and returns its
+/// name. On failure the temporary is removed and InputError(path, 0, "cannot
+/// write <what> (reason)") is thrown.
+std::string write_temporary(const std::string& path, const std::string& bytes, const std::string& what) {
   static std::atomic<unsigned> counter{0};
   std::string tmp;
   std::FILE* f = nullptr;
@@ -146,11 +153,27 @@ void write_file_atomically(const std::string& path, const std::string& bytes, co
   errno = 0;
   if (std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() || std::fflush(f) != 0) error = failure();
   if (std::fclose(f) != 0 && error == 0) error = failure();
-  if (error == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) error = failure();
   if (error != 0) {
     std::remove(tmp.c_str());
     throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(error) + ")");
   }
+  return tmp;
+}
+
+/// Renames the temporary `tmp` onto `path`; on failure removes it and throws
+/// InputError(path, 0, "cannot write <what> (reason)").
+void rename_onto(const std::string& tmp, const std::string& path, const std::string& what) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int error = errno != 0 ? errno : EIO;
+    std::remove(tmp.c_str());
+    throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(error) + ")");
+  }
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what) {
+  rename_onto(write_temporary(path, bytes, what), path, what);
 }
 
 namespace {
@@ -217,15 +240,43 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
       const auto [vert_path, face_path] = msms_paths(path);
       const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
       const auto [vert, face] = msms_text(mesh, name.substr(0, name.size() - 5));
-      write_file_atomically(face_path, face, "mesh");
+      // A folder in the way would fail the second rename only: refused first.
+      for (const std::string& p : {face_path, vert_path})
+        if (std::filesystem::is_directory(p)) throw InputError(p, 0, "cannot write mesh (a folder has this name)");
+      // Both files are written to temporaries first, then renamed one right
+      // after the other: a failure while writing leaves the old pair (if any)
+      // as it was, never a new .face beside an old .vert.
+      const std::string face_tmp = write_temporary(face_path, face, "mesh");
+      std::string vert_tmp;
       try {
-        write_file_atomically(vert_path, vert, "mesh");
+        vert_tmp = write_temporary(vert_path, vert, "mesh");
       } catch (...) {
-        std::remove(face_path.c_str());  // no half of a mesh left behind
+        std::remove(face_tmp.c_str());
         throw;
       }
+      try {
+        rename_onto(face_tmp, face_path, "mesh");
+      } catch (...) {
+        std::remove(vert_tmp.c_str());
+        throw;
+      }
+      rename_onto(vert_tmp, vert_path, "mesh");
       return;
     }
+  }
+}
+
+double position_rounding(const std::string& path, const IndexedMesh& mesh) {
+  switch (mesh_format_from_extension(path)) {
+    case MeshFormat::Msms:
+      return 1e-3;
+    case MeshFormat::Stl: {
+      double largest = 0;
+      for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+      return 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
+    }
+    default:
+      return 0;
   }
 }
 

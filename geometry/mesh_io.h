@@ -59,8 +59,9 @@ std::pair<std::string, std::string> msms_paths(const std::string& path);
 /// - .vert or .face (MSMS): both NAME.vert and NAME.face, in the layout MSMS
 ///   writes (three header lines; per vertex position, normal, component, 1-based
 ///   atom, patch type; per face 1-based vertices, type, component; positions to
-///   1e-3 Å; geometry/mesh_io_msms.cpp). Written one after the other, each
-///   atomically; if the second fails the first is removed.
+///   1e-3 Å; geometry/mesh_io_msms.cpp). Both are written to temporary files
+///   first and then renamed one right after the other, so that a failed write
+///   leaves an earlier pair as it was.
 /// The file is written to a temporary file next to `path` and renamed onto `path`
 /// only once complete, so a failure never leaves a partial file.
 /// Pre (checked, std::logic_error): normals and atom empty or one per vertex,
@@ -99,6 +100,13 @@ IndexedMesh read_mesh(const std::string& path);
 /// in-memory entry point of read_mesh(), which reads the file and calls it. For
 /// MSMS, `data` is the .vert file's content followed by the .face file's.
 IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name = "");
+
+/// How far (Å) the format of `path` may have moved the positions of `mesh`
+/// read from it: 1e-3 for MSMS (three decimals, at most 0.87e-3 off); for
+/// STL (float32 corners) twice sqrt(3) half-units in the last place of its
+/// largest coordinate; 0 for PLY, OFF, OBJ and VTK as skinmesh writes them
+/// (exact). The verifier's vertex-distance tolerance must not be below it.
+double position_rounding(const std::string& path, const IndexedMesh& mesh);
 
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
 /// `path`, so that readers never see a partial file. On any failure the

@@ -32,8 +32,11 @@ class Tokens {
   int line() const { return tokens_.empty() ? 0 : tokens_[i_ < tokens_.size() ? i_ : tokens_.size() - 1].line; }
   std::string_view next(const char* what) {
     if (done()) throw InputError(path_, line(), std::string("unexpected end of file: expected ") + what);
+    last_line_ = tokens_[i_].line;
     return tokens_[i_++].text;
   }
+  /// The line of the token next() returned last.
+  int last_line() const { return last_line_; }
   std::string_view peek() const { return done() ? std::string_view() : tokens_[i_].text; }
   double number(const char* what) {
     const int l = done() ? line() : tokens_[i_].line;
@@ -62,6 +65,7 @@ class Tokens {
   const std::string& path_;
   std::vector<Token> tokens_;
   std::size_t i_ = 0;
+  int last_line_ = 0;
 };
 
 std::string upper(std::string_view s) {
@@ -137,10 +141,10 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
   if (format == "BINARY") throw InputError(path, 3, "binary VTK is not supported (write it as ASCII)");
   if (format != "ASCII") throw InputError(path, 3, "expected ASCII or BINARY, found '" + std::string(trim(lines[2])) + "'");
   Tokens tok(path, lines, 3);
-  if (upper(tok.next("DATASET")) != "DATASET") throw InputError(path, tok.line(), "expected DATASET");
+  if (upper(tok.next("DATASET")) != "DATASET") throw InputError(path, tok.last_line(), "expected DATASET");
   const std::string kind = upper(tok.next("the dataset type"));
   if (kind != "POLYDATA")
-    throw InputError(path, tok.line(), "dataset " + kind + " is not supported (only POLYDATA with triangles)");
+    throw InputError(path, tok.last_line(), "dataset " + kind + " is not supported (only POLYDATA with triangles)");
   IndexedMesh mesh;
   bool have_points = false;
   std::size_t n_points = 0;
@@ -151,6 +155,7 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
     const int line = tok.line();
     const std::string key = upper(tok.next("a section"));
     if (key == "POINTS") {
+      if (have_points) throw InputError(path, line, "a second POINTS section");
       n_points = tok.count("point count");
       tok.next("the point type");
       mesh.positions.resize(n_points);
@@ -193,7 +198,8 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
         components = 1;
         if (upper(tok.peek()) != "LOOKUP_TABLE") components = tok.integer("number of components");
         if (components < 1 || components > 4) throw InputError(path, line, "SCALARS with " + std::to_string(components) + " components");
-        if (upper(tok.next("LOOKUP_TABLE")) != "LOOKUP_TABLE") throw InputError(path, tok.line(), "expected LOOKUP_TABLE");
+        if (upper(tok.next("LOOKUP_TABLE")) != "LOOKUP_TABLE")
+          throw InputError(path, tok.last_line(), "expected LOOKUP_TABLE");
         tok.next("the lookup table name");
       }
       const bool point = data_kind == Data::Point;
@@ -222,6 +228,18 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
     }
   }
   if (!have_points) throw InputError(path, tok.line(), "no POINTS section");
+  // Attributes given before POINTS (sized by their own count) must match it.
+  const auto sized = [&](std::size_t n, const char* what) {
+    if (n != 0 && n != n_points)
+      throw InputError(path, 0, std::string(what) + " for " + std::to_string(n) + " points, but POINTS has " +
+                                    std::to_string(n_points));
+  };
+  sized(mesh.normals.size(), "NORMALS");
+  sized(mesh.atom.size(), "SCALARS atom");
+  sized(mesh.rho.size(), "SCALARS rho");
+  for (std::int32_t a : mesh.atom)
+    if (a < -1) throw InputError(path, 0, "atom index " + std::to_string(a) + " (expected >= -1)");
+  check_indices(path, mesh, {});
   return mesh;
 }
 

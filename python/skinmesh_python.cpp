@@ -13,6 +13,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -174,12 +175,15 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
 py::dict check(const py::object& source, const py::object& mesh_or_path, double probe) {
   const skin::Molecule mol = molecule_of(source);
   geometry::IndexedMesh m;
+  refine::SkinCheckOptions options;
   if (py::isinstance<PyMesh>(mesh_or_path)) {
     m = mesh_or_path.cast<const PyMesh&>().mesh;
   } else {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(mesh_or_path));
     py::gil_scoped_release release;
     m = geometry::read_mesh(path);
+    // Formats that round positions: distances checked to the rounding, as `skinmesh check` does.
+    options.max_vertex_distance = std::max(options.max_vertex_distance, geometry::position_rounding(path, m));
   }
   std::string json;
   {
@@ -188,7 +192,7 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
     const Vec3 centre = skin::local_frame_centre(points);
     for (Vec3& p : m.positions) p -= centre;
     const skin::SkinSurface skin(skin::translated(points, centre));
-    json = refine::check_skin_mesh(skin, m, {}).to_json();
+    json = refine::check_skin_mesh(skin, m, options).to_json();
   }
   return py::module_::import("json").attr("loads")(json);
 }

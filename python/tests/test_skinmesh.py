@@ -80,6 +80,11 @@ def test_write_and_check_round_trip(tmp_path):
         m.write(tmp_path / name)
         report = skinmesh.check(LIGAND, tmp_path / name)
         assert report["problems"] == []
+    # STL keeps float32 corners: checked to that rounding, as the command line does.
+    m.write(tmp_path / "l.stl")
+    report = skinmesh.check(LIGAND, tmp_path / "l.stl")
+    assert report["num_far_vertices"] == 0
+    assert 0 < report["vertex_distance_tolerance"] < 1e-4
     report = skinmesh.check(LIGAND, m)
     assert report["problems"] == [] and report["ok"]
     assert report["mesh"]["num_triangles"] == m.triangles.shape[0]

@@ -258,6 +258,12 @@ TEST_CASE("formats: broken VTK files name the file, the line and the problem") {
   CHECK(e.find("only triangles") != std::string::npos);
   CHECK(error_of(s.write("e.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4000000000 double\n0 0 0\n"))
             .find("exceeds what the file holds") != std::string::npos);
+  CHECK(error_of(s.write("c4.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 double\n"))
+            .find("c4.vtk:4:") != std::string::npos);  // the line of the dataset type, not the next one
+  // A second POINTS section would leave triangles and attributes of the first.
+  const std::string twice = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+                            "POLYGONS 1 4\n3 1 2 3\nPOINTS 1 double\n0 0 0\n";
+  CHECK(error_of(s.write("twice.vtk", twice)).find("twice.vtk:9: a second POINTS section") != std::string::npos);
   CHECK(error_of(s.write("f.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 1 double\n0 0 0\n"
                                   "POLYGONS 1 4\n3 0 0 7\n"))
             .find("out of range") != std::string::npos);
@@ -345,6 +351,16 @@ TEST_CASE("formats: MSMS writes both files or neither") {
   fs::create_directories(s.path("blocked.vert"));  // the .vert cannot be written over a folder
   CHECK_THROWS_AS(write_mesh(s.path("blocked.vert"), sphere_mesh()), InputError);
   CHECK_FALSE(fs::exists(s.path("blocked.face")));
+  // An earlier pair stays whole when a new one cannot be written.
+  write_mesh(s.path("pair.vert"), sphere_mesh());
+  const std::string vert = slurp(s.path("pair.vert")), face = slurp(s.path("pair.face"));
+  fs::remove(s.path("pair.face"));
+  fs::create_directories(s.path("pair.face"));
+  CHECK_THROWS_AS(write_mesh(s.path("pair.vert"), IndexedMesh{}), InputError);
+  CHECK(slurp(s.path("pair.vert")) == vert);
+  // No temporary file is left behind.
+  for (const auto& entry : fs::directory_iterator(s.dir))
+    CHECK(entry.path().filename().string().find(".tmp.") == std::string::npos);
 }
 
 }  // TEST_SUITE
