@@ -19,13 +19,13 @@
 // three decimals, as MSMS writes them. Declared in mesh_io_internal.h.
 #include <cstdint>
 #include <cstdio>
-#include <numeric>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "geometry/errors.h"
 #include "geometry/mesh_io_internal.h"
+#include "geometry/mesh_measures.h"
 #include "geometry/text_split.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
@@ -40,30 +40,6 @@ int msms_type(const IndexedMesh& m, std::size_t v) {
     case 3: return 2;
     default: return 1;
   }
-}
-
-/// 1-based connected component of every vertex (through the triangles).
-std::vector<int> components(const IndexedMesh& m) {
-  std::vector<Index> parent(m.positions.size());
-  std::iota(parent.begin(), parent.end(), Index(0));
-  const auto find = [&parent](Index v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& t : m.triangles)
-    for (int k = 1; k < 3; ++k) {
-      const Index a = find(t[0]), b = find(t[k]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  std::vector<int> label(m.positions.size(), 0);
-  std::vector<int> root_label(m.positions.size(), 0);
-  int next = 0;
-  for (std::size_t v = 0; v < m.positions.size(); ++v) {
-    int& l = root_label[find(static_cast<Index>(v))];
-    if (l == 0) l = ++next;
-    label[v] = l;
-  }
-  return label;
 }
 
 /// Reads the three header lines of an MSMS file starting at `first` and
@@ -88,7 +64,7 @@ std::size_t msms_header(const std::string& path, const std::vector<std::string_v
 }  // namespace
 
 std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const std::string& name) {
-  const std::vector<int> component = components(m);
+  const std::vector<int> component = vertex_components(m);
   int n_atoms = 0;
   for (std::int32_t a : m.atom) n_atoms = std::max(n_atoms, a + 1);
   char buf[160];

@@ -24,6 +24,11 @@ struct ComponentMeasure {
   double volume = 0;
 };
 
+/// The connected component of every vertex (through the triangles' vertices):
+/// 1, 2, ... in the order of the components' smallest vertex index; 0 for a
+/// vertex in no triangle. Pre: every triangle index < mesh.positions.size().
+std::vector<int> vertex_components(const IndexedMesh& mesh);
+
 /// The connected components of `mesh`, in the order of their smallest vertex
 /// index, with their measures. Vertices in no triangle are not counted.
 /// Pre: every triangle index < mesh.positions.size().

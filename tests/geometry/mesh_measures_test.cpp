@@ -116,6 +116,25 @@ TEST_CASE("measures: vertices in no triangle are not counted; an empty mesh has 
   REQUIRE(c.size() == 1);
   CHECK(c[0].vertices == 8);
   CHECK(component_measures(IndexedMesh{}).empty());
+  // Labels: 1, 2, ... by smallest vertex; 0 for the isolated vertex. The
+  // second cube's triangles come first, its vertices last.
+  IndexedMesh two = cube();
+  two.positions.emplace_back(9, 9, 9);  // vertex 8: isolated
+  const IndexedMesh shifted = cube();
+  for (const Vec3& p : shifted.positions) two.positions.push_back(p + Vec3(5, 0, 0));
+  std::vector<std::array<Index, 3>> tris;
+  for (const auto& t : shifted.triangles) tris.push_back({t[0] + 9, t[1] + 9, t[2] + 9});
+  tris.insert(tris.end(), two.triangles.begin(), two.triangles.end());
+  two.triangles = tris;
+  const std::vector<int> label = skinmesh::geometry::vertex_components(two);
+  CHECK(label[0] == 1);
+  CHECK(label[7] == 1);
+  CHECK(label[8] == 0);
+  CHECK(label[9] == 2);
+  CHECK(label[16] == 2);
+  const auto measures = component_measures(two);
+  REQUIRE(measures.size() == 2);
+  CHECK(measures[1].volume == doctest::Approx(1));
 }
 
 }  // TEST_SUITE
