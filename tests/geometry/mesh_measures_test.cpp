@@ -5,10 +5,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <map>
 #include <vector>
 
 #include "geometry/mesh_measures.h"
+#include "tests/geometry/test_meshes.h"
 
 using skinmesh::Index;
 using skinmesh::Vec3;
@@ -26,42 +26,16 @@ IndexedMesh cube() {
   return m;
 }
 
-/// An octahedron subdivided `levels` times and projected on the sphere of
-/// radius r about c; `inward` reverses every triangle.
+/// test::sphere(levels) scaled to radius r about c; `inward` reverses every triangle.
 IndexedMesh sphere(double r, const Vec3& c, int levels, bool inward) {
-  IndexedMesh m;
-  std::vector<Vec3> p = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<std::array<Index, 3>> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                                         {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<Index, Index>, Index> mid;
-    auto middle = [&](Index a, Index b) {
-      auto [it, inserted] = mid.try_emplace(std::minmax(a, b), Index(p.size()));
-      if (inserted) p.push_back((p[a] + p[b]).normalized());
-      return it->second;
-    };
-    std::vector<std::array<Index, 3>> next;
-    for (const auto& f : t) {
-      const Index ab = middle(f[0], f[1]), bc = middle(f[1], f[2]), ca = middle(f[2], f[0]);
-      next.insert(next.end(), {{f[0], ab, ca}, {ab, f[1], bc}, {ca, bc, f[2]}, {ab, bc, ca}});
-    }
-    t = next;
-  }
-  for (const Vec3& x : p) m.positions.push_back(c + r * x);
-  for (auto f : t) {
-    if (inward) std::swap(f[1], f[2]);
-    m.triangles.push_back(f);
-  }
+  IndexedMesh m = skinmesh::test::sphere(levels);
+  for (Vec3& p : m.positions) p = c + r * p;
+  if (inward)
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
   return m;
 }
 
-IndexedMesh join(const IndexedMesh& a, const IndexedMesh& b) {
-  IndexedMesh m = a;
-  const Index n = static_cast<Index>(a.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (const auto& t : b.triangles) m.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
-  return m;
-}
+using skinmesh::test::join;
 
 }  // namespace
 
