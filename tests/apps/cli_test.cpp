@@ -284,6 +284,28 @@ TEST_CASE("--stats reports the area and enclosed volume of the mesh, per compone
   CHECK(area < 4 * M_PI * 9);  // an inscribed polyhedron
   CHECK(surface.at("components")[0].at("kind") == "body");
   CHECK(surface.at("components")[0].at("triangles") == j.at("triangles"));
+  // Beside them, the exact skin's: here the sphere's closed forms.
+  const nlohmann::json& exact = surface.at("analytic");
+  CHECK(double(exact.at("area_A2")) == doctest::Approx(4 * M_PI * 9).epsilon(1e-12));
+  CHECK(double(exact.at("volume_A3")) == doctest::Approx(4 * M_PI * 27 / 3).epsilon(1e-12));
+  CHECK(double(surface.at("mesh_relative_difference").at("area")) ==
+        doctest::Approx(area / (4 * M_PI * 9) - 1).epsilon(1e-9));
+}
+
+TEST_CASE("--stats: a molecule's mesh area and volume lie close to the exact skin's, at both probes") {
+  Scratch s;
+  const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb");
+  for (const char* probe : {"1.4", "0"}) {
+    CAPTURE(probe);
+    const Run r = run(s, "mesh " + mol + " --probe " + probe + " -o a.ply --stats s.json --quiet");
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json surface = nlohmann::json::parse(slurp(s.dir / "s.json")).at("surface");
+    const double exact_area = surface.at("analytic").at("area_A2");
+    const double exact_volume = surface.at("analytic").at("volume_A3");
+    CHECK(double(surface.at("area_A2")) == doctest::Approx(exact_area).epsilon(5e-3));
+    CHECK(double(surface.at("volume_A3")) == doctest::Approx(exact_volume).epsilon(5e-3));
+    CHECK(std::abs(double(surface.at("mesh_relative_difference").at("area"))) > 1e-6);  // a mesh, not the skin
+  }
 }
 
 TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not stop the others, a summary") {
