@@ -338,14 +338,22 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
     j["surface"] = {{"area_A2", area}, {"volume_A3", volume}, {"components", std::move(parts)}};
     // The same two numbers of the exact skin, integrated over its sphere and
     // hyperboloid patches (skin/skin_measures.h), and how far the mesh is off.
+    // A failure here (a broken complex) leaves the mesh's numbers standing.
     const auto start = std::chrono::steady_clock::now();
-    const skin::SkinMeasures exact = skin::skin_measures(skin::weighted_points(mol, a.mol.probe), a.opt.threads);
-    j["surface"]["analytic"] = {
-        {"area_A2", exact.area},
-        {"volume_A3", exact.volume},
-        {"patch_cells", exact.patch_cells},
-        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
-    j["surface"]["mesh_relative_difference"] = {{"area", area / exact.area - 1}, {"volume", volume / exact.volume - 1}};
+    try {
+      const skin::SkinMeasures exact =
+          skin::skin_measures(skin::weighted_points(mol, a.mol.probe), a.opt.threads);
+      j["surface"]["analytic"] = {
+          {"area_A2", exact.area},
+          {"volume_A3", exact.volume},
+          {"patch_cells", exact.patch_cells},
+          {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+      j["surface"]["mesh_relative_difference"] = {{"area", area / exact.area - 1},
+                                                  {"volume", volume / exact.volume - 1}};
+    } catch (const GeometryError& e) {
+      j["surface"]["analytic"] = {{"error", e.what()}};
+      std::fprintf(stderr, "skinmesh: warning: no exact area and volume: %s\n", e.what());
+    }
   }
   if (res.checked) {
     j["min_angle_deg"] = res.check.mesh.min_angle_deg;

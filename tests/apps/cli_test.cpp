@@ -308,6 +308,31 @@ TEST_CASE("--stats: a molecule's mesh area and volume lie close to the exact ski
   }
 }
 
+TEST_CASE("--stats: the mesh's area and volume converge to the exact skin's at second order as C shrinks") {
+  // Two atoms joined by a neck (spheres and a hyperboloid). Halving C (and
+  // the tangent-disc factor with it, inside its window) halves the edges: the
+  // triangles about triple, and the chord errors of area and volume, which go
+  // as the square of the edge over rho, fall about threefold.
+  Scratch s;
+  const std::string neck = quoted(std::string(SKINMESH_TEST_DATA) + "/two_atoms_neck.xyzr");
+  double last_area = 0, last_volume = 0;
+  for (const char* size : {"--C 0.08 --disc-factor 0.185", "--C 0.04 --disc-factor 0.1037",
+                           "--C 0.02 --disc-factor 0.0551"}) {
+    CAPTURE(size);
+    const Run r = run(s, "mesh " + neck + " --probe 0 " + size + " -o n.ply --stats s.json --quiet");
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json d = nlohmann::json::parse(slurp(s.dir / "s.json")).at("surface").at("mesh_relative_difference");
+    const double area = std::abs(double(d.at("area"))), volume = std::abs(double(d.at("volume")));
+    CHECK(area > 0);
+    if (last_area > 0) {
+      CHECK(area < last_area / 2.5);
+      CHECK(volume < last_volume / 2.5);
+    }
+    last_area = area, last_volume = volume;
+  }
+  CHECK(last_area < 1e-3);
+}
+
 TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not stop the others, a summary") {
   Scratch s;
   const std::string data = std::string(SKINMESH_DATA) + "/";
