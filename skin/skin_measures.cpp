@@ -291,23 +291,21 @@ double wrap_angle(double t) {
   return t < 0 ? t + kTwoPi : t;
 }
 
-/// Points of the cell's tetrahedra foci needed to bound the cell: the mixed
-/// cell is (X + ν_X)/2, so its vertices are the midpoints of a vertex of X and
-/// a focus of a tetrahedron containing X. Returns the centre and radius of a
-/// ball containing the cell.
+/// A ball (centre, radius) holding mixed cell c. With s = 1/2 the cell is
+/// (X + ν_X)/2, so its vertices are the midpoints of a vertex of X and the
+/// focus of a tetrahedron containing X; the tetrahedra are found by climbing
+/// the coface graph (the neighbours across the cell planes, one dimension up).
 std::pair<Vec3, double> bounding_ball(const MixedComplex& mc, Index c) {
-  // The tetrahedra containing X: climb the coface graph.
-  std::vector<Index> layer{c}, tets;
+  std::vector<Index> tets{c};
   for (int d = mc.cell(c).dim; d < 3; ++d) {
     std::vector<Index> up;
-    for (Index x : layer)
+    for (Index x : tets)
       for (const CellPlane& p : mc.planes(x))
         if (mc.cell(p.neighbor).dim == d + 1) up.push_back(p.neighbor);
     std::sort(up.begin(), up.end());
     up.erase(std::unique(up.begin(), up.end()), up.end());
-    layer.swap(up);
+    tets.swap(up);
   }
-  tets = layer;
   const MixedCell& m = mc.cell(c);
   const auto& rt = mc.triangulation();
   Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
