@@ -79,6 +79,17 @@ void append_index(std::string& out, std::uint64_t i) {
   out.append(buf.data(), r.ptr);
 }
 
+void append_triangle_lines(std::string& out, const std::vector<std::array<Index, 3>>& triangles) {
+  for (const auto& t : triangles) {
+    out += '3';
+    for (Index v : t) {
+      out += ' ';
+      append_index(out, v);
+    }
+    out += '\n';
+  }
+}
+
 void check_indices(const std::string& path, const IndexedMesh& m, const std::vector<int>& lines) {
   const std::size_t n = m.positions.size();
   for (std::size_t i = 0; i < m.triangles.size(); ++i)

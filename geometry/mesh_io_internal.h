@@ -14,6 +14,7 @@
 // bit-exact. Only geometry/mesh_io*.cpp include this header.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -44,6 +45,10 @@ void append_number(std::string& out, double v, bool double_precision);
 
 /// Appends the decimal text of `i`.
 void append_index(std::string& out, std::uint64_t i);
+
+/// Appends one line "3 a b c" per triangle (0-based indices): the polygon list
+/// of OFF and of legacy VTK.
+void append_triangle_lines(std::string& out, const std::vector<std::array<Index, 3>>& triangles);
 
 /// Checks that every triangle index is < positions.size(); `lines[i]` (if given)
 /// is the source line of triangle i. Throws InputError(path, line, "face i: vertex

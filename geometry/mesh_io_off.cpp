@@ -27,14 +27,7 @@ std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
       }
     out += '\n';
   }
-  for (const auto& t : m.triangles) {
-    out += '3';
-    for (Index v : t) {
-      out += ' ';
-      append_index(out, v);
-    }
-    out += '\n';
-  }
+  append_triangle_lines(out, m.triangles);
   return out;
 }
 

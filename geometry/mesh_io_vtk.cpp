@@ -90,14 +90,7 @@ std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
     out += '\n';
   }
   out += "POLYGONS " + std::to_string(m.triangles.size()) + " " + std::to_string(4 * m.triangles.size()) + "\n";
-  for (const auto& t : m.triangles) {
-    out += '3';
-    for (Index v : t) {
-      out += ' ';
-      append_index(out, v);
-    }
-    out += '\n';
-  }
+  append_triangle_lines(out, m.triangles);
   if (!m.normals.empty() || !m.atom.empty() || !m.rho.empty()) {
     out += "POINT_DATA " + std::to_string(m.positions.size()) + "\n";
     if (!m.normals.empty()) {
