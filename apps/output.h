@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <string>
 
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
 
 namespace skinmesh::app {
 

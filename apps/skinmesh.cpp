@@ -40,14 +40,14 @@
 
 #include "apps/output.h"
 #include "dynamic/dynamic_skin.h"
-#include "front/pipeline.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_measures.h"
-#include "geometry/parallel.h"
+#include "mesher/pipeline.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
+#include "geometry/mesh/mesh_measures.h"
+#include "core/parallel.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
-#include "refine/skin_mesh_check.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/dual_complex.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_measures.h"
@@ -153,7 +153,7 @@ Vec3 height_direction(const std::vector<double>& d) {
 }
 
 /// --C and --Q of mesh and check.
-void add_size_options(CLI::App& cmd, refine::SizeConstants& size) {
+void add_size_options(CLI::App& cmd, skin::SizeConstants& size) {
   cmd.add_option("--C", size.C, "size constant C of [L] and [U]")
       ->check(number_at_least_zero(true))
       ->capture_default_str();
@@ -249,7 +249,7 @@ struct CheckArgs {
   MoleculeArgs mol;
   std::string mesh;
   std::string report;
-  refine::SkinCheckOptions opt;
+  verify::SkinCheckOptions opt;
   bool no_self_intersections = false, no_rdt = false;
   bool max_vertex_distance_given = false;
 };
@@ -276,7 +276,7 @@ int run_check(CheckArgs& a) {
   const skin::SkinSurface skin(skin::translated(points, centre));
   a.opt.check_self_intersections = !a.no_self_intersections;
   a.opt.check_restricted_delaunay = !a.no_rdt;
-  const refine::SkinCheckReport rep = refine::check_skin_mesh(skin, mesh, a.opt);
+  const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt);
   const std::string text = rep.to_json();
   std::cout << text;
   if (!a.report.empty()) app::write_text_file(a.report, text);
@@ -291,7 +291,7 @@ struct MeshArgs {
   MoleculeArgs mol;
   std::string out, stats;
   std::vector<double> direction;
-  MeshOptions opt;
+  mesher::MeshOptions opt;
   bool no_check = false, force = false, trace = false, no_angle_improvement = false;
   /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
   std::string algorithm = "sweep";
@@ -313,7 +313,7 @@ std::size_t peak_memory_bytes() {
 }
 
 /// The JSON summary of a mesh run (`--stats`).
-json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult& res,
+json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const mesher::MeshResult& res,
                   const dynamic::DynamicResult* dyn, double read_s, double write_s, double total_s) {
   json j;
   j["input"] = a.mol.input;
@@ -456,12 +456,12 @@ json mesh_summary(const MeshArgs& a, const skin::Molecule& mol, const MeshResult
   return j;
 }
 
-/// Meshes `mol` with the algorithm of `a` (sweep: mesh_skin with `opt`;
+/// Meshes `mol` with the algorithm of `a` (sweep: mesher::mesh_skin with `opt`;
 /// dynamic: mesh_skin_dynamic, whose result is also kept in `dyn`) and returns
 /// the fields the writer and the summary share.
-MeshResult run_algorithm(const MeshArgs& a, const skin::Molecule& mol, const MeshOptions& opt,
+mesher::MeshResult run_algorithm(const MeshArgs& a, const skin::Molecule& mol, const mesher::MeshOptions& opt,
                          std::optional<dynamic::DynamicResult>& dyn) {
-  if (a.algorithm != "dynamic") return mesh_skin(mol, opt);
+  if (a.algorithm != "dynamic") return mesher::mesh_skin(mol, opt);
   dynamic::DynamicOptions d;
   d.probe_radius = a.mol.probe;
   d.size = opt.size;
@@ -471,7 +471,7 @@ MeshResult run_algorithm(const MeshArgs& a, const skin::Molecule& mol, const Mes
   d.checks.threads = opt.threads;
   d.progress = opt.progress;
   dyn = dynamic::mesh_skin_dynamic(mol, d);
-  MeshResult res;
+  mesher::MeshResult res;
   res.mesh = std::move(dyn->mesh);
   res.expected_topology = dyn->expected_topology;
   res.checked = dyn->checked;
@@ -500,7 +500,7 @@ int run_mesh(MeshArgs& a) {
   app::ProgressReporter progress(!a.mol.quiet);
   a.opt.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
   std::optional<dynamic::DynamicResult> dyn;
-  MeshResult res = run_algorithm(a, mol, a.opt, dyn);
+  mesher::MeshResult res = run_algorithm(a, mol, a.opt, dyn);
   progress.finish();
 
   const bool failed = !res.ok();
@@ -665,7 +665,7 @@ std::string batch_stem(const std::string& input) {
 }
 
 /// Meshes one input of a batch (never throws: the outcome is in the item).
-void run_batch_item(const MeshArgs& a, const MeshOptions& base, BatchItem& item) {
+void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchItem& item) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   try {
@@ -675,7 +675,7 @@ void run_batch_item(const MeshArgs& a, const MeshOptions& base, BatchItem& item)
     const skin::Molecule mol = load_molecule(m);
     item.atoms = mol.atoms.size();
     std::optional<dynamic::DynamicResult> dyn;
-    const MeshResult res = run_algorithm(a, mol, base, dyn);
+    const mesher::MeshResult res = run_algorithm(a, mol, base, dyn);
     item.triangles = res.mesh.triangles.size();
     item.checked = res.checked;
     if (res.checked) item.min_angle = res.check.mesh.min_angle_deg;
@@ -740,7 +740,7 @@ int run_batch(MeshArgs& a) {
   std::filesystem::create_directories(a.out_dir, made);
   if (made) throw InputError(a.out_dir, 0, "cannot create the output folder (" + made.message() + ")");
   app::require_writable(items.front().output);
-  MeshOptions base = a.opt;
+  mesher::MeshOptions base = a.opt;
   base.probe_radius = a.mol.probe;
   base.height_direction = height_direction(a.direction);
   base.check = !a.no_check;

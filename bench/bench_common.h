@@ -9,8 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "geometry/regular_triangulation.h"
-#include "geometry/weighted_point.h"
+#include "geometry/triangulation/regular_triangulation.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/molecule.h"
 
 namespace skinmesh::bench {

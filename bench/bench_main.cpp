@@ -14,7 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "geometry/predicates.h"
+#include "geometry/kernel/predicates.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 

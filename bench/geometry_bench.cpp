@@ -1,8 +1,8 @@
 // bench/geometry_bench.cpp: benchmarks of geometry/: the orientation and power
 // predicates (plain double, filtered, exact, SoS) and the regular triangulation
 // on random points, the bundled molecules and a degenerate lattice.
-// papers/conventions.md §3 "Benchmarks"; geometry/predicates.h,
-// geometry/regular_triangulation.h.
+// papers/conventions.md §3 "Benchmarks"; geometry/kernel/predicates.h,
+// geometry/triangulation/regular_triangulation.h.
 //
 // Predicate benchmarks evaluate one predicate per iteration, cycling through a
 // batch of precomputed tuples, and report which fraction of the calls needed
@@ -19,8 +19,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "geometry/predicates.h"
-#include "geometry/regular_triangulation.h"
+#include "geometry/kernel/predicates.h"
+#include "geometry/triangulation/regular_triangulation.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::bench {

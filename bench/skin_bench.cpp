@@ -13,10 +13,10 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "geometry/errors.h"
+#include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
-#include "refine/size_conditions.h"
+#include "skin/size_conditions.h"
 #include "skin/dual_complex.h"
 #include "skin/skin_surface.h"
 
@@ -154,7 +154,7 @@ void BM_SkinSample(benchmark::State& state, const char* molecule_file) {
 }
 
 /// Tangent-disc radius r = 0.185 rho(a) of the projection: inside the window
-/// (0.1074, 0.2077) rho of Cheng & Shi §4.2 (refine::SizeConstants), where the
+/// (0.1074, 0.2077) rho of Cheng & Shi §4.2 (skin::SizeConstants), where the
 /// paper's sandwiching balls guarantee the bracket [-delta, delta].
 constexpr double kDiscFactor = 0.185;
 
@@ -166,7 +166,7 @@ struct Projection {
 };
 
 void BM_ProjectAlongLine(benchmark::State& state, const char* molecule_file) {
-  const refine::SizeConstants size;
+  const skin::SizeConstants size;
   if (!(kDiscFactor > size.disc_factor_lower() && kDiscFactor < size.disc_factor_upper())) {
     state.SkipWithError("kDiscFactor outside the tangent-disc window");
     return;

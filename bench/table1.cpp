@@ -7,7 +7,7 @@
 //
 // BM_SweepMesher/<molecule>/<threads> times the whole pipeline from weighted
 // points to the output mesh (skin, critical points and Morse–Smale complex,
-// sweep, local refinement, angle improvement, output), with MeshOptions::threads
+// sweep, local refinement, angle improvement, output), with mesher::MeshOptions::threads
 // = <threads>, in real time; the verification runs once, outside the timed
 // loop. This machine's run-to-run spread is 10-15 %: quote the medians of
 // several repetitions, e.g.
@@ -20,10 +20,10 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "geometry/indexed_mesh.h"
-#include "front/pipeline.h"
-#include "geometry/weighted_point.h"
-#include "refine/skin_mesh_check.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "mesher/pipeline.h"
+#include "geometry/kernel/weighted_point.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::bench {
@@ -31,13 +31,13 @@ namespace skinmesh::bench {
 /// Times the whole pipeline `mesh(points, threads)` on a bundled molecule,
 /// threads = state.range(0): `Mesher` is any callable taking
 /// `const std::vector<geometry::WeightedPoint>&` (weights atom_weight(r,
-/// probe), probe in Å) and an int, and returning a MeshResult. Before the loop
-/// the mesh is built once and verified with refine::check_skin_mesh(), so a
+/// probe), probe in Å) and an int, and returning a mesher::MeshResult. Before the loop
+/// the mesh is built once and verified with verify::check_skin_mesh(), so a
 /// fast broken mesh cannot win; a failing check reports the first problem as
 /// the benchmark's error, and so does a later iteration whose triangle count
 /// differs. Counters: atoms, vertices, triangles, min_angle_deg (of the checked
 /// mesh), triangles_per_s (kIsRate) and the mean seconds of each stage
-/// (MeshResult::seconds: skin_s, morse_s, sweep_s, refine_s, angles_s, output_s).
+/// (mesher::MeshResult::seconds: skin_s, morse_s, sweep_s, refine_s, angles_s, output_s).
 template <class Mesher>
 void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_file, double probe) {
   const std::vector<geometry::WeightedPoint> points = molecule_points(molecule_file, probe);
@@ -46,7 +46,7 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
   {
     const skin::SkinSurface skin(points);
     const geometry::IndexedMesh m = mesh(points, threads).mesh;
-    const refine::SkinCheckReport report = refine::check_skin_mesh(skin, m);
+    const verify::SkinCheckReport report = verify::check_skin_mesh(skin, m);
     if (!report.ok()) {
       state.SkipWithError(report.problems.front().c_str());
       return;
@@ -57,7 +57,7 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
   }
   std::map<std::string, double> stage_seconds;
   for (auto _ : state) {
-    const MeshResult r = mesh(points, threads);
+    const mesher::MeshResult r = mesh(points, threads);
     if (r.mesh.triangles.size() != triangles) {
       state.SkipWithError("the triangle count changed between runs");
       return;
@@ -72,7 +72,7 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
     state.counters[stage + "_s"] = sec / static_cast<double>(state.iterations());
 }
 
-/// Times the built-in verification alone (refine::check_skin_mesh: closed,
+/// Times the built-in verification alone (verify::check_skin_mesh: closed,
 /// manifold, outward, exact self-intersections, topology, distance to the
 /// skin, angles, [L], [U], restricted Delaunay) on the mesh of a bundled
 /// molecule at probe radius `probe` (Å), built once before the loop. Its time
@@ -82,19 +82,19 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
 /// Counters: triangles, triangles_per_s.
 void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double probe, int threads) {
   const std::vector<geometry::WeightedPoint> points = molecule_points(molecule_file, probe);
-  MeshOptions options;
+  mesher::MeshOptions options;
   options.check = false;
-  const MeshResult res = mesh_skin(points, options);
+  const mesher::MeshResult res = mesher::mesh_skin(points, options);
   // The pipeline meshes in a local frame and returns global positions; the
   // check runs on the same frame as the command line's `skinmesh check`.
   const Vec3 centre = skin::local_frame_centre(points);
   const skin::SkinSurface skin(skin::translated(points, centre));
   geometry::IndexedMesh local = res.mesh;
   for (Vec3& p : local.positions) p -= centre;
-  refine::SkinCheckOptions check_options;
+  verify::SkinCheckOptions check_options;
   check_options.threads = threads;
   for (auto _ : state) {
-    const refine::SkinCheckReport report = refine::check_skin_mesh(skin, local, check_options);
+    const verify::SkinCheckReport report = verify::check_skin_mesh(skin, local, check_options);
     if (!report.ok()) {
       state.SkipWithError(report.problems.front().c_str());
       return;
@@ -107,11 +107,11 @@ void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double
 
 /// The pipeline the command line runs (skinmesh mesh, default options but
 /// `threads`), from weighted points to the output mesh.
-MeshResult sweep_mesher(const std::vector<geometry::WeightedPoint>& points, int threads) {
-  MeshOptions options;
+mesher::MeshResult sweep_mesher(const std::vector<geometry::WeightedPoint>& points, int threads) {
+  mesher::MeshOptions options;
   options.check = false;  // verified once, outside the timed loop
   options.threads = threads;
-  return mesh_skin(points, options);
+  return mesher::mesh_skin(points, options);
 }
 
 // Table 1 stand-ins (data/README.md), then crambin and the rest of the size

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/errors.h"
+#include "core/errors.h"
 #include "morse/critical_points.h"
-#include "morse/singular_skin.h"
+#include "skin/singular_skin.h"
 #include "skin/mixed_complex.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
@@ -80,7 +80,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
   report("skin", 0.0);
   const geometry::PredicateStats predicates_before = geometry::predicate_stats();
   const skin::SkinSurface skin(points);
-  morse::require_non_singular(skin);
+  skin::require_non_singular(skin);
   res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
   lap("skin");
 
@@ -189,10 +189,10 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
   }
   if (opt.check) {
     report("check", 0.0);
-    refine::SkinCheckOptions checks = opt.checks;
+    verify::SkinCheckOptions checks = opt.checks;
     checks.size = opt.size;
     if (!checks.expected_topology) checks.expected_topology = res.expected_topology;
-    res.check = refine::check_skin_mesh(skin, res.mesh, checks);
+    res.check = verify::check_skin_mesh(skin, res.mesh, checks);
     res.checked = true;
     lap("check");
   }

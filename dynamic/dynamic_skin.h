@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "dynamic/sample_triangulation.h"
-#include "geometry/indexed_mesh.h"
-#include "geometry/predicates.h"
-#include "geometry/weighted_point.h"
-#include "refine/size_conditions.h"
-#include "refine/skin_mesh_check.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "geometry/kernel/predicates.h"
+#include "geometry/kernel/weighted_point.h"
+#include "skin/size_conditions.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/dual_complex.h"
 #include "skin/molecule.h"
 
@@ -32,7 +32,7 @@ struct DynamicOptions {
   /// Probe radius (Å) for the Molecule overload: w = 2 (r + probe)².
   double probe_radius = 1.4;
   /// C and Q of [L] and [U], shared with the check (Cheng & Shi §2.2).
-  refine::SizeConstants size;
+  skin::SizeConstants size;
   /// Grow the skin from small spheres (the dynamic algorithm, default); false:
   /// the static variant, which samples the final skin and refines it.
   bool growth = true;
@@ -53,10 +53,10 @@ struct DynamicOptions {
   /// the end.
   int growth_rounds = 8;
   int final_rounds = 60;
-  /// Verify the final mesh (refine/skin_mesh_check.h); the verdict is in
+  /// Verify the final mesh (verify/skin_mesh_check.h); the verdict is in
   /// DynamicResult::check.
   bool check = true;
-  refine::SkinCheckOptions checks;
+  verify::SkinCheckOptions checks;
   /// Called with a stage name ("skin", "growth", "refine", "check") and the
   /// fraction done (0..1); empty: no reports. The library prints nothing.
   std::function<void(const std::string& stage, double fraction)> progress;
@@ -83,7 +83,7 @@ struct DynamicStats {
   /// Operation counts of the 3D Delaunay triangulation (where the time goes).
   geometry::DelaunayTriangulation::Stats delaunay;
   /// Predicate calls of the whole run on the calling thread, and how many
-  /// needed exact arithmetic or symbolic perturbation (geometry/predicates.h).
+  /// needed exact arithmetic or symbolic perturbation (geometry/kernel/predicates.h).
   geometry::PredicateStats predicates;
 };
 
@@ -95,7 +95,7 @@ struct DynamicResult {
   skin::SkinTopology expected_topology;
   DynamicStats stats;
   bool checked = false;
-  refine::SkinCheckReport check;
+  verify::SkinCheckReport check;
   /// Wall-clock seconds per stage: "skin", "growth" (absent for the static
   /// variant), "refine" (the final level), "output", "check".
   std::vector<std::pair<std::string, double>> seconds;
@@ -105,7 +105,7 @@ struct DynamicResult {
 
 /// Meshes the skin of `points` (centres Å, weights Å², shrink factor 1/2) with
 /// the dynamic-skin baseline. Throws InputError for an empty input or a
-/// singular skin (morse::require_non_singular, as mesh_skin does),
+/// singular skin (skin::require_non_singular, as mesh_skin does),
 /// std::invalid_argument for options out of range. A mesh that
 /// fails its check is returned with the report (ok() false).
 DynamicResult mesh_skin_dynamic(const std::vector<geometry::WeightedPoint>& points,

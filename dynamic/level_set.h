@@ -4,7 +4,7 @@
 // Notes: papers/dynamic/dynamic_skin.md ("Growth: one function, its level sets")
 #pragma once
 
-#include "geometry/types.h"
+#include "core/types.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::dynamic {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/errors.h"
+#include "core/errors.h"
 #include "skin/mixed_complex.h"
 
 namespace skinmesh::dynamic {
@@ -21,7 +21,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 }  // namespace
 
 SampleTriangulation::SampleTriangulation(const skin::SkinSurface& skin, double c,
-                                         const refine::SizeConstants& size)
+                                         const skin::SizeConstants& size)
     : skin_(&skin), level_(skin, c), size_(size), dt_(level_.hull_lo(), level_.hull_hi()) {
   ensure_capacity();
   dt_.for_each_tet([&](Index t) { classify(t); });
@@ -121,7 +121,7 @@ double SampleTriangulation::facet_ratio(Index t, int face) const {
     if (DelaunayTriangulation::is_bounding(u)) return kInfinity;
     rmin = std::min(rmin, rho_[u]);
   }
-  const double R = refine::circumradius(dt_.point(v[fv[0]]), dt_.point(v[fv[1]]), dt_.point(v[fv[2]]));
+  const double R = skin::circumradius(dt_.point(v[fv[0]]), dt_.point(v[fv[1]]), dt_.point(v[fv[2]]));
   return R / (size_.C * size_.Q * std::max(rmin, rho_floor_));
 }
 
@@ -261,7 +261,7 @@ SampleTriangulation::RoundReport SampleTriangulation::scan() const {
       links.push_back({p, q, r});
       used[p] = 1;
       if (p < q && !DelaunayTriangulation::is_bounding(p) && !DelaunayTriangulation::is_bounding(q) &&
-          !refine::satisfies_L(dt_.point(p), dt_.point(q), rho_[p], rho_[q], size_))
+          !skin::satisfies_L(dt_.point(p), dt_.point(q), rho_[p], rho_[q], size_))
         rep.l_edges.push_back({p, q});
     }
   });
@@ -334,7 +334,7 @@ bool SampleTriangulation::refine(int max_rounds) {
           if (f == lv || !restricted(t, f) || !(value_[t] < 0)) continue;
           const auto& tv = dt_.tet(t);
           const auto& fv = DelaunayTriangulation::kFaceVertices[f];
-          const double R = refine::circumradius(dt_.point(tv[fv[0]]), dt_.point(tv[fv[1]]), dt_.point(tv[fv[2]]));
+          const double R = skin::circumradius(dt_.point(tv[fv[0]]), dt_.point(tv[fv[1]]), dt_.point(tv[fv[2]]));
           if (R > best) best = R, bt = t, bf = f;
         }
       }

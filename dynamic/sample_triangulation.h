@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "dynamic/level_set.h"
-#include "geometry/delaunay_triangulation.h"
-#include "geometry/indexed_mesh.h"
-#include "refine/size_conditions.h"
+#include "geometry/triangulation/delaunay_triangulation.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::dynamic {
@@ -48,7 +48,7 @@ struct SampleStats {
 /// the closed-ball property every restricted dual edge crosses F_c once, so
 /// this is exact there; refine() enforces what it can check (every facet
 /// meets [U], every edge [L], every vertex star a disc) and the final mesh is
-/// verified independently (refine/skin_mesh_check.h).
+/// verified independently (verify/skin_mesh_check.h).
 ///
 /// Per-tetrahedron data (circumcentre, f - c there) is kept up to date from
 /// DelaunayTriangulation::last_created() after every operation: O(size of the
@@ -58,7 +58,7 @@ class SampleTriangulation {
  public:
   /// An empty sample on F_c of `skin` (c <= 0). The Delaunay box is the hull
   /// box of LevelSet. Pre: `skin` outlives this object.
-  SampleTriangulation(const skin::SkinSurface& skin, double c, const refine::SizeConstants& size);
+  SampleTriangulation(const skin::SkinSurface& skin, double c, const skin::SizeConstants& size);
 
   const LevelSet& level_set() const { return level_; }
   const geometry::DelaunayTriangulation& triangulation() const { return dt_; }
@@ -171,7 +171,7 @@ class SampleTriangulation {
 
   const skin::SkinSurface* skin_;
   LevelSet level_;
-  refine::SizeConstants size_;
+  skin::SizeConstants size_;
   geometry::DelaunayTriangulation dt_;
   // Per sample (by Delaunay vertex id).
   std::vector<double> rho_;

@@ -13,7 +13,7 @@
 #include <limits>
 
 #include "front/sweep_internal.h"
-#include "geometry/mesh_checks.h"
+#include "geometry/check/mesh_checks.h"
 
 namespace skinmesh::front::detail {
 

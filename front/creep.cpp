@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "front/sweep_internal.h"
-#include "geometry/errors.h"
+#include "core/errors.h"
 
 namespace skinmesh::front::detail {
 

@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "front/sweep_internal.h"
-#include "geometry/assert.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
-#include "geometry/predicates.h"
+#include "core/assert.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
+#include "geometry/kernel/predicates.h"
 
 namespace skinmesh::front::detail {
 

@@ -12,7 +12,7 @@
 #include <algorithm>
 
 #include "front/sweep_internal.h"
-#include "geometry/mesh_checks.h"
+#include "geometry/check/mesh_checks.h"
 
 namespace skinmesh::front::detail {
 

@@ -10,9 +10,9 @@
 #include <Eigen/Eigenvalues>
 
 #include "front/sweep_internal.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_checks.h"
-#include "geometry/predicates.h"
+#include "core/errors.h"
+#include "geometry/check/mesh_checks.h"
+#include "geometry/kernel/predicates.h"
 
 namespace skinmesh::front::detail {
 

@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "front/sweep_internal.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
 
 namespace skinmesh::front {
 namespace detail {

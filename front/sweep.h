@@ -4,7 +4,7 @@
 // Cheng & Shi 2004 §4.1 (Algorithm 1: creation, creep, wing, bridge, seal) and
 // §4.2 (tangent-disc radius). The local refinement of §4.3 is a separate stage
 // (refine/local_refinement.h), run after the sweep by the pipeline
-// (front/pipeline.h).
+// (mesher/pipeline.h).
 // Notes: papers/front/README.md (one note per operation).
 #pragma once
 
@@ -12,9 +12,9 @@
 #include <functional>
 #include <string>
 
-#include "geometry/surface_mesh.h"
+#include "geometry/mesh/surface_mesh.h"
 #include "morse/morse_smale_complex.h"
-#include "refine/size_conditions.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::front {
@@ -62,7 +62,7 @@ struct SweepEvent {
 struct SweepOptions {
   /// C and Q of conditions [L], [U] (Cheng & Shi §2.2); the window of
   /// disc_factor is derived from them.
-  refine::SizeConstants size;
+  skin::SizeConstants size;
   /// Tangent-disc radius r_a = disc_factor · rho(a) (Cheng & Shi §4.2). Must lie
   /// in size's window (disc_factor_lower(), disc_factor_upper()] =
   /// (0.1074, 0.2077] for the default C, Q. [derived] 0.185: below 0.1853 the
@@ -167,7 +167,7 @@ struct SweepOptions {
   std::function<void(const std::string& line)> trace;
   /// Called after every operation (creation, creep, wings, hold, bridge, small
   /// hole, seal) with the partial mesh; empty: not called. For recorders of
-  /// the sweep (tests/front/sweep_test.cpp replays it); it must not throw
+  /// the sweep (tests/mesher/sweep_test.cpp replays it); it must not throw
   /// unless the sweep is to stop.
   std::function<void(const SweepEvent&)> observer;
   /// Stop with TopologyError after this many departures (valid queue entries;

@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "front/sweep.h"
-#include "geometry/point_grid.h"
-#include "geometry/surface_mesh.h"
+#include "geometry/triangulation/point_grid.h"
+#include "geometry/mesh/surface_mesh.h"
 
 namespace skinmesh::front::detail {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "geometry/types.h"
+#include "core/types.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::morse {
@@ -36,21 +36,6 @@ struct CriticalPoint {
   /// descent (each up to sign), papers/skin/skin_math.md §5 "Steepest directions".
   Vec3 ascent = Vec3::Zero(), descent = Vec3::Zero();
 };
-
-/// Distance (Å, 0 inside) by which p lies outside the mixed cell c, the test
-/// critical_points() uses to keep a candidate. Triangle and tetrahedron cells
-/// are tested in their dual form mu_X = (X + V_X) / 2 (s = 1/2): p = (x + v) / 2
-/// with x in the simplex X and v in its Voronoi face, measured against the
-/// simplex itself (exact orientation tests) and the foci of the adjacent
-/// tetrahedra; a triangle's Voronoi edge is oriented (each coface bounds it on
-/// the side of its apex) and a flat (sliver) coface's focus is first moved into
-/// the slab its neighbours allow (papers/morse/critical_points.md "Flat
-/// tetrahedra"). The half-space form (MixedComplex::violation) is ill-conditioned
-/// for a sliver tetrahedron: its facet planes are almost parallel and their
-/// offsets are ratios of rounding errors, so the widened cell is an unbounded
-/// slab (papers/morse/critical_points.md "Slivers"). Vertex and edge cells use
-/// the half-space form.
-double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p);
 
 /// All critical points of h(x) = e·x (e unit) on the skin, sorted by height.
 /// For each non-bounding mixed cell X the candidates are

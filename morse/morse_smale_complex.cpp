@@ -7,8 +7,8 @@
 #include <limits>
 #include <numeric>
 
-#include "geometry/parallel.h"
-#include "geometry/point_grid.h"
+#include "core/parallel.h"
+#include "geometry/triangulation/point_grid.h"
 
 namespace skinmesh::morse {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/point_grid.h"
-#include "geometry/types.h"
+#include "geometry/triangulation/point_grid.h"
+#include "core/types.h"
 #include "morse/critical_points.h"
 #include "skin/skin_surface.h"
 

@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "dynamic/dynamic_skin.h"
-#include "front/pipeline.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_measures.h"
-#include "refine/skin_mesh_check.h"
+#include "mesher/pipeline.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
+#include "geometry/mesh/mesh_measures.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_measures.h"
 #include "skin/skin_surface.h"
@@ -131,15 +131,15 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
   const skin::Molecule mol = molecule_of(source);
   PyMesh out;
   py::dict stats;
-  MeshResult res;
+  mesher::MeshResult res;
   {
     py::gil_scoped_release release;
     if (algorithm == "sweep") {
-      MeshOptions opt;
+      mesher::MeshOptions opt;
       opt.probe_radius = probe;
       opt.check = check;
       opt.threads = threads;
-      res = mesh_skin(mol, opt);
+      res = mesher::mesh_skin(mol, opt);
     } else {
       dynamic::DynamicOptions opt;
       opt.probe_radius = probe;
@@ -196,7 +196,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
 py::dict check(const py::object& source, const py::object& mesh_or_path, double probe) {
   const skin::Molecule mol = molecule_of(source);
   geometry::IndexedMesh m;
-  refine::SkinCheckOptions options;
+  verify::SkinCheckOptions options;
   if (py::isinstance<PyMesh>(mesh_or_path)) {
     m = mesh_or_path.cast<const PyMesh&>().mesh;
   } else {
@@ -213,7 +213,7 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
     const Vec3 centre = skin::local_frame_centre(points);
     for (Vec3& p : m.positions) p -= centre;
     const skin::SkinSurface skin(skin::translated(points, centre));
-    json = refine::check_skin_mesh(skin, m, options).to_json();
+    json = verify::check_skin_mesh(skin, m, options).to_json();
   }
   return py::module_::import("json").attr("loads")(json);
 }

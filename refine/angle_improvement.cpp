@@ -13,10 +13,10 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh_checks.h"
-#include "geometry/point_grid.h"
-#include "geometry/triangle_intersection.h"
-#include "refine/restricted_delaunay.h"
+#include "geometry/check/mesh_checks.h"
+#include "geometry/triangulation/point_grid.h"
+#include "geometry/kernel/triangle_intersection.h"
+#include "skin/restricted_delaunay.h"
 
 namespace skinmesh::refine {
 
@@ -306,14 +306,14 @@ Trial AngleImprover::evaluate(const Vec2& x, Vertex v, const Vec3& n0, const Vec
     if (!((a - t.p).cross(b - t.p).dot(n0) > 0)) return t;  // folded over in the tangent plane
   }
   for (std::size_t i = 0; i < k; ++i)
-    if (!satisfies_L(t.p, pos(ring[i]), t.s.rho, rho_[ring[i]], opt_.size)) {
+    if (!skin::satisfies_L(t.p, pos(ring[i]), t.s.rho, rho_[ring[i]], opt_.size)) {
       if (why) *why = Refusal::L;
       return t;
     }
   double qmin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < k; ++i) {
     const Vertex a = ring[i], b = ring[(i + 1) % k];
-    if (!satisfies_U(t.p, pos(a), pos(b), t.s.rho, rho_[a], rho_[b], opt_.size)) {
+    if (!skin::satisfies_U(t.p, pos(a), pos(b), t.s.rho, rho_[a], rho_[b], opt_.size)) {
       if (why) *why = Refusal::U;
       return t;
     }
@@ -325,10 +325,10 @@ Trial AngleImprover::evaluate(const Vec2& x, Vertex v, const Vec3& n0, const Vec
 
 bool AngleImprover::in_ball(FaceGeometry& g, const Vec3& x) const {
   const Vec3 &a = pos(Vertex(g.v[0])), &b = pos(Vertex(g.v[1])), &c = pos(Vertex(g.v[2]));
-  if (outside_every_surface_ball(a, b, c, x, L_)) return false;
+  if (skin::outside_every_surface_ball(a, b, c, x, L_)) return false;
   if (g.ball == 0) {
     Index cell = cell_[Vertex(g.v[0])];
-    if (surface_delaunay_centre(skin_, a, b, c, g.m, cell)) {
+    if (skin::surface_delaunay_centre(skin_, a, b, c, g.m, cell)) {
       g.ball = 1;
       g.r = std::max({(g.m - a).norm(), (g.m - b).norm(), (g.m - c).norm()});
     } else {
@@ -356,7 +356,7 @@ Refusal AngleImprover::admissible(Vertex v, const Trial& t, const std::vector<Ve
     const Vertex a = ring[i], b = ring[(i + 1) % k];
     Vec3 m;
     Index cell = t.s.cell;
-    if (!surface_delaunay_centre(skin_, p, pos(a), pos(b), m, cell)) return Refusal::Rdt;
+    if (!skin::surface_delaunay_centre(skin_, p, pos(a), pos(b), m, cell)) return Refusal::Rdt;
     const double r = std::max({(m - p).norm(), (m - pos(a)).norm(), (m - pos(b)).norm()}) * (1 + opt_.ball_margin);
     for (Vertex x : nearby)
       if (x != a && x != b && (pos(x) - m).squaredNorm() < r * r) return Refusal::Rdt;
@@ -379,7 +379,7 @@ Refusal AngleImprover::admissible(Vertex v, const Trial& t, const std::vector<Ve
   for (std::size_t i = 0; i < k; ++i) {
     const Vertex a = ring[i], b = ring[(i + 1) % k];
     star[i] = {v.idx(), a.idx(), b.idx()};
-    scc[i] = circumcentre(p, pos(a), pos(b));
+    scc[i] = skin::circumcentre(p, pos(a), pos(b));
     sR[i] = std::max({(scc[i] - p).norm(), (scc[i] - pos(a)).norm(), (scc[i] - pos(b)).norm()});
   }
   for (std::size_t i = 0; i < k && verdict == Refusal::None; ++i) {
@@ -545,7 +545,7 @@ bool AngleImprover::try_improve(Vertex v) {
       for (Vertex y : mesh_.vertices(f)) keep = keep && vertex_mark_[y.idx()] == attempt_, g.v[i++] = y.idx();
       if (!keep) continue;  // a star triangle (v is not marked) or one that cannot matter
       const Vec3 &a = pos(Vertex(g.v[0])), &b = pos(Vertex(g.v[1])), &cc = pos(Vertex(g.v[2]));
-      g.cc = circumcentre(a, b, cc);
+      g.cc = skin::circumcentre(a, b, cc);
       g.R = std::max({(g.cc - a).norm(), (g.cc - b).norm(), (g.cc - cc).norm()});
       faces.push_back(g);
     }

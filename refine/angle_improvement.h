@@ -6,8 +6,8 @@
 
 #include <cstddef>
 
-#include "geometry/surface_mesh.h"
-#include "refine/size_conditions.h"
+#include "geometry/mesh/surface_mesh.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::refine {
@@ -15,7 +15,7 @@ namespace skinmesh::refine {
 /// Options of the angle-improvement pass.
 struct AngleImprovementOptions {
   /// C and Q of [L] and [U] (Cheng & Shi §2.2), kept by every move.
-  SizeConstants size;
+  skin::SizeConstants size;
   /// Vertices of a triangle with an angle below this (degrees) are moved.
   /// [measured: 28° selects about 0.05 % of the triangles of the bundled
   /// molecules and lifts their minimum angle to 26.0°–28.7° for 1–5 % of the

@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh_checks.h"
-#include "geometry/point_grid.h"
-#include "refine/restricted_delaunay.h"
+#include "geometry/check/mesh_checks.h"
+#include "geometry/triangulation/point_grid.h"
+#include "skin/restricted_delaunay.h"
 
 namespace skinmesh::refine {
 
@@ -76,13 +76,13 @@ class Refiner {
   void push_edges_around(Vertex v);
   bool violates_L(Edge e) const {
     const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
-    return !satisfies_L(pos(a), pos(b), rho_[a], rho_[b], opt_.size);
+    return !skin::satisfies_L(pos(a), pos(b), rho_[a], rho_[b], opt_.size);
   }
   bool violates_U(Face f) const {
     Vertex v[3];
     int i = 0;
     for (Vertex x : mesh_.vertices(f)) v[i++] = x;
-    return !satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0]], rho_[v[1]], rho_[v[2]], opt_.size);
+    return !skin::satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0]], rho_[v[1]], rho_[v[2]], opt_.size);
   }
   bool contract(Edge e);
   bool insert(Face f);
@@ -122,10 +122,10 @@ class Refiner {
 bool Refiner::inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const {
   // Filter with the same answer: d outside every ball the projection could
   // give (most tests of a Lawson pass; 3x less refinement time on crambin).
-  if (outside_every_surface_ball(pos(a), pos(b), pos(c), pos(d), skin_.length_scale())) return false;
+  if (skin::outside_every_surface_ball(pos(a), pos(b), pos(c), pos(d), skin_.length_scale())) return false;
   Vec3 m;
   Index cell = cell_[a];
-  if (!surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell)) m = circumcentre(pos(a), pos(b), pos(c));
+  if (!skin::surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell)) m = skin::circumcentre(pos(a), pos(b), pos(c));
   return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - 1e-9);
 }
 
@@ -228,7 +228,7 @@ bool Refiner::insert(Face f) {
   }
   Vec3 m;
   Index cell = cell_[v[0]];
-  if (!surface_delaunay_centre(skin_, pos(v[0]), pos(v[1]), pos(v[2]), m, cell)) {
+  if (!skin::surface_delaunay_centre(skin_, pos(v[0]), pos(v[1]), pos(v[2]), m, cell)) {
     ++stats_.refused_insertions;
     return false;
   }
@@ -383,7 +383,7 @@ RefineStats Refiner::run() {
     std::vector<char> suspect(mesh_.edges_size(), 0);
     for (Face f : mesh_.faces()) {
       const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0), h2 = mesh_.next(h1);
-      const SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)), pos(mesh_.to_vertex(h1)),
+      const skin::SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)), pos(mesh_.to_vertex(h1)),
                                    skin_.length_scale());
       for (Halfedge h : {h0, h1, h2}) {
         const Halfedge o = mesh_.opposite(h);

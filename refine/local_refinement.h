@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <functional>
 
-#include "geometry/surface_mesh.h"
-#include "refine/size_conditions.h"
+#include "geometry/mesh/surface_mesh.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::refine {
@@ -25,7 +25,7 @@ const char* operation_name(RefineOperation op);
 /// Options of the local refinement.
 struct RefineOptions {
   /// C and Q of [L] and [U] (Cheng & Shi §2.2).
-  SizeConstants size;
+  skin::SizeConstants size;
   /// At most this many rounds of (contraction pass, insertion pass). A guard
   /// only: the number of rounds that change something is bounded by the
   /// number of contractions and insertions, both finite

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "geometry/orthosphere_predicates.h"
+#include "geometry/kernel/orthosphere_predicates.h"
 
 namespace skinmesh::skin {
 

@@ -46,7 +46,7 @@ struct SkinTopology {
 /// vertex k of every coface) and otherwise the minimum value of its cofaces;
 /// X is in K0 iff its value <= 0 (papers/skin/skin_math.md §5). Both tests are
 /// exact predicates on the triangulation's weighted points
-/// (geometry/orthosphere_predicates.h), so the result does not depend on
+/// (geometry/kernel/orthosphere_predicates.h), so the result does not depend on
 /// rounding, however flat the simplices; exact ties are resolved as documented
 /// on singular_simplices and orthogonal_ties. Simplices with a bounding point
 /// are never in K0. Counts components and voids with union–find.

@@ -10,10 +10,10 @@
 #include <string>
 #include <unordered_map>
 
-#include "geometry/assert.h"
-#include "geometry/errors.h"
-#include "geometry/key_index.h"
-#include "geometry/predicates.h"
+#include "core/assert.h"
+#include "core/errors.h"
+#include "geometry/triangulation/key_index.h"
+#include "geometry/kernel/predicates.h"
 
 namespace skinmesh::skin {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/types.h"
+#include "core/types.h"
 
 namespace skinmesh::skin {
 

@@ -23,16 +23,16 @@
 
 #include <zlib.h>
 
-#include "geometry/errors.h"
-#include "geometry/text_split.h"
-#include "geometry/weighted_point.h"
+#include "core/errors.h"
+#include "core/text_split.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/molecule_io_internal.h"
 
 namespace skinmesh::skin {
 
 namespace molecule_io_detail {
 
-using geometry::trim;
+using skinmesh::trim;
 
 namespace {
 
@@ -187,7 +187,7 @@ Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& note
       problem += " (" + std::to_string(notes.size()) + " skipped, first: " + notes.first() + ")";
     throw InputError(path, 0, problem);
   }
-  // The admissible range of the predicates (geometry/weighted_point.h): an
+  // The admissible range of the predicates (geometry/kernel/weighted_point.h): an
   // atom outside it is refused here, where its line is known.
   for (const Atom& a : atoms) {
     const char* axis[3] = {"x", "y", "z"};

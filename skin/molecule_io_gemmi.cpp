@@ -36,8 +36,8 @@
 #include <gemmi/mmcif.hpp>
 #include <gemmi/pdb.hpp>
 
-#include "geometry/errors.h"
-#include "geometry/text_split.h"
+#include "core/errors.h"
+#include "core/text_split.h"
 #include "skin/element_radii.h"
 #include "skin/molecule_io_internal.h"
 
@@ -45,9 +45,9 @@ namespace skinmesh::skin::molecule_io_detail {
 
 namespace {
 
-using geometry::is_blank;
-using geometry::split_lines;
-using geometry::trim;
+using skinmesh::is_blank;
+using skinmesh::split_lines;
+using skinmesh::trim;
 
 // Source Lines of gemmi Atoms
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/text_split.h"
+#include "core/errors.h"
+#include "core/text_split.h"
 #include "skin/element_radii.h"
 #include "skin/molecule_io_internal.h"
 
@@ -15,8 +15,8 @@ namespace skinmesh::skin::molecule_io_detail {
 
 namespace {
 
-using geometry::split_blanks;
-using geometry::split_lines;
+using skinmesh::split_blanks;
+using skinmesh::split_lines;
 
 /// Element guessed from a PQR atom name: the residue name if the residue is a
 /// single ion named after its element ("NA NA", "ZN ZN"), else the first letter of

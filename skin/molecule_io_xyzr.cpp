@@ -5,14 +5,14 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/text_split.h"
+#include "core/errors.h"
+#include "core/text_split.h"
 #include "skin/molecule_io_internal.h"
 
 namespace skinmesh::skin::molecule_io_detail {
 
-using geometry::split_blanks;
-using geometry::split_lines;
+using skinmesh::split_blanks;
+using skinmesh::split_lines;
 
 Molecule read_xyzr(const std::string& path, const std::string& text) {
   const std::vector<std::string_view> lines = split_lines(text);
@@ -20,7 +20,7 @@ Molecule read_xyzr(const std::string& path, const std::string& text) {
   NoteList notes(path);
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const int line_no = static_cast<int>(k + 1);
-    const std::vector<std::string_view> f = geometry::fields_before_comment(lines[k]);
+    const std::vector<std::string_view> f = fields_before_comment(lines[k]);
     if (f.empty()) continue;
     if (f.size() < 4)
       throw InputError(path, line_no, "expected 'x y z r', found " + std::to_string(f.size()) + " fields");

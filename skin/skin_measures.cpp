@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/parallel.h"
+#include "core/errors.h"
+#include "core/parallel.h"
 
 namespace skinmesh::skin {
 namespace {

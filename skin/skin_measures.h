@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "geometry/types.h"
-#include "geometry/weighted_point.h"
+#include "core/types.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/mixed_complex.h"
 #include "skin/skin_surface.h"
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "geometry/errors.h"
+#include "core/errors.h"
 
 namespace skinmesh::skin {
 

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/regular_triangulation.h"
-#include "geometry/types.h"
-#include "geometry/weighted_point.h"
+#include "geometry/triangulation/regular_triangulation.h"
+#include "core/types.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/mixed_complex.h"
 #include "skin/molecule.h"
 

@@ -20,8 +20,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "geometry/mesh_checks.h"
-#include "refine/size_conditions.h"
+#include "geometry/check/mesh_checks.h"
+#include "skin/size_conditions.h"
 
 namespace skinmesh::trace {
 
@@ -43,7 +43,7 @@ json point_json(const Vec3& p) { return json::array({round_to(p.x(), 1e4), round
 /// [U] ratio C Q min(rho) / circumradius (Cheng & Shi §2.2; a condition
 /// holds iff its ratio exceeds 1).
 std::array<double, 3> face_quality(const std::array<Vec3, 3>& p, const std::array<double, 3>& rho,
-                                   const refine::SizeConstants& size) {
+                                   const skin::SizeConstants& size) {
   const double angle = geometry::min_angle(p[0], p[1], p[2]) * 180 / M_PI;
   double L = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
@@ -51,7 +51,7 @@ std::array<double, 3> face_quality(const std::array<Vec3, 3>& p, const std::arra
     const double bound = size.C / size.Q * std::max(rho[i], rho[j]);
     if (bound > 0) L = std::min(L, (p[i] - p[j]).norm() / 2 / bound);
   }
-  const double R = refine::circumradius(p[0], p[1], p[2]);
+  const double R = skin::circumradius(p[0], p[1], p[2]);
   const double U = R > 0 && std::isfinite(R) ? size.C * size.Q * std::min({rho[0], rho[1], rho[2]}) / R : 0;
   return {angle, std::isfinite(L) ? L : 0, U};
 }
@@ -113,7 +113,7 @@ class History {
   /// Sets the quality of every open face record from the vertices' current
   /// positions and `rho_of(vertex id)`.
   template <class RhoOf>
-  void set_quality(const RhoOf& rho_of, const refine::SizeConstants& size) {
+  void set_quality(const RhoOf& rho_of, const skin::SizeConstants& size) {
     std::fill(quality_.begin(), quality_.end(), 0.0);
     double worst = 180;
     for (std::size_t r = 0; r < face_died_.size(); ++r) {
@@ -330,7 +330,7 @@ long stride(std::size_t operations, double steps) {
 
 /// The last step (the output mesh, with its check's verdict; the quality
 /// was set at the end of the last stage) and the document's remaining keys;
-/// fills `summary`. `Result` is MeshResult or dynamic::DynamicResult.
+/// fills `summary`. `Result` is mesher::MeshResult or dynamic::DynamicResult.
 template <class Result>
 void finish(const Result& res, json counters, json every, std::size_t operations, History& history,
             std::vector<json>& steps, json& doc, TraceSummary& summary) {
@@ -363,18 +363,18 @@ void finish(const Result& res, json counters, json every, std::size_t operations
 /// The sweep pipeline, recorded.
 json record_sweep(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                   TraceSummary& summary) {
-  MeshOptions run = options.mesh;
+  mesher::MeshOptions run = options.mesh;
   OperationCounts counts;
   long every_sweep = options.every, every_refine = options.every;
   if (options.every <= 0) {
     // First run: count the operations (no check, no recording).
-    MeshOptions counting = run;
+    mesher::MeshOptions counting = run;
     counting.check = false;
     counting.sweep.observer = [&counts](const front::SweepEvent&) { ++counts.sweep; };
     counting.refinement.observer = [&counts](refine::RefineOperation, const SurfaceMesh&) { ++counts.refine; };
     if (options.progress)
       counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
-    mesh_skin(points, counting);
+    mesher::mesh_skin(points, counting);
     every_sweep = stride(counts.sweep, 0.6 * double(options.max_steps));
     every_refine = stride(counts.refine, 0.35 * double(options.max_steps));
   }
@@ -385,7 +385,7 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
   Pending pending;
   std::size_t operations = 0, prev_contacts = 0;
   std::size_t flips = 0, contractions = 0, insertions = 0;
-  const refine::SizeConstants size = run.size;
+  const skin::SizeConstants size = run.size;
   std::vector<Vec3> critical_position;
 
   auto record = [&](const char* stage, const SurfaceMesh& mesh, json counters) {
@@ -490,7 +490,7 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     rho_quality(skin, mesh);
   };
   if (options.progress) run.progress = options.progress;
-  const MeshResult res = mesh_skin(points, run);
+  const mesher::MeshResult res = mesher::mesh_skin(points, run);
 
   finish(res, json{{"vertices", res.mesh.positions.size()},
                    {"flips", flips},
@@ -532,7 +532,7 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
   steps.push_back(pending.take("start", json{{"triangles", 0}}));
   doc["critical"] = json::array();
   doc["lines"] = json::array();
-  const refine::SizeConstants size = run.size;
+  const skin::SizeConstants size = run.size;
   run.observer = [&](const char* stage, const dynamic::SampleTriangulation& st) {
     const bool final_stage = std::string(stage) == "refine";
     if (!final_stage && growth++ % every != 0) return;

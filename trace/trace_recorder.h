@@ -1,5 +1,5 @@
 // trace/trace_recorder.h: the recorder behind `skinmesh trace` — runs the
-// sweep pipeline (front/pipeline.h) or the dynamic-skin baseline
+// sweep pipeline (mesher/pipeline.h) or the dynamic-skin baseline
 // (dynamic/dynamic_skin.h) with observers on every operation and returns the
 // history a student needs to watch the algorithm: the critical points and the
 // Morse–Smale arcs (§3), the partial mesh after every operation of the sweep
@@ -19,8 +19,8 @@
 #include <nlohmann/json.hpp>
 
 #include "dynamic/dynamic_skin.h"
-#include "front/pipeline.h"
-#include "geometry/weighted_point.h"
+#include "mesher/pipeline.h"
+#include "geometry/kernel/weighted_point.h"
 
 namespace skinmesh::trace {
 
@@ -29,7 +29,7 @@ struct TraceOptions {
   /// "sweep" (Cheng & Shi 2004) or "dynamic" (the dynamic-skin baseline).
   std::string algorithm = "sweep";
   /// Options of the sweep pipeline (its observers are set by the recorder).
-  MeshOptions mesh;
+  mesher::MeshOptions mesh;
   /// Options of the baseline (its observer is set by the recorder).
   dynamic::DynamicOptions dynamic;
   /// Record at most about this many steps: consecutive operations are merged
@@ -60,7 +60,7 @@ struct TraceSummary {
 };
 
 /// Runs the algorithm on `points` (centres Å, weights Å²) and returns the
-/// trace document (trace/FORMAT.md). Throws what mesh_skin() and
+/// trace document (trace/FORMAT.md). Throws what mesher::mesh_skin() and
 /// mesh_skin_dynamic() throw, and std::invalid_argument for an unknown
 /// algorithm. A mesh that fails its check is recorded all the same; the
 /// document's "check" says so, and so does `summary`.

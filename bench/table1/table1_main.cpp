@@ -7,7 +7,7 @@
 // the paper's row with its ratio. Google Benchmark times every run (one
 // thread; the sweep for at least --benchmark_min_time, the baselines once);
 // every mesh is verified once, outside the timed loop, by
-// refine::check_skin_mesh, and a failing check is printed in the table.
+// verify::check_skin_mesh, and a failing check is printed in the table.
 // Notes: papers/bench/table1.md
 //
 // Usage: skinmesh_table1 [--dynamic-max-atoms N] [--static-max-atoms N]
@@ -25,8 +25,8 @@
 #include <benchmark/benchmark.h>
 
 #include "dynamic/dynamic_skin.h"
-#include "front/pipeline.h"
-#include "refine/skin_mesh_check.h"
+#include "mesher/pipeline.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
@@ -97,9 +97,9 @@ const std::vector<geometry::WeightedPoint>& points_of(const Case& c, const Conve
 /// The mesh of `points` by algorithm `a` (no check), and its frame centre.
 geometry::IndexedMesh run(Algorithm a, const std::vector<geometry::WeightedPoint>& points) {
   if (a == Algorithm::Sweep) {
-    MeshOptions o;
+    mesher::MeshOptions o;
     o.check = false;
-    return mesh_skin(points, o).mesh;
+    return mesher::mesh_skin(points, o).mesh;
   }
   dynamic::DynamicOptions o;
   o.check = false;
@@ -128,7 +128,7 @@ void bm_case(benchmark::State& state, const Case* c, const Convention* v, Algori
   const Vec3 centre = skin::local_frame_centre(points);
   const skin::SkinSurface skin(skin::translated(points, centre));
   for (Vec3& p : mesh.positions) p -= centre;
-  const refine::SkinCheckReport rep = refine::check_skin_mesh(skin, mesh);
+  const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh);
   r.ok = rep.ok();
   if (!r.ok) r.problem = rep.problems.front();
   r.triangles = mesh.triangles.size();

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/mesh_io.h"
+#include "geometry/io/mesh_io.h"
 
 namespace fs = std::filesystem;
 

@@ -16,9 +16,9 @@
 #include "dynamic/dynamic_skin.h"
 #include "dynamic/level_set.h"
 #include "dynamic/sample_triangulation.h"
-#include "geometry/delaunay_triangulation.h"
-#include "geometry/errors.h"
-#include "refine/skin_mesh_check.h"
+#include "geometry/triangulation/delaunay_triangulation.h"
+#include "core/errors.h"
+#include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 #include "tests/skin/skin_test_util.h"
@@ -224,14 +224,14 @@ TEST_CASE("dynamic: lowering the rho floor re-refines the facets it makes violat
   CHECK(st.refine(20));
   CHECK(st.stats().U_left == 0);
   CHECK(st.triangulation().num_vertices() > before);
-  const skinmesh::refine::SkinCheckReport rep = skinmesh::refine::check_skin_mesh(skin, st.extract());
+  const skinmesh::verify::SkinCheckReport rep = skinmesh::verify::check_skin_mesh(skin, st.extract());
   for (const std::string& p : rep.problems) INFO(p);
   CHECK(rep.ok());
 }
 
 TEST_CASE("dynamic: a singular skin is refused with the atoms named, as the sweep refuses it") {
   // Two balls of radius sqrt(8) Å at distance sqrt(32) Å touch exactly (the
-  // sweep's test of the same refusal, tests/front/sweep_test.cpp).
+  // sweep's test of the same refusal, tests/mesher/sweep_test.cpp).
   const double w = skinmesh::skin::atom_weight(1.5, 0.5);
   const std::vector<WeightedPoint> touching = {{Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
   for (const bool growth : {false, true}) {

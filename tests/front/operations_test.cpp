@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "front/sweep_internal.h"
-#include "geometry/errors.h"
+#include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/skin_surface.h"

@@ -3,7 +3,7 @@
 // geometry::read_mesh_from_bytes(), in memory (no temporary files).
 //
 // The readers document one exception for bad input, skinmesh::InputError
-// (geometry/errors.h); it is caught and the input rejected. Anything else — a
+// (core/errors.h); it is caught and the input rejected. Anything else — a
 // crash, a sanitizer report, another exception (libFuzzer reports it as a deadly
 // signal through std::terminate), a hang or an allocation beyond the limits of
 // the run (-timeout, -rss_limit_mb, -malloc_limit_mb; see tests/fuzz/run.sh) —
@@ -18,9 +18,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
-#include "geometry/weighted_point.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/molecule_io.h"
 
 namespace skinmesh::fuzz {

@@ -1,5 +1,5 @@
 // tests/geometry/delaunay_triangulation_test.cpp: tests of
-// geometry/delaunay_triangulation. Every state is checked with is_valid()
+// geometry/triangulation/delaunay_triangulation. Every state is checked with is_valid()
 // (orientation, adjacency, local Delaunay with power_test_sos); small states are
 // also compared with a brute force over all 4-subsets of the live vertices
 // (bounding points included, with their ids), which is exact for degenerate
@@ -17,9 +17,9 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/delaunay_triangulation.h"
-#include "geometry/errors.h"
-#include "geometry/predicates.h"
+#include "geometry/triangulation/delaunay_triangulation.h"
+#include "core/errors.h"
+#include "geometry/kernel/predicates.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;

@@ -1,5 +1,5 @@
 // tests/geometry/mesh_checks_broad_phase_test.cpp: the two shortcuts of the
-// self-intersection test of geometry/mesh_checks against brute force — the
+// self-intersection test of geometry/check/mesh_checks against brute force — the
 // column broad phase (box_overlap_pairs() against all pairs of boxes) and the
 // simple-fan test (simple_fan_vertices(): no two triangles around a simple fan
 // meet beyond what they share, by the exact all-pairs test), then check_mesh()
@@ -13,9 +13,9 @@
 #include <random>
 #include <vector>
 
-#include "geometry/mesh_checks.h"
-#include "geometry/mesh_checks_internal.h"
-#include "geometry/triangle_intersection.h"
+#include "geometry/check/mesh_checks.h"
+#include "geometry/check/mesh_checks_internal.h"
+#include "geometry/kernel/triangle_intersection.h"
 #include "tests/geometry/test_meshes.h"
 
 using skinmesh::Index;

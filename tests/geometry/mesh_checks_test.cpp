@@ -1,4 +1,4 @@
-// tests/geometry/mesh_checks_test.cpp: the mesh verifier (geometry/mesh_checks)
+// tests/geometry/mesh_checks_test.cpp: the mesh verifier (geometry/check/mesh_checks)
 // on good meshes with known invariants (icosahedron, torus, spheres) and on
 // meshes broken in one known way each; the grid broad phase against brute force.
 #include <doctest/doctest.h>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh_checks.h"
+#include "geometry/check/mesh_checks.h"
 #include "tests/geometry/test_meshes.h"
-#include "geometry/triangle_intersection.h"
+#include "geometry/kernel/triangle_intersection.h"
 
 using skinmesh::Index;
 using skinmesh::Vec3;

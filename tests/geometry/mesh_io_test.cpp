@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/mesh_measures.h"
+#include "geometry/mesh/mesh_measures.h"
 #include "tests/geometry/test_meshes.h"
 
 using skinmesh::Index;

@@ -1,5 +1,5 @@
 // tests/geometry/orthosphere_predicates_test.cpp: the exact size and attached
-// tests of geometry/orthosphere_predicates.h against an independent exact
+// tests of geometry/kernel/orthosphere_predicates.h against an independent exact
 // reference: the focus z_X and weight w_X computed from their definition
 // (papers/skin/skin_math.md §2.2: solve 2 G beta = r) in exact big-integer dyadic
 // arithmetic (Cramer's rule), on random, cospherical, coplanar, rotated and
@@ -15,7 +15,7 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/orthosphere_predicates.h"
+#include "geometry/kernel/orthosphere_predicates.h"
 
 using namespace skinmesh;
 using geometry::WeightedPoint;

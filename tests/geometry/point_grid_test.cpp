@@ -1,4 +1,4 @@
-// tests/geometry/point_grid_test.cpp: geometry/point_grid — FlatPointGrid and
+// tests/geometry/point_grid_test.cpp: geometry/triangulation/point_grid — FlatPointGrid and
 // PointGrid report exactly the points a linear scan with the same distance
 // test reports, on random clouds (clustered, flat, with duplicates and
 // non-finite points) and random query balls, including balls outside the cloud.
@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "geometry/key_index.h"
-#include "geometry/point_grid.h"
+#include "geometry/triangulation/key_index.h"
+#include "geometry/triangulation/point_grid.h"
 
 using skinmesh::Index;
 using skinmesh::Vec3;

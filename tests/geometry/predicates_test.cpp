@@ -1,5 +1,5 @@
-// tests/geometry/predicates_test.cpp: tests of geometry/expansion and
-// geometry/predicates. Exact references are computed with __int128 on integer
+// tests/geometry/predicates_test.cpp: tests of geometry/kernel/expansion and
+// geometry/kernel/predicates. Exact references are computed with __int128 on integer
 // (or dyadic, i.e. integer times 2^-k) coordinates, for which the determinants
 // are exactly computable; adversarial inputs are nearly degenerate.
 #include <doctest/doctest.h>
@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "geometry/expansion.h"
-#include "geometry/predicates.h"
+#include "geometry/kernel/expansion.h"
+#include "geometry/kernel/predicates.h"
 
 namespace sg = skinmesh::geometry;
 using skinmesh::Index;

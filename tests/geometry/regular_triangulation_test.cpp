@@ -1,5 +1,5 @@
 // tests/geometry/regular_triangulation_test.cpp: tests of
-// geometry/regular_triangulation. Every triangulation is checked by one verifier
+// geometry/triangulation/regular_triangulation. Every triangulation is checked by one verifier
 // (structure, orientation, adjacency, volume, local and, for small inputs,
 // global emptiness of the orthospheres with power_test_sos); small inputs are
 // also compared with a brute force over all 4-subsets, which is exact for
@@ -15,9 +15,9 @@
 #include <set>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/predicates.h"
-#include "geometry/regular_triangulation.h"
+#include "core/errors.h"
+#include "geometry/kernel/predicates.h"
+#include "geometry/triangulation/regular_triangulation.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;

@@ -1,5 +1,5 @@
 // tests/geometry/surface_mesh_test.cpp: the half-edge SurfaceMesh
-// (geometry/surface_mesh). Every test asserts what an operation changes (counts,
+// (geometry/mesh/surface_mesh). Every test asserts what an operation changes (counts,
 // valences, boundary loops, endpoints) and runs check_consistency() after each
 // step, so a no-op or a broken link fails.
 #include <Eigen/Geometry>  // cross()
@@ -17,10 +17,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/mesh_checks.h"
+#include "core/errors.h"
+#include "geometry/check/mesh_checks.h"
 #include "tests/geometry/test_meshes.h"
-#include "geometry/surface_mesh.h"
+#include "geometry/mesh/surface_mesh.h"
 
 using skinmesh::Index;
 using skinmesh::TopologyError;

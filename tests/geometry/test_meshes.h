@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/indexed_mesh.h"
-#include "geometry/triangle_intersection.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "geometry/kernel/triangle_intersection.h"
 
 namespace skinmesh::test {
 

@@ -1,13 +1,13 @@
 // tests/geometry/triangle_intersection_test.cpp: exact segment/triangle and
-// triangle/triangle tests (geometry/triangle_intersection) on hand cases, on
+// triangle/triangle tests (geometry/kernel/triangle_intersection) on hand cases, on
 // near-coplanar inputs where a floating-point test decides wrongly, and against
 // the mesh-triangle variants.
 #include <doctest/doctest.h>
 
 #include <random>
 
-#include "geometry/predicates.h"
-#include "geometry/triangle_intersection.h"
+#include "geometry/kernel/predicates.h"
+#include "geometry/kernel/triangle_intersection.h"
 
 using skinmesh::Index;
 using skinmesh::Vec3;

@@ -16,14 +16,14 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh_checks.h"
+#include "geometry/check/mesh_checks.h"
 #include "refine/angle_improvement.h"
 #include "refine/local_refinement.h"
-#include "refine/restricted_delaunay.h"
-#include "refine/size_conditions.h"
-#include "refine/skin_mesh_check.h"
+#include "skin/restricted_delaunay.h"
+#include "skin/size_conditions.h"
+#include "verify/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
-#include "tests/refine/check_expectations.h"
+#include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
 
@@ -95,7 +95,7 @@ double min_angle_deg(const geometry::SurfaceMesh& mesh) {
 /// every triangle's surface Delaunay ball with the verifier's tolerance,
 /// every pair of triangles tested for intersection).
 void check_by_brute_force(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
-                          const refine::SizeConstants& size) {
+                          const skin::SizeConstants& size) {
   const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
   const auto rho = mesh.get_vertex_property<double>("v:rho");
   const auto cell = mesh.get_vertex_property<Index>("v:cell");
@@ -117,7 +117,7 @@ void check_by_brute_force(const skin::SkinSurface& skin, const geometry::Surface
   for (geometry::Edge e : mesh.edges()) {
     const geometry::Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
     const double ra = skin.sample(mesh.position(a)).rho, rb = skin.sample(mesh.position(b)).rho;
-    L_bad += !refine::satisfies_L(mesh.position(a), mesh.position(b), ra, rb, size);
+    L_bad += !skin::satisfies_L(mesh.position(a), mesh.position(b), ra, rb, size);
   }
   for (geometry::Face f : mesh.faces()) {
     geometry::Vertex x[3];
@@ -125,12 +125,12 @@ void check_by_brute_force(const skin::SkinSurface& skin, const geometry::Surface
     for (geometry::Vertex v : mesh.vertices(f)) x[i++] = v;
     const Vec3 &a = mesh.position(x[0]), &b = mesh.position(x[1]), &c = mesh.position(x[2]);
     const double r0 = skin.sample(a).rho, r1 = skin.sample(b).rho, r2 = skin.sample(c).rho;
-    U_bad += !refine::satisfies_U(a, b, c, r0, r1, r2, size);
+    U_bad += !skin::satisfies_U(a, b, c, r0, r1, r2, size);
     const Vec3 nt = (b - a).cross(c - a);
     for (const Vec3* p : {&a, &b, &c}) inward += !(nt.dot(skin.normal(*p)) > 0);
     Vec3 m;
     Index hint = kInvalidIndex;
-    if (!refine::surface_delaunay_centre(skin, a, b, c, m, hint)) {
+    if (!skin::surface_delaunay_centre(skin, a, b, c, m, hint)) {
       ++rdt_bad;
       continue;
     }
@@ -158,7 +158,7 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   {
     geometry::SurfaceMesh copy = mesh;
     copy.garbage_collection();
-    test::check_every_property(refine::check_skin_mesh(skin, copy.to_indexed_mesh()));  // a valid start
+    test::check_every_property(verify::check_skin_mesh(skin, copy.to_indexed_mesh()));  // a valid start
   }
   const refine::AngleImprovementStats st = refine::improve_angles(skin, mesh, opt);
   const double after = min_angle_deg(mesh);
@@ -170,7 +170,7 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   check_by_brute_force(skin, mesh, opt.size);
   geometry::SurfaceMesh copy = mesh;
   copy.garbage_collection();
-  test::check_every_property(refine::check_skin_mesh(skin, copy.to_indexed_mesh()));
+  test::check_every_property(verify::check_skin_mesh(skin, copy.to_indexed_mesh()));
   return st;
 }
 

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "refine/local_refinement.h"
-#include "refine/restricted_delaunay.h"
-#include "refine/skin_mesh_check.h"
+#include "skin/restricted_delaunay.h"
+#include "verify/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
-#include "tests/refine/check_expectations.h"
+#include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
 
@@ -24,13 +24,13 @@ namespace {
 const double kRadius = 2.0;
 skin::SkinSurface one_atom() { return skin::SkinSurface({{Vec3(0, 0, 0), 2 * kRadius * kRadius}}); }
 
-refine::SkinCheckReport refine_and_check(const skin::SkinSurface& skin, const geometry::IndexedMesh& start,
+verify::SkinCheckReport refine_and_check(const skin::SkinSurface& skin, const geometry::IndexedMesh& start,
                                          refine::RefineStats* stats) {
   geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(start);
   const refine::RefineStats st = refine::refine_mesh(skin, mesh);
   if (stats) *stats = st;
   mesh.garbage_collection();
-  return refine::check_skin_mesh(skin, mesh.to_indexed_mesh());
+  return verify::check_skin_mesh(skin, mesh.to_indexed_mesh());
 }
 
 }  // namespace
@@ -94,10 +94,10 @@ TEST_CASE("refinement: the invariants of the termination argument hold") {
     for (geometry::Edge e : mesh.edges()) {
       const geometry::Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
       if (inserted[a] && inserted[b])
-        CHECK(refine::satisfies_L(mesh.position(a), mesh.position(b), rho[a], rho[b], opt.size));
+        CHECK(skin::satisfies_L(mesh.position(a), mesh.position(b), rho[a], rho[b], opt.size));
     }
     mesh.garbage_collection();
-    test::check_every_property(refine::check_skin_mesh(skin, mesh.to_indexed_mesh()));
+    test::check_every_property(verify::check_skin_mesh(skin, mesh.to_indexed_mesh()));
   }
 }
 
@@ -124,7 +124,7 @@ TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edge
     p = (p + 0.06 * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
   }
   {
-    const auto before = refine::check_skin_mesh(skin, m);
+    const auto before = verify::check_skin_mesh(skin, m);
     REQUIRE(before.mesh.min_angle_deg < 21.5);  // the test starts from a bad mesh
     REQUIRE(before.num_rdt_violations > 0);
   }
@@ -173,7 +173,7 @@ TEST_CASE("refinement: circumcentres over a ridge (a cube on the sphere, split a
 }  // TEST_SUITE
 
 TEST_CASE("refinement: the ball filter never calls outside a point inside some candidate ball") {
-  // outside_every_surface_ball(a, b, c, d) must imply |d - m| >= |a - m| for
+  // skin::outside_every_surface_ball(a, b, c, d) must imply |d - m| >= |a - m| for
   // every centre m = cc + t n, |t| <= 2R, that surface_delaunay_centre could
   // return; brute force over t on random triangles and points, with points on
   // the circumsphere's neighbourhood and near the triangle's plane (the cases
@@ -188,9 +188,9 @@ TEST_CASE("refinement: the ball filter never calls outside a point inside some c
     const Vec3 A = scale * a, B = scale * b, C = scale * c, D = scale * d;
     if ((B - A).cross(C - A).norm() < 1e-3 * scale * scale) continue;
     const double L = 100.0;
-    if (!refine::outside_every_surface_ball(A, B, C, D, L)) continue;
+    if (!skin::outside_every_surface_ball(A, B, C, D, L)) continue;
     ++said_outside;
-    const Vec3 cc = refine::circumcentre(A, B, C);
+    const Vec3 cc = skin::circumcentre(A, B, C);
     const double R = (A - cc).norm();
     const Vec3 n = (B - A).cross(C - A).normalized();
     for (int k = -200; k <= 200; ++k) {

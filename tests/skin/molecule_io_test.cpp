@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.h"
+#include "core/errors.h"
 #include "skin/element_radii.h"
 #include "skin/molecule_io.h"
 

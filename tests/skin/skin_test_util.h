@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "geometry/weighted_point.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/mixed_complex.h"
 
 namespace skinmesh::test {

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.h"
-#include "geometry/types.h"
-#include "geometry/weighted_point.h"
+#include "core/errors.h"
+#include "core/types.h"
+#include "geometry/kernel/weighted_point.h"
 
 namespace skinmesh::test {
 

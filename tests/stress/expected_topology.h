@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/weighted_point.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/dual_complex.h"
 
 namespace skinmesh::stress {

@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/types.h"
-#include "geometry/weighted_point.h"
+#include "core/types.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/molecule.h"
 
 namespace skinmesh::stress {

@@ -3,13 +3,13 @@
 //
 // For every generated case (tests/stress/generator.h) it computes the expected
 // skin topology independently (tests/stress/expected_topology.h), runs
-// skinmesh::mesh_skin with the check on in a forked child process (a crash,
+// skinmesh::mesher::mesh_skin with the check on in a forked child process (a crash,
 // an abort or a hang is then one failed case, not the end of the run), and
-// requires that the mesh passes every check of refine::check_skin_mesh and
+// requires that the mesh passes every check of verify::check_skin_mesh and
 // that its topology (number of components, total Euler characteristic)
 // equals the expectation. Singular cases (exactly on a topology threshold)
 // may instead end in the documented refusal: the one-line InputError
-// "singular skin: ..." naming the atoms (papers/front/pipeline.md).
+// "singular skin: ..." naming the atoms (papers/mesher/pipeline.md).
 //
 // Usage: skinmesh_stress [--seed N] [--count N | --subset fast] [--filter S]
 //                        [--dump DIR] [--timeout SECONDS] [--list] [--no-fork]
@@ -40,8 +40,8 @@
 #include <typeinfo>
 #include <vector>
 
-#include "front/pipeline.h"
-#include "geometry/errors.h"
+#include "mesher/pipeline.h"
+#include "core/errors.h"
 #include "tests/stress/expected_topology.h"
 #include "tests/stress/generator.h"
 
@@ -184,9 +184,9 @@ void run_case(const StressCase& c, Emit emit) {
   }
   const char* type = "std::exception";
   try {
-    MeshOptions options;
+    mesher::MeshOptions options;
     options.probe_radius = c.probe;
-    const MeshResult res = mesh_skin(to_molecule(c), options);
+    const mesher::MeshResult res = mesher::mesh_skin(to_molecule(c), options);
     emit("check_ok", res.check.ok() ? "1" : "0");
     emit("triangles", std::to_string(res.mesh.triangles.size()));
     char buf[32];
@@ -210,7 +210,7 @@ void run_case(const StressCase& c, Emit emit) {
   } catch (const std::invalid_argument& e) {
     type = "std::invalid_argument";
     emit("error_type", type), emit("error", escape(e.what()));
-  } catch (const std::logic_error& e) {  // SKINMESH_ASSERT: an invariant broken (a bug, geometry/assert.h)
+  } catch (const std::logic_error& e) {  // SKINMESH_ASSERT: an invariant broken (a bug, core/assert.h)
     type = "std::logic_error";
     emit("error_type", type), emit("error", escape(e.what()));
   } catch (const std::bad_alloc& e) {
@@ -411,7 +411,7 @@ void judge(CaseReport& rep) {
   }
   // A singular case passes with a mesh that passes every check (above) or
   // with the documented refusal: the one-line InputError "singular skin: …"
-  // naming the atoms (papers/front/pipeline.md, "Singular skins"). Any other
+  // naming the atoms (papers/mesher/pipeline.md, "Singular skins"). Any other
   // error — a fold, a Morse mismatch, a runaway front — is a failure.
   if (c.singular && rep.clean_error && r.error_type == "InputError" && r.error.rfind("singular skin", 0) == 0)
     rep.passed = true;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "dynamic/dynamic_skin.h"
-#include "front/pipeline.h"
+#include "mesher/pipeline.h"
 #include "tests/skin/skin_test_util.h"
 #include "trace/trace_recorder.h"
 
@@ -125,7 +125,7 @@ TEST_CASE("a trace of the sweep replays to the output mesh, with every key opera
   opt.max_steps = 300;
   trace::TraceSummary summary;
   const json doc = trace::record_trace(points, opt, &summary);
-  const MeshResult res = mesh_skin(points);
+  const mesher::MeshResult res = mesher::mesh_skin(points);
   REQUIRE(res.ok());
   CHECK(summary.ok);
   CHECK(summary.triangles == res.mesh.triangles.size());
@@ -171,11 +171,11 @@ TEST_CASE("every operation is a step with --every 1; the trace is the same for e
   opt.mesh.threads = 2;
   const json two = trace::record_trace(points, opt);
   CHECK(one == two);
-  MeshOptions counting;
+  mesher::MeshOptions counting;
   std::size_t sweep_ops = 0, refine_ops = 0;
   counting.sweep.observer = [&](const front::SweepEvent&) { ++sweep_ops; };
   counting.refinement.observer = [&](refine::RefineOperation, const geometry::SurfaceMesh&) { ++refine_ops; };
-  const MeshResult res = mesh_skin(points, counting);
+  const mesher::MeshResult res = mesher::mesh_skin(points, counting);
   std::size_t sweep_steps = 0, refine_steps = 0;
   for (const json& s : one["steps"]) sweep_steps += s["stage"] == "sweep", refine_steps += s["stage"] == "refine";
   CHECK(sweep_steps == sweep_ops);

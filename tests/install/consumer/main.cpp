@@ -5,17 +5,17 @@
 #include <string>
 #include <vector>
 
-#include "front/pipeline.h"
+#include "mesher/pipeline.h"
 #include "skin/molecule_io.h"
 
 int main(int argc, char** argv) {
-  skinmesh::MeshResult r;
+  skinmesh::mesher::MeshResult r;
   if (argc > 1) {
-    r = skinmesh::mesh_skin(skinmesh::skin::read_molecule(argv[1]));
+    r = skinmesh::mesher::mesh_skin(skinmesh::skin::read_molecule(argv[1]));
   } else {
     const std::vector<skinmesh::geometry::WeightedPoint> points = {{skinmesh::Vec3(0, 0, 0), 8.0},
                                                                    {skinmesh::Vec3(3, 0, 0), 8.0}};
-    r = skinmesh::mesh_skin(points);
+    r = skinmesh::mesher::mesh_skin(points);
   }
   std::printf("vertices %zu triangles %zu normals %zu atoms %zu min_angle %.3f ok %d\n", r.mesh.positions.size(),
               r.mesh.triangles.size(), r.mesh.normals.size(), r.mesh.atom.size(), r.check.mesh.min_angle_deg,

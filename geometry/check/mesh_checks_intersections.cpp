@@ -1,0 +1,401 @@
+// geometry/check/mesh_checks_intersections.cpp: the exact self-intersection test of
+// check_mesh() — a broad phase over the triangles' exact bounding boxes (a grid
+// of (x, y) columns, a z-sweep per column), the simple-fan test that settles
+// pairs sharing a vertex or an edge from the mesh's connectivity, then the
+// exact mesh_triangles_intersect() of geometry/kernel/triangle_intersection.h on every
+// other candidate pair. Declared in mesh_checks_internal.h.
+#include <Eigen/Geometry>  // cross()
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "geometry/check/mesh_checks_internal.h"
+#include "geometry/kernel/predicates.h"
+#include "geometry/kernel/triangle_intersection.h"
+
+namespace skinmesh::geometry::mesh_checks_detail {
+
+namespace {
+
+/// One box of the broad phase with its payload `tri` (any struct with an Index
+/// `id`), as make() gives it: exact bounds.
+template <class Tri>
+struct BoxItem {
+  double lo[3], hi[3];
+  Tri tri;
+};
+
+/// The stored form of a box: its bounds rounded outwards to single precision
+/// (the stored box contains the exact one), `first` = its first column (x, y),
+/// set by for_each_box_pair(). 48 bytes with a 16-byte payload where the
+/// exact form took 72: the array of these was the largest of the check.
+template <class Tri>
+struct FloatBoxItem {
+  float lo[3], hi[3];
+  Tri tri;
+  std::int32_t first[2] = {0, 0};
+};
+
+/// The largest float <= x (-inf below the float range); NaN stays NaN.
+/// Branch-free in the common case (a rounding direction is a coin toss, and
+/// this runs three times per bound): the float nearest x, stepped one unit in
+/// the last place down if it lies above x, by its bits (a float's bits order
+/// its magnitude; stepping down is -1 for a positive float, +1 for a negative
+/// one, and from ±0 lands on the negative denormal).
+inline float float_down(double x) {
+  constexpr double kMax = double(std::numeric_limits<float>::max());
+  if (!(std::abs(x) <= kMax)) {  // beyond the float range, or NaN
+    if (std::isnan(x)) return std::numeric_limits<float>::quiet_NaN();
+    return x > 0 ? std::numeric_limits<float>::max() : -std::numeric_limits<float>::infinity();
+  }
+  const float f = static_cast<float>(x);
+  const std::uint32_t u = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t above = double(f) > x ? 1u : 0u, negative = u >> 31;
+  return std::bit_cast<float>(u - above + 2u * (above & negative));
+}
+/// The smallest float >= x (+inf above the float range); NaN stays NaN.
+/// As float_down(), mirrored.
+inline float float_up(double x) {
+  constexpr double kMax = double(std::numeric_limits<float>::max());
+  if (!(std::abs(x) <= kMax)) {
+    if (std::isnan(x)) return std::numeric_limits<float>::quiet_NaN();
+    return x > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::max();
+  }
+  const float f = static_cast<float>(x);
+  const std::uint32_t u = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t below = double(f) < x ? 1u : 0u, negative = u >> 31;
+  return std::bit_cast<float>(u + below - 2u * (below & negative));
+}
+
+template <class Tri>
+FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
+  FloatBoxItem<Tri> f;
+  for (int k = 0; k < 3; ++k) {
+    f.lo[k] = float_down(b.lo[k]);
+    f.hi[k] = float_up(b.hi[k]);
+  }
+  f.tri = b.tri;
+  return f;
+}
+
+// Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
+// called three times per box, so nothing is stored twice): a grid of square
+// columns (x, y) of side w about the mean extent of the boxes; each box is
+// entered in every column its (x, y) range meets. The boxes are stored once,
+// rounded outwards to single precision (FloatBoxItem), renumbered by their
+// first column (a counting sort, for locality); each column lists its boxes
+// (4-byte indices) sorted by lower z and is swept along z; a pair is tested
+// only in the first column both ranges share (the componentwise maximum of
+// their first columns), so exactly once.
+// Calls test(p, q, maybe) with the payloads of candidate pairs (in either
+// order), maybe = true exactly once for every pair whose rounded boxes overlap
+// (closed boxes: touching counts), false for the others. The rounded boxes
+// contain the exact ones, so every pair of overlapping exact boxes is among
+// the `maybe` pairs; the caller decides exactly which of those overlap.
+template <class Tri, class MakeItem, class PairTest>
+void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
+  if (n < 2) return;
+  Vec3 gmin = Vec3::Constant(std::numeric_limits<double>::infinity()), gmax = -gmin;
+  double mean_extent = 0.0;
+  // The grid's extent from the exact boxes (the rounded ones may stick out by
+  // a unit in the last place: col() clamps them to the grid).
+  for (std::size_t i = 0; i < n; ++i) {
+    const BoxItem<Tri> b = make(i);
+    for (int k = 0; k < 3; ++k) {
+      gmin[k] = std::min(gmin[k], b.lo[k]);
+      gmax[k] = std::max(gmax[k], b.hi[k]);
+    }
+    mean_extent += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+  }
+  mean_extent /= double(n);
+  const double span = std::max(gmax[0] - gmin[0], gmax[1] - gmin[1]);
+  // Column side: kColumnPerExtent times the mean (x, y) extent, coarsened until
+  // there are at most 4 columns and 16 (column, box) entries per box. A
+  // non-finite span (coordinates near the double range) gives one column.
+  // The constants only trade speed (measured on crambin at probe 0), never
+  // correctness.
+  constexpr double kColumnPerExtent = 1.5;
+  constexpr double kMaxColumnsPerBox = 4.0;
+  constexpr double kMaxEntriesPerBox = 16.0;
+  const bool finite_grid = std::isfinite(span) && std::isfinite(mean_extent);
+  double w = mean_extent > 0.0 ? kColumnPerExtent * mean_extent : (span > 0.0 ? span : 1.0);
+  std::int64_t dims[2] = {1, 1};
+  double inv = 0.0;
+  // Column index along axis k (0: x, 1: y): monotone in the coordinate, so
+  // boxes overlapping in (x, y) share a column.
+  // Without a finite grid (inv = 0) every box is in column 0: (x - gmin) * inv
+  // would be inf * 0 = NaN for a bound rounded out to infinity.
+  auto col = [&](double x, int k) {
+    const double t = std::floor((x - gmin[k]) * inv);
+    return t >= 0.0 ? std::int64_t(std::min(t, double(dims[k] - 1))) : std::int64_t{0};
+  };
+  std::size_t num_entries = 0;
+  for (;;) {
+    inv = finite_grid ? 1.0 / w : 0.0;
+    const double dx = finite_grid ? std::floor((gmax[0] - gmin[0]) * inv) + 1.0 : 1.0;
+    const double dy = finite_grid ? std::floor((gmax[1] - gmin[1]) * inv) + 1.0 : 1.0;
+    if (dx * dy > kMaxColumnsPerBox * double(n) + 4096.0) {
+      w *= 2.0;
+      continue;
+    }
+    dims[0] = std::int64_t(dx);
+    dims[1] = std::int64_t(dy);
+    double entries = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const FloatBoxItem<Tri> b = rounded_out(make(i));
+      entries += double(col(b.hi[0], 0) - col(b.lo[0], 0) + 1) * double(col(b.hi[1], 1) - col(b.lo[1], 1) + 1);
+    }
+    if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) {
+      num_entries = std::size_t(entries);
+      break;
+    }
+    w *= 2.0;
+  }
+  const std::size_t num_columns = std::size_t(dims[0] * dims[1]);
+  auto column = [&](double x, double y) { return std::size_t(col(x, 0) * dims[1] + col(y, 1)); };
+  // The boxes renumbered by their first column (counting sort, stable).
+  std::vector<std::uint32_t> start(num_columns + 1, 0);
+  std::vector<FloatBoxItem<Tri>> item(n);
+  {
+    for (std::size_t i = 0; i < n; ++i) {
+      const FloatBoxItem<Tri> b = rounded_out(make(i));
+      ++start[column(b.lo[0], b.lo[1]) + 1];
+    }
+    for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
+    for (std::size_t i = 0; i < n; ++i) {
+      FloatBoxItem<Tri> b = rounded_out(make(i));
+      b.first[0] = std::int32_t(col(b.lo[0], 0));
+      b.first[1] = std::int32_t(col(b.lo[1], 1));
+      item[start[std::size_t(b.first[0] * dims[1] + b.first[1])]++] = b;
+    }
+  }
+  // Entries per column (CSR of renumbered boxes), each column then sorted by lower z.
+  std::fill(start.begin(), start.end(), 0);
+  for (const FloatBoxItem<Tri>& b : item)
+    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
+      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y) ++start[std::size_t(x * dims[1] + y) + 1];
+  for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> entry(num_entries);
+  for (std::size_t i = 0; i < n; ++i) {
+    const FloatBoxItem<Tri>& b = item[i];
+    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
+      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
+        entry[start[std::size_t(x * dims[1] + y)]++] = std::uint32_t(i);
+  }
+  // start[c] now holds the end of column c (and its start is start[c - 1]).
+  auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
+  for (std::size_t c = 0; c < num_columns; ++c) {
+    const std::uint32_t b = c ? start[c - 1] : 0, e = start[c];
+    if (e - b > 1) std::sort(entry.begin() + b, entry.begin() + e, lower_z);
+  }
+  // In each column, sweep along z: pair each box only with those starting
+  // before it ends. Branch-free apart from the end of each run: the outcome
+  // of the box test is passed on, not branched on (it is hard to predict).
+  for (std::int32_t cx = 0; cx < dims[0]; ++cx)
+    for (std::int32_t cy = 0; cy < dims[1]; ++cy) {
+      const std::size_t c = std::size_t(cx * dims[1] + cy);
+      const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
+      for (std::uint32_t a = begin; a + 1 < end; ++a) {
+        const FloatBoxItem<Tri>& p = item[entry[a]];
+        for (std::uint32_t b = a + 1; b < end; ++b) {
+          const FloatBoxItem<Tri>& q = item[entry[b]];
+          if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
+          const bool overlap = (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) &
+                               (q.lo[1] <= p.hi[1]);
+          const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
+          test(p.tri, q.tri, overlap & first);
+        }
+      }
+    }
+}
+
+// Fan Test ---------------------------------------------------------------------
+
+// True if the good triangles around vertex s (`fan`, triangle ids) form one
+// closed fan that a coordinate projection maps one-to-one onto a disc around s:
+// every triangle (s, a, b) (its corners in cyclic order from s) contributes the
+// link edge a -> b, the link edges form a single cycle through distinct
+// vertices, and for some dropped coordinate every projected triangle has the
+// same strict orient2d sign and the projected link winds exactly once around s.
+// Then the projected triangles tile sectors of angle < pi that cover the plane
+// once, so two of them meet only at s (non-consecutive) or along their common
+// edge (consecutive), and the projection, injective on each triangle, carries
+// this back to R^3: no two of these triangles meet beyond their shared vertex
+// or edge. Exact (index comparisons, coordinate comparisons, orient2d).
+bool simple_fan(const std::vector<Vec3>& P, const std::vector<std::array<Index, 3>>& T, Index s,
+                const Index* fan, std::size_t k) {
+  constexpr std::size_t kMaxFan = 32;
+  if (k < 3 || k > kMaxFan) return false;
+  Index a[kMaxFan], b[kMaxFan];
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto& t = T[fan[j]];
+    const int i = t[0] == s ? 0 : (t[1] == s ? 1 : 2);
+    a[j] = t[(i + 1) % 3];
+    b[j] = t[(i + 2) % 3];
+  }
+  // Link cycle in order: order[0] = 0, order[j + 1] = the triangle whose a is b[order[j]].
+  std::size_t order[kMaxFan];
+  order[0] = 0;
+  for (std::size_t j = 0; j < k; ++j)
+    for (std::size_t m = j + 1; m < k; ++m)
+      if (a[j] == a[m] || b[j] == b[m]) return false;
+  for (std::size_t j = 1; j <= k; ++j) {
+    const Index want = b[order[j - 1]];
+    std::size_t next = k;
+    for (std::size_t m = 0; m < k; ++m)
+      if (a[m] == want) next = m;
+    if (next == k || (next == 0) != (j == k)) return false;  // open, or a shorter cycle
+    if (j < k) order[j] = next;
+  }
+  // The coordinate to drop: the largest component of the summed normals first
+  // (a choice only; every decision below is exact).
+  const Vec3& ps = P[s];
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t j = 0; j < k; ++j) normal += (P[a[j]] - ps).cross(P[b[j]] - ps);
+  int axes[3] = {0, 1, 2};
+  if (std::abs(normal[axes[1]]) > std::abs(normal[axes[0]])) std::swap(axes[0], axes[1]);
+  if (std::abs(normal[axes[2]]) > std::abs(normal[axes[1]])) std::swap(axes[1], axes[2]);
+  if (std::abs(normal[axes[1]]) > std::abs(normal[axes[0]])) std::swap(axes[0], axes[1]);
+  for (const int axis : axes) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // the kept coordinates
+    const double su = ps[u], sw = ps[w];
+    // Half-plane of a link vertex around s: "upper" = angle in [0, pi).
+    auto upper = [&](const Vec3& p) { return p[w] > sw || (p[w] == sw && p[u] > su); };
+    int sign = 0, crossings = 0;
+    bool consistent = true;
+    for (std::size_t j = 0; j < k && consistent; ++j) {
+      const Vec3& pa = P[a[order[j]]];
+      const Vec3& pb = P[b[order[j]]];
+      const int o = static_cast<int>(orient2d(su, sw, pa[u], pa[w], pb[u], pb[w]));
+      if (o == 0 || (sign != 0 && o != sign)) consistent = false;
+      sign = o;
+      // Each step turns by less than pi in the direction `sign`; it passes the
+      // angle 0 iff it goes from lower to upper (counter-clockwise) or from
+      // upper to lower (clockwise).
+      const bool ua = upper(pa), ub = upper(pb);
+      if (sign > 0 ? (!ua && ub) : (ua && !ub)) ++crossings;
+    }
+    if (consistent && crossings == 1) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const TriangleClasses& classes,
+                                              const VertexIncidence& incidence) {
+  const std::size_t nv = mesh.positions.size();
+  std::vector<std::uint8_t> ok(nv, 0);
+  Index fan[64];
+  for (std::size_t v = 0; v < nv; ++v) {
+    const Index b = incidence.start[v], e = incidence.start[v + 1];
+    if (e - b > 64) continue;
+    std::size_t k = 0;
+    for (Index j = b; j < e; ++j)
+      if (classes.kind[incidence.incident[j]] == TriangleKind::kGood) fan[k++] = incidence.incident[j];
+    ok[v] = simple_fan(mesh.positions, mesh.triangles, Index(v), fan, k) ? 1 : 0;
+  }
+  return ok;
+}
+
+std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes) {
+  struct Id {
+    Index id;
+  };
+  std::vector<std::array<Index, 2>> pairs;
+  for_each_box_pair<Id>(
+      boxes.size(),
+      [&](std::size_t i) {
+        const auto& b = boxes[i];
+        return BoxItem<Id>{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {Index(i)}};
+      },
+      [&](const Id& i, const Id& j, bool maybe) {
+        if (!maybe) return;
+        const auto &a = boxes[i.id], &b = boxes[j.id];
+        bool overlap = true;
+        for (int k = 0; k < 3; ++k) overlap = overlap && a[k] <= b[k + 3] && b[k] <= a[k + 3];
+        if (overlap) pairs.push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
+      });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+namespace {
+
+/// True if the exact bounding boxes of triangles a and b (closed) overlap.
+bool exact_boxes_overlap(const std::vector<Vec3>& P, const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
+  for (int k = 0; k < 3; ++k) {
+    const double alo = std::min({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+    const double ahi = std::max({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+    const double blo = std::min({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+    const double bhi = std::max({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+    if (!(alo <= bhi && blo <= ahi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
+                             const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
+  const auto& P = mesh.positions;
+  const auto& T = mesh.triangles;
+  const std::size_t nt = T.size();
+  r.self_intersections_checked = true;
+  struct Tri {
+    Index id;                // triangle
+    std::array<Index, 3> v;  // its vertices
+  };
+  std::vector<Index> good;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (classes.kind[t] == TriangleKind::kGood) good.push_back(Index(t));
+  auto make = [&](std::size_t i) {
+    const Index t = good[i];
+    const Vec3 &a = P[T[t][0]], &b = P[T[t][1]], &c = P[T[t][2]];
+    BoxItem<Tri> item;
+    for (int k = 0; k < 3; ++k) {
+      item.lo[k] = std::min({a[k], b[k], c[k]});
+      item.hi[k] = std::max({a[k], b[k], c[k]});
+    }
+    item.tri = {t, T[t]};
+    return item;
+  };
+  // Pairs that share a vertex (or an edge) of a simple fan cannot meet beyond
+  // what they share (simple_fan()): counted as tested, decided without the
+  // exact test. Every other pair goes through mesh_triangles_intersect().
+  const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence);
+  std::vector<std::array<Index, 2>> found;
+  std::size_t tested = 0;
+  for_each_box_pair<Tri>(good.size(), make, [&](const Tri& ti, const Tri& tj, bool maybe) {
+    // Shared vertices, without branches: m[k] = whether ti.v[k] is a vertex of tj.
+    bool m[3];
+    for (int k = 0; k < 3; ++k) m[k] = (ti.v[k] == tj.v[0]) | (ti.v[k] == tj.v[1]) | (ti.v[k] == tj.v[2]);
+    const int ns = int(m[0]) + int(m[1]) + int(m[2]);
+    // The exact boxes overlap: certainly if the triangles share a vertex (it
+    // lies in both), else decided from the positions (rare: such pairs go on
+    // to the exact triangle test anyway).
+    const bool hit = maybe & ((ns > 0) || (maybe && exact_boxes_overlap(P, ti.v, tj.v)));
+    const bool counted = hit & (ns != 3);  // a duplicate is counted separately
+    tested += counted;
+    // One or two shared vertices, one of them a simple fan: settled.
+    const bool settled = (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) |
+                         (m[2] & (fan_ok[ti.v[2]] != 0));
+    if (!(counted & !settled)) return;
+    const Tri& lo = ti.id < tj.id ? ti : tj;
+    const Tri& hi = ti.id < tj.id ? tj : ti;
+    if (mesh_triangles_intersect(lo.v, hi.v, P)) found.push_back({lo.id, hi.id});
+  });
+  r.num_pairs_tested = tested;
+  r.num_self_intersections = found.size();
+  std::sort(found.begin(), found.end());
+  if (found.size() > max_examples) found.resize(max_examples);
+  r.self_intersection_examples = std::move(found);
+}
+
+}  // namespace skinmesh::geometry::mesh_checks_detail

@@ -1,0 +1,108 @@
+// geometry/io/mesh_io_internal.h: the private header of the mesh readers and
+// writers — the number and index helpers the formats share, and one writer and
+// one reader per format, each format in its own file:
+//   mesh_io.cpp      dispatch by extension (mesh_io.h), atomic file writing,
+//                    file reading, and the shared helpers below
+//   mesh_io_ply.cpp  PLY: binary little-endian writer; ascii / binary reader
+//   mesh_io_off.cpp  OFF / NOFF writer and reader
+//   mesh_io_obj.cpp  Wavefront OBJ writer and reader
+//   mesh_io_stl.cpp  STL: binary writer; binary / ascii reader
+//   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
+//   mesh_io_msms.cpp MSMS .vert / .face writer and reader
+// Numbers go through std::to_chars / std::from_chars: shortest text that reads
+// back to the same double, and correctly rounded parsing, so text round trips are
+// bit-exact. Only geometry/io/mesh_io*.cpp include this header.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "geometry/mesh/indexed_mesh.h"
+#include "geometry/io/mesh_io.h"
+
+namespace skinmesh::geometry::mesh_io_detail {
+
+// Shared Helpers (mesh_io.cpp)
+
+/// All of `token` (a leading '+' allowed) as an integer, or nullopt.
+std::optional<std::int64_t> to_int(std::string_view token);
+
+/// All of `token` as a finite double (a leading '+' allowed). Throws
+/// InputError(path, line, "non-numeric or non-finite <what> '<token>'").
+double number_or_throw(const std::string& path, int line, std::string_view token, const char* what);
+
+/// to_int(token), or throws InputError(path, line, "non-integer <what> '<token>'").
+std::int64_t int_or_throw(const std::string& path, int line, std::string_view token, const char* what);
+
+/// Appends the shortest decimal text that reads back to `v` (or, if
+/// !double_precision, to float(v)).
+void append_number(std::string& out, double v, bool double_precision);
+
+/// Appends the decimal text of `i`.
+void append_index(std::string& out, std::uint64_t i);
+
+/// Appends one line "3 a b c" per triangle (0-based indices): the polygon list
+/// of OFF and of legacy VTK.
+void append_triangle_lines(std::string& out, const std::vector<std::array<Index, 3>>& triangles);
+
+/// Checks that every triangle index is < positions.size(); `lines[i]` (if given)
+/// is the source line of triangle i. Throws InputError(path, line, "face i: vertex
+/// index v out of range (n vertices)").
+void check_indices(const std::string& path, const IndexedMesh& m, const std::vector<int>& lines);
+
+// Formats: writers return the whole file; readers take the whole file `data`
+// read from `path` (for messages) and throw InputError as read_mesh() says.
+
+/// The binary little-endian PLY file of `m` (layout: write_mesh() in mesh_io.h).
+/// Pre: `m` passed the checks of write_mesh() (check_writable in mesh_io.cpp).
+std::string ply_bytes(const IndexedMesh& m, const MeshWriteOptions& opt);
+
+/// Reads a PLY file (ascii, binary_little_endian or binary_big_endian).
+IndexedMesh read_ply(const std::string& path, const std::string& data);
+
+/// The OFF file of `m` (NOFF with normals if m.normals is set).
+std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+
+/// Reads an OFF file ([ST][C][N]OFF, ascii).
+IndexedMesh read_off(const std::string& path, const std::string& data);
+
+/// The Wavefront OBJ file of `m` (`v`, then `vn` and `f a//a b//b c//c` if
+/// m.normals is set, else `f a b c`; 1-based indices).
+std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+
+/// Reads a Wavefront OBJ file (`v`, `vn`, `f`; other statements ignored).
+IndexedMesh read_obj(const std::string& path, const std::string& data);
+
+/// The binary STL file of `m` (80-byte header, triangle count, per triangle
+/// the unit facet normal and the three corners as float32, 2 zero bytes).
+std::string stl_bytes(const IndexedMesh& m);
+
+/// Reads a binary or ascii STL file; corners with identical coordinates
+/// become one vertex (in order of first appearance). No normals.
+IndexedMesh read_stl(const std::string& path, const std::string& data);
+
+/// The legacy VTK file of `m` (ascii POLYDATA; POINT_DATA normals, atom, rho
+/// when set; CELL_DATA min_angle in degrees).
+std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+
+/// Reads an ascii legacy VTK POLYDATA file (POINTS, POLYGONS of triangles;
+/// VERTICES and LINES skipped; POINT_DATA NORMALS, SCALARS atom and rho kept,
+/// other SCALARS skipped).
+IndexedMesh read_vtk(const std::string& path, const std::string& data);
+
+/// The MSMS .vert and .face files of `m`; `name` goes into the comment lines.
+std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const std::string& name);
+
+/// Reads the MSMS .vert and .face files (their paths for messages).
+IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, const std::string& face_path,
+                      const std::string& face);
+
+/// read_msms() of the .vert file's content followed by the .face file's.
+IndexedMesh read_msms_concatenated(const std::string& name, const std::string& data);
+
+}  // namespace skinmesh::geometry::mesh_io_detail

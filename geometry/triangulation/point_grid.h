@@ -1,0 +1,332 @@
+// geometry/triangulation/point_grid.h: uniform grids over points for fixed-radius neighbour
+// queries: PointGrid, a hash grid that grows point by point (critical-point
+// lookup, front proximity), ErasablePointGrid, a hash grid whose points can
+// also be removed (the sweep's free front), and FlatPointGrid, a grid over a
+// fixed point set stored in flat arrays (the verifier's restricted-Delaunay
+// test).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "core/assert.h"
+#include "geometry/triangulation/key_index.h"
+#include "core/types.h"
+
+namespace skinmesh::geometry {
+
+namespace detail {
+
+/// The occupied cells of a uniform grid of cubic cells of side `cell_size`
+/// (Å), numbered densely 0, 1, 2, ... in the order they were first added (a
+/// KeyIndex of the cells' integer coordinates). The grids below keep their
+/// per-cell data in arrays indexed by that number.
+class CellIndex {
+ public:
+  static constexpr std::uint32_t kNone = KeyIndex::kNone;
+  using Cell = std::array<std::int64_t, 3>;
+
+  /// Pre: cell_size > 0.
+  explicit CellIndex(double cell_size) : h_(cell_size) {}
+
+  /// The cell holding p.
+  Cell cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x() / h_)), static_cast<std::int64_t>(std::floor(p.y() / h_)),
+            static_cast<std::int64_t>(std::floor(p.z() / h_))};
+  }
+  /// The number of cell c, or kNone if it was never added.
+  std::uint32_t find(const Cell& c) const { return keys_.find(key(c)); }
+  /// The number of cell c, adding it (as number size()) if it is new.
+  std::uint32_t find_or_add(const Cell& c) { return keys_.find_or_add(key(c)).first; }
+  /// Calls fn(number) for every added cell meeting the box [q - r, q + r]³, in
+  /// (x, y, z) order of the cells.
+  template <class Fn>
+  void for_each_cell_near(const Vec3& q, double r, Fn&& fn) const {
+    const Cell lo = cell_of(q - Vec3::Constant(r)), hi = cell_of(q + Vec3::Constant(r));
+    for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+      for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
+          const std::uint32_t c = find({i, j, k});
+          if (c != kNone) fn(c);
+        }
+  }
+  double cell_size() const { return h_; }
+  /// Number of cells added.
+  std::uint32_t size() const { return keys_.size(); }
+
+ private:
+  static std::uint64_t key(const Cell& c) {
+    // 21 bits per axis, 63 in all (cells beyond ±2^20 wrap, which only costs speed).
+    const std::uint64_t m = (1u << 21) - 1;
+    return (static_cast<std::uint64_t>(c[0]) & m) | ((static_cast<std::uint64_t>(c[1]) & m) << 21) |
+           ((static_cast<std::uint64_t>(c[2]) & m) << 42);
+  }
+  double h_;
+  KeyIndex keys_;
+};
+
+}  // namespace detail
+
+/// Uniform grid of cubic cells of side `cell_size` (Å) hashing point indices.
+/// Points can be added after construction; removal is not supported (callers
+/// filter stale entries, or use ErasablePointGrid). Queries visit the cells
+/// overlapping the query box in (x, y, z) order, and, within a cell, the
+/// points in insertion order.
+///
+/// Layout: detail::CellIndex numbers the occupied cells; each cell keeps the
+/// first and last of its points; the points live in one flat array, each
+/// linked to the next point of its cell. No allocation per cell, one probe
+/// sequence per visited cell. [measured: it replaced a node-based
+/// std::unordered_map of per-cell vectors; same queries, same order,
+/// byte-identical meshes, the sweep of maltoporin 1.58 -> 1.48 s]
+class PointGrid {
+ public:
+  /// Pre: cell_size > 0.
+  explicit PointGrid(double cell_size) : index_(cell_size) {}
+
+  /// Adds point `id` at position p.
+  void insert(Index id, const Vec3& p) {
+    const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
+    if (c == ends_.size()) ends_.push_back({kNone, kNone});
+    const auto e = static_cast<std::uint32_t>(entries_.size());
+    entries_.push_back({p, id, kNone});
+    if (ends_[c].head == kNone) {
+      ends_[c].head = e;
+    } else {
+      entries_[ends_[c].tail].next = e;
+    }
+    ends_[c].tail = e;
+  }
+
+  /// Calls fn(id, position) for every point within distance r (Å) of q.
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+    const double r2 = r * r;
+    index_.for_each_cell_near(q, r, [&](std::uint32_t c) {
+      for (std::uint32_t e = ends_[c].head; e != kNone; e = entries_[e].next)
+        if ((entries_[e].p - q).squaredNorm() <= r2) fn(entries_[e].id, entries_[e].p);
+    });
+  }
+
+  double cell_size() const { return index_.cell_size(); }
+
+ private:
+  static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
+  struct Entry {
+    Vec3 p;
+    Index id;
+    std::uint32_t next;  ///< the next point of the same cell, or kNone
+  };
+  struct Ends {
+    std::uint32_t head, tail;
+  };
+  detail::CellIndex index_;
+  std::vector<Ends> ends_;  ///< per cell number: its first and last point
+  std::vector<Entry> entries_;
+};
+
+/// Uniform grid of cubic cells of side `cell_size` (Å) over a changing set of
+/// points: points are added and removed by id. Each cell keeps its points in
+/// a contiguous array of 16-byte entries (the position in single precision
+/// and the id); removal moves the cell's last point into the hole. A query
+/// reads a cell's entries sequentially, filters them with a distance bound
+/// padded by the single-precision rounding, and confirms each survivor with
+/// the exact test on the caller's double-precision positions, so it reports
+/// exactly the points a scan of those positions reports. The visiting order
+/// is deterministic but not the insertion order: callers choose among the
+/// points by their own rule (nearest, ties to the lower id). Used for the
+/// sweep's vertices and its free front (the collision safety net).
+class ErasablePointGrid {
+ public:
+  /// Pre: cell_size > 0. With erasable = false the grid keeps no table from
+  /// ids to places (8 bytes per id) and erase() must not be called: for a set
+  /// that only grows (the sweep's vertices).
+  explicit ErasablePointGrid(double cell_size, bool erasable = true) : index_(cell_size), erasable_(erasable) {}
+
+  /// Adds point `id` at position p (finite). Pre: id is not in the grid; the
+  /// positions passed to the queries hold p at index id.
+  void insert(Index id, const Vec3& p) {
+    const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
+    if (c == cells_.size()) cells_.emplace_back();
+    if (erasable_) {
+      if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
+      where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
+    }
+    cells_[c].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
+    max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
+    // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies within
+    // sqrt(3) 2^-24 max_abs_ of the true one (padded).
+    pad_ = 1.05e-7 * max_abs_ + 1e-300;
+  }
+  /// Removes point `id`; does nothing if it is not in the grid. Pre: the grid
+  /// is erasable.
+  void erase(Index id) {
+    SKINMESH_ASSERT_MSG(erasable_, "erase() on a grid made without erasure");
+    if (!contains(id)) return;
+    const Where w = where_[id];
+    std::vector<Entry>& cell = cells_[w.cell];
+    cell[w.slot] = cell.back();
+    where_[cell[w.slot].id].slot = w.slot;
+    cell.pop_back();
+    where_[id] = {kNone, 0};
+  }
+  /// True if point `id` is in the grid. Pre: the grid is erasable.
+  bool contains(Index id) const {
+    SKINMESH_ASSERT_MSG(erasable_, "contains() on a grid made without erasure");
+    return id < where_.size() && where_[id].cell != kNone;
+  }
+
+  /// Calls fn(id, position) for every point whose position (positions[id], Å)
+  /// lies within distance r of q, |position - q|² <= r² in double precision.
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, std::span<const Vec3> positions, Fn&& fn) const {
+    const double r2 = r * r;
+    const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
+    index_.for_each_cell_near(q, rp, [&](std::uint32_t c) {
+      for (const Entry& e : cells_[c]) {
+        const double dx = double(e.p[0]) - q.x(), dy = double(e.p[1]) - q.y(), dz = double(e.p[2]) - q.z();
+        if (dx * dx + dy * dy + dz * dz > rp2) continue;
+        const Vec3& p = positions[e.id];
+        if ((p - q).squaredNorm() <= r2) fn(e.id, p);
+      }
+    });
+  }
+
+  double cell_size() const { return index_.cell_size(); }
+
+ private:
+  static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
+  struct Entry {
+    float p[3];
+    Index id;
+  };
+  struct Where {
+    std::uint32_t cell, slot;  ///< cell number (kNone: absent) and place in it
+  };
+  detail::CellIndex index_;
+  std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
+  std::vector<Where> where_;               ///< per id (empty unless erasable_)
+  bool erasable_ = true;
+  double max_abs_ = 0;                     ///< largest |coordinate| inserted (Å)
+  double pad_ = 0;                         ///< bound on |stored - true position| (Å)
+};
+
+/// Uniform grid of cubic cells over a fixed set of points, built once: the
+/// points sorted by cell (counting sort, stable in the point index) and one
+/// offset per cell of the bounding box, cells numbered with z fastest so that
+/// a query reads one contiguous run of points per (x, y) column of its box.
+/// The cell side is the requested size, doubled until the grid has at most
+/// kMaxCellsPerPoint cells per point (plus 4096), so memory stays O(n).
+/// Queries report exactly the points a linear scan with the same distance test
+/// reports (tests/geometry/point_grid_test.cpp).
+class FlatPointGrid {
+ public:
+  /// Bound on the number of cells per point (see the class comment).
+  static constexpr double kMaxCellsPerPoint = 8.0;
+
+  /// Grid over points[i], with id i, for every point with finite coordinates
+  /// (the others are left out). Pre: cell_size > 0 (Å).
+  FlatPointGrid(std::span<const Vec3> points, double cell_size) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    std::size_t n = 0;
+    for (const Vec3& p : points)
+      if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), ++n;
+    if (n == 0) {
+      offsets_.assign(2, 0);
+      return;
+    }
+    lo_ = lo;
+    h_ = cell_size;
+    const double max_cells = kMaxCellsPerPoint * double(n) + 4096.0;
+    for (;;) {
+      double total = 1.0;
+      for (int k = 0; k < 3; ++k) total *= std::floor((hi[k] - lo[k]) / h_) + 1.0;
+      if (total <= max_cells) break;
+      h_ *= 2.0;
+    }
+    inv_ = 1.0 / h_;
+    for (int k = 0; k < 3; ++k) dims_[k] = std::int64_t(std::floor((hi[k] - lo[k]) / h_)) + 1;
+    std::vector<std::uint32_t> cell_of_point(points.size());
+    offsets_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]) + 1, 0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!points[i].allFinite()) continue;
+      const std::int64_t x = cell(points[i].x(), 0), y = cell(points[i].y(), 1), z = cell(points[i].z(), 2);
+      cell_of_point[i] = std::uint32_t((x * dims_[1] + y) * dims_[2] + z);
+      ++offsets_[cell_of_point[i] + 1];
+    }
+    for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+    // offsets_[c + 1] is now the end of cell c. Filling each cell from its end,
+    // points in decreasing index order, keeps them in increasing index order
+    // and leaves offsets_[c + 1] at the start of cell c; the shift below then
+    // makes offsets_[c] the start of cell c. (No second offset array: it was
+    // as large as the first, at the peak of the check's memory.)
+    entries_.resize(n);
+    for (std::size_t i = points.size(); i-- > 0;)
+      if (points[i].allFinite()) entries_[--offsets_[cell_of_point[i] + 1]] = {points[i], Index(i)};
+    // offsets_[c + 1] = start of cell c; shift down one place, end = n.
+    for (std::size_t c = 0; c + 1 < offsets_.size(); ++c) offsets_[c] = offsets_[c + 1];
+    offsets_.back() = static_cast<std::uint32_t>(n);
+  }
+
+  /// Calls fn(id, position) for every point p with |p - q|² <= r² (squared
+  /// norms in double precision, as PointGrid::for_each_near()).
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, Fn&& fn) const {
+    any_near(q, r, [&](Index id, const Vec3& p) {
+      fn(id, p);
+      return false;
+    });
+  }
+
+  /// Calls pred(id, position) for the points p with |p - q|² <= r² until it
+  /// returns true; returns whether it did (false if no point satisfied it).
+  template <class Pred>
+  bool any_near(const Vec3& q, double r, Pred&& pred) const {
+    if (entries_.empty() || !q.allFinite() || !(r >= 0.0) || !std::isfinite(r)) return false;
+    // Pad the box by a relative 1e-12 (and against underflow) so that it holds
+    // every point passing the rounded distance test below.
+    const double rb = r * (1.0 + 1e-12) + 1e-150;
+    std::int64_t a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = cell(q[k] - rb, k);
+      b[k] = cell(q[k] + rb, k);
+    }
+    const double r2 = r * r;
+    for (std::int64_t x = a[0]; x <= b[0]; ++x)
+      for (std::int64_t y = a[1]; y <= b[1]; ++y) {
+        const std::int64_t column = (x * dims_[1] + y) * dims_[2];
+        const std::uint32_t end = offsets_[std::size_t(column + b[2]) + 1];
+        for (std::uint32_t e = offsets_[std::size_t(column + a[2])]; e < end; ++e)
+          if ((entries_[e].p - q).squaredNorm() <= r2 && pred(entries_[e].id, entries_[e].p)) return true;
+      }
+    return false;
+  }
+
+  /// Side of the cells actually used (Å): the requested size or a power-of-two multiple.
+  double cell_size() const { return h_; }
+  /// Number of cells of the grid (its bounding box, empty cells included).
+  std::size_t num_cells() const { return offsets_.size() - 1; }
+
+ private:
+  struct Entry {
+    Vec3 p;
+    Index id;
+  };
+  /// Cell coordinate along axis k, clamped to the grid: monotone in x.
+  std::int64_t cell(double x, int k) const {
+    const double t = std::floor((x - lo_[k]) * inv_);
+    return std::int64_t(std::clamp(t, 0.0, double(dims_[k] - 1)));
+  }
+  Vec3 lo_ = Vec3::Zero();
+  double h_ = 1.0, inv_ = 1.0;
+  std::int64_t dims_[3] = {1, 1, 1};
+  std::vector<std::uint32_t> offsets_;  ///< points of cell c: entries_[offsets_[c] .. offsets_[c + 1])
+  std::vector<Entry> entries_;
+};
+
+}  // namespace skinmesh::geometry

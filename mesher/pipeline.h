@@ -1,0 +1,146 @@
+// mesher/pipeline.h: the whole algorithm of Cheng & Shi 2004 as one call, the
+// entry point that the command line, the benchmarks and the tests share.
+// §4.1 "Algorithm": the input is a set of weighted points B, the output a
+// triangulation K of the skin F_B; the stages are
+//   1. skin       the regular triangulation and the mixed complex of B (§2.1)
+//   2. morse      the critical points of the height function, the Morse–Smale
+//                 complex and its simplification (§3), checked against the
+//                 Euler characteristic of the skin (from its dual complex)
+//   3. sweep      Algorithm 1: creation, creep, wing, bridge, seal (§4.1, §4.2)
+//   4. refine     the local refinement: flips, contractions, insertions (§4.3)
+//   4b. angles    vertex moves that raise the smallest angles and keep [L],
+//                 [U] and the restricted Delaunay property (not in the paper;
+//                 refine/angle_improvement.h)
+//   5. check      the skin-aware verifier (verify/skin_mesh_check.h)
+// Notes: papers/mesher/pipeline.md
+#pragma once
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "front/sweep.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "geometry/kernel/weighted_point.h"
+#include "morse/critical_points.h"
+#include "morse/morse_smale_complex.h"
+#include "refine/angle_improvement.h"
+#include "refine/local_refinement.h"
+#include "skin/size_conditions.h"
+#include "verify/skin_mesh_check.h"
+#include "skin/dual_complex.h"
+#include "skin/molecule.h"
+
+namespace skinmesh::mesher {
+
+/// Observers of the pipeline's stages, for recorders (trace/trace_recorder.h);
+/// an empty one is not called. Everything they see is in the local frame
+/// (MeshResult::frame_centre). They must not throw unless the pipeline is to
+/// stop, and the pipeline computes the same with or without them.
+struct PipelineObservers {
+  /// After stage 2, with the skin and the Morse–Smale complex, before the
+  /// integral lines' polylines are freed.
+  std::function<void(const skin::SkinSurface&, const morse::MorseSmaleComplex&)> morse;
+  /// At the end of the sweep, the refinement and the angle improvement
+  /// ("sweep", "refine", "angles"), with the half-edge mesh before it is
+  /// compacted (deleted elements still present, marked deleted).
+  std::function<void(const char* stage, const skin::SkinSurface&, const geometry::SurfaceMesh&)> stage_end;
+};
+
+/// Options of the whole pipeline, one struct per stage.
+struct MeshOptions {
+  /// Probe radius (Å) used by the Molecule overload of mesh_skin: atom weight
+  /// w = 2 (r + probe)² (Cheng & Shi §2.1; papers/skin/molecule_io.md).
+  double probe_radius = 1.4;
+  /// C and Q of [L] and [U] (Cheng & Shi §2.2). They are copied into the
+  /// sweep, refinement, angle-improvement and check options (whose own
+  /// `size` fields are ignored), so that all stages agree.
+  skin::SizeConstants size;
+  /// Unit height direction of the sweep (§3.1 uses +y; the default is tilted
+  /// slightly so that no two atoms are at the same height by accident).
+  Vec3 height_direction = morse::default_height_direction();
+  /// Stage 2: integral lines, protecting spheres, arc contraction.
+  morse::MorseSmaleOptions morse;
+  /// Stage 3: the sweep's tuning numbers and debugging aids.
+  front::SweepOptions sweep;
+  /// Stage 4: run the local refinement (default). Without it the mesh is
+  /// closed, embedded and of the right topology but [L], [U] and the
+  /// restricted Delaunay property may fail.
+  bool refine = true;
+  refine::RefineOptions refinement;
+  /// Stage 4b, after the refinement (skipped when `refine` is false): move
+  /// the vertices of triangles with small angles on the skin, keeping [L],
+  /// [U], the restricted Delaunay property, orientation and embedding
+  /// (refine/angle_improvement.h; papers/refine/angle_improvement.md).
+  /// Default on; off gives the mesh of the paper's algorithm alone.
+  bool improve_angles = true;
+  refine::AngleImprovementOptions angle_improvement;
+  /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
+  bool check = true;
+  verify::SkinCheckOptions checks;
+  /// Threads (0: every core of the machine). The mesh and every count in
+  /// MeshResult are the same, byte for byte, for every thread count: the
+  /// threads run independent computations side by side — the skin's dual
+  /// complex beside the Morse–Smale complex, the integral lines of different
+  /// saddles, the mesh-only checks beside the skin checks
+  /// (papers/bench/profile.md, "Threads"). morse.threads and checks.threads,
+  /// when left at their defaults, follow this.
+  int threads = 0;
+  /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles", "check")
+  /// and the fraction of it done (0..1); empty: no reports. The library
+  /// itself prints nothing.
+  std::function<void(const std::string& stage, double fraction)> progress;
+  /// Observers of whole stages; the sweep's operations are observed through
+  /// sweep.observer, the refinement's through refinement.observer.
+  PipelineObservers observers;
+};
+
+/// What the pipeline produced and measured.
+struct MeshResult {
+  /// The mesh: positions (Å, on the skin), triangles counter-clockwise about
+  /// the outward normal, unit outward normals per vertex, and per vertex the
+  /// index (into the input points) of the atom whose mixed cell holds it.
+  geometry::IndexedMesh mesh;
+  /// Critical points of the height function before and after simplification.
+  morse::MorseCount critical, live;
+  /// Topology of the skin computed from the dual complex (independent of the mesh).
+  skin::SkinTopology expected_topology;
+  front::SweepStats sweep;
+  refine::RefineStats refinement;
+  /// What stage 4b did (all zero if it did not run).
+  refine::AngleImprovementStats angle_improvement;
+  /// True if stage 5 ran; then `check` holds its report.
+  bool checked = false;
+  verify::SkinCheckReport check;
+  /// Wall-clock seconds per stage, in order ("skin", "morse", "sweep",
+  /// "refine", "angles", "output" (compaction, normals, atoms), "check";
+  /// stages that did not run are absent).
+  std::vector<std::pair<std::string, double>> seconds;
+
+  /// Centre of the local frame (Å, skin::local_frame_centre): every stage ran
+  /// on the points translated by -frame_centre, and `mesh` was translated
+  /// back. The check's report refers to the local frame.
+  Vec3 frame_centre = Vec3::Zero();
+
+  /// True unless the check ran and failed.
+  bool ok() const { return !checked || check.ok(); }
+};
+
+/// Meshes the skin of the weighted points `points` (centres in Å, weights in
+/// Å²) with the algorithm of Cheng & Shi 2004 (stages listed in this header).
+/// Throws InputError if `points` is empty, TopologyError if the Morse count
+/// of the critical points differs from the skin's Euler characteristic or
+/// the sweep cannot close the front, GeometryError if a projection fails,
+/// std::invalid_argument for options out of range (a tangent-disc factor
+/// outside the window of C and Q). A mesh that fails its check is returned
+/// with the report (ok() false), never silently. Every stage works in the
+/// local frame of the points (skin::local_frame_centre at the origin); when
+/// that centre is not the origin, an error that names positions says so.
+MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options = {});
+
+/// mesh_skin() of a molecule's atoms, weighted with options.probe_radius
+/// (std::invalid_argument unless 0 <= probe_radius <= skin::kMaxRadius).
+MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options = {});
+
+}  // namespace skinmesh::mesher

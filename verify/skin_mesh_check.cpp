@@ -1,0 +1,276 @@
+// verify/skin_mesh_check.cpp: the skin-aware mesh verifier.
+#include "verify/skin_mesh_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <numeric>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/triangulation/point_grid.h"
+#include "skin/restricted_delaunay.h"
+
+namespace skinmesh::verify {
+
+namespace {
+
+/// Frees v's memory (clear() keeps the capacity).
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
+/// A number for a message: 17 significant digits, "inf"/"nan" as such.
+std::string number_text(double x) {
+  std::ostringstream os;
+  os.precision(17);
+  os << x;
+  return os.str();
+}
+
+/// "[a, b, c]" for a message.
+std::string list_text(const std::vector<std::int64_t>& v) {
+  std::ostringstream os;
+  os << "[";
+  for (std::size_t i = 0; i < v.size(); ++i) os << (i ? ", " : "") << v[i];
+  os << "]";
+  return os.str();
+}
+
+/// A finite number, or null.
+nlohmann::ordered_json finite_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+/// The number of distinct undirected edges {u, w} of the triangles accepted by
+/// `valid` that violate [L]. `start` holds, at start[v + 1], how many triangle
+/// edges have v as their lower vertex; it becomes the offsets of a compressed
+/// list of the higher ends, which is sorted per vertex to visit each edge once.
+/// skin::satisfies_L() is symmetric in its two ends, so the order of u, w is irrelevant.
+template <class Valid>
+std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid, std::vector<Index>& start,
+                               const std::vector<double>& rho, const skin::SizeConstants& size) {
+  const auto& P = mesh.positions;
+  const std::size_t nv = P.size();
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Index> higher(start[nv]);
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (const auto& t : mesh.triangles) {
+    if (!valid(t)) continue;
+    for (int i = 0; i < 3; ++i) {
+      const Index u = t[i], w = t[(i + 1) % 3];
+      higher[fill[std::min(u, w)]++] = std::max(u, w);
+    }
+  }
+  std::size_t violations = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto b = higher.begin() + start[v], e = higher.begin() + start[v + 1];
+    std::sort(b, e);
+    for (auto it = b; it != e; ++it)
+      if ((it == b || *it != it[-1]) && !skin::satisfies_L(P[v], P[*it], rho[v], rho[*it], size)) ++violations;
+  }
+  return violations;
+}
+
+}  // namespace
+
+std::string SkinCheckReport::to_json() const {
+  nlohmann::ordered_json j;
+  j["ok"] = ok();
+  j["closed"] = mesh.closed;
+  j["manifold"] = mesh.edge_manifold && mesh.vertex_manifold;
+  j["oriented"] = mesh.oriented;
+  j["outward"] = num_inward_triangles == 0;
+  j["num_inward_triangles"] = num_inward_triangles;
+  j["self_intersections"] = mesh.self_intersections_checked ? nlohmann::ordered_json(mesh.num_self_intersections)
+                                                            : nlohmann::ordered_json(nullptr);
+  j["component_euler"] = component_euler;
+  j["expected_component_euler"] = expected_component_euler;
+  j["expected_components"] = expected.components();
+  j["expected_euler"] = expected.euler_skin();
+  j["topology_matches"] = topology_matches;
+  j["max_vertex_distance"] = finite_or_null(max_vertex_distance);
+  j["num_far_vertices"] = num_far_vertices;
+  j["vertex_distance_tolerance"] = finite_or_null(vertex_distance_tolerance);
+  j["min_angle_deg"] = finite_or_null(mesh.min_angle_deg);
+  j["max_angle_deg"] = finite_or_null(mesh.max_angle_deg);
+  j["min_angle_required_deg"] = finite_or_null(min_angle_required_deg);
+  j["angle_histogram_10deg"] = mesh.angle_histogram;
+  j["num_L_violations"] = num_L_violations;
+  j["num_U_violations"] = num_U_violations;
+  j["num_rdt_violations"] = restricted_delaunay_checked ? nlohmann::ordered_json(num_rdt_violations)
+                                                        : nlohmann::ordered_json(nullptr);
+  j["problems"] = problems;
+  j["mesh"] = nlohmann::ordered_json::parse(mesh.to_json());
+  return j.dump(2) + "\n";
+}
+
+SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
+                                const SkinCheckOptions& opt) {
+  SkinCheckReport rep;
+  geometry::MeshCheckOptions mopt;
+  mopt.check_self_intersections = opt.check_self_intersections;
+  mopt.small_angle_threshold_deg = opt.min_angle_deg;
+  // The mesh-only checks share nothing with the skin checks below but the
+  // (read-only) mesh: with two threads they run beside them.
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::min(hw, 2u));
+  std::future<geometry::MeshCheckReport> mesh_report;
+  if (threads >= 2)
+    mesh_report = std::async(std::launch::async, [&mesh, mopt] { return geometry::check_mesh(mesh, mopt); });
+  else
+    rep.mesh = geometry::check_mesh(mesh, mopt);
+  rep.min_angle_required_deg = opt.min_angle_deg;
+  std::vector<std::string> skin_problems;
+  const std::size_t nv = mesh.positions.size();
+  const auto& P = mesh.positions;
+
+  // Vertices: distance to the skin, normal, rho.
+  std::vector<double> rho(nv, 0.0);
+  std::vector<Vec3> normal(nv, Vec3::Zero());
+  std::vector<Index> cell(nv, kInvalidIndex);
+  // Point location walks from a hint: the cell of a vertex located before
+  // that shares a triangle with v (one edge away), else the last cell found.
+  // Vertices are visited in triangle order so that such a neighbour exists;
+  // vertices of no triangle come last. (Hints change only the walk, not the
+  // cell's patch at the point: f, grad f and rho are continuous across faces.)
+  std::vector<Index> order;
+  std::vector<Index> order_hint;
+  {
+    std::vector<std::uint8_t> seen(nv, 0);
+    order.reserve(nv);
+    order_hint.reserve(nv);
+    for (const auto& t : mesh.triangles) {
+      Index from = kInvalidIndex;
+      for (int i = 0; i < 3; ++i)
+        if (t[i] < nv && seen[t[i]]) from = t[i];
+      for (int i = 0; i < 3; ++i) {
+        const Index v = t[i];
+        if (v >= nv || seen[v]) continue;
+        seen[v] = 1;
+        order.push_back(v);
+        order_hint.push_back(from);
+        from = v;
+      }
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      if (!seen[v]) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
+  }
+  rep.vertex_distance_tolerance = opt.max_vertex_distance * std::max(1.0, skin.length_scale() / 100.0);
+  Index last = kInvalidIndex;
+  for (std::size_t k = 0; k < nv; ++k) {
+    const Index v = order[k];
+    if (!P[v].allFinite()) continue;
+    const Index h = order_hint[k] != kInvalidIndex && cell[order_hint[k]] != kInvalidIndex ? cell[order_hint[k]] : last;
+    const skin::SkinSample s = skin.sample(P[v], h);
+    last = cell[v] = s.cell;
+    rho[v] = s.rho;
+    const double g = s.gradient.norm();
+    normal[v] = s.gradient / g;
+    const double d = std::abs(s.f) / g;
+    if (d > rep.max_vertex_distance) rep.max_vertex_distance = d, rep.worst_vertex = static_cast<Index>(v);
+    if (d > rep.vertex_distance_tolerance) ++rep.num_far_vertices;
+  }
+  release(order);
+  release(order_hint);
+  if (rep.num_far_vertices)
+    skin_problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
+                           number_text(rep.vertex_distance_tolerance) + " Å from the skin (max " +
+                           number_text(rep.max_vertex_distance) + " Å)");
+
+  // Triangles: orientation against the skin normal, [U]; edges: [L].
+  auto valid = [&](const std::array<Index, 3>& t) {
+    return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+  };
+  std::vector<Index> edge_start(nv + 1, 0);  // edges listed at their lower vertex (CSR)
+  for (const auto& t : mesh.triangles) {
+    if (!valid(t)) continue;
+    const Vec3 &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
+    if ((b - a).cross(c - a).dot(normal[t[0]] + normal[t[1]] + normal[t[2]]) <= 0) ++rep.num_inward_triangles;
+    if (!skin::satisfies_U(a, b, c, rho[t[0]], rho[t[1]], rho[t[2]], opt.size)) ++rep.num_U_violations;
+    for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
+  }
+  rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
+  // What the restricted-Delaunay test below does not read goes back now: it
+  // runs beside the mesh-only checks, at the peak of the whole run's memory.
+  release(edge_start);
+  release(rho);
+  release(normal);
+  if (rep.num_inward_triangles)
+    skin_problems.push_back(std::to_string(rep.num_inward_triangles) +
+                           " triangles face inwards (against the skin normal)");
+  if (rep.num_L_violations)
+    skin_problems.push_back(std::to_string(rep.num_L_violations) + " edges violate [L]");
+  if (rep.num_U_violations)
+    skin_problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
+  const std::size_t min_angle_slot = skin_problems.size();  // the angle message goes here
+
+  // Restricted Delaunay: the surface Delaunay ball of every triangle is empty.
+  if (opt.check_restricted_delaunay && !mesh.triangles.empty()) {
+    rep.restricted_delaunay_checked = true;
+    double mean_edge = 0;
+    std::size_t ne = 0;
+    for (const auto& t : mesh.triangles)
+      if (valid(t)) mean_edge += (P[t[0]] - P[t[1]]).norm(), ++ne;
+    mean_edge = ne ? mean_edge / ne : 1.0;
+    const geometry::FlatPointGrid grid(P, std::max(mean_edge, 1e-9));
+    for (std::size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
+      const auto& t = mesh.triangles[ti];
+      if (!valid(t)) continue;
+      Vec3 m;
+      Index c = cell[t[0]];
+      bool bad = !skin::surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], m, c);
+      if (!bad) {
+        const double r = (m - P[t[0]]).norm() * (1 - 1e-9);
+        bad = grid.any_near(m, r, [&](Index v, const Vec3&) { return v != t[0] && v != t[1] && v != t[2]; });
+      }
+      if (bad) {
+        ++rep.num_rdt_violations;
+        if (rep.rdt_violation_examples.size() < 16) rep.rdt_violation_examples.push_back(static_cast<Index>(ti));
+      }
+    }
+    if (rep.num_rdt_violations)
+      skin_problems.push_back(std::to_string(rep.num_rdt_violations) +
+                             " triangles are not restricted Delaunay (non-empty surface Delaunay ball)");
+  }
+
+  // Join the mesh-only checks; problems in the order of the single-thread report.
+  if (mesh_report.valid()) rep.mesh = mesh_report.get();
+  rep.problems = rep.mesh.problems;
+  for (std::size_t i = 0; i <= skin_problems.size(); ++i) {
+    if (i == min_angle_slot && rep.mesh.num_triangles > 0 && rep.mesh.min_angle_deg < opt.min_angle_deg)
+      rep.problems.push_back("minimum angle " + number_text(rep.mesh.min_angle_deg) + "° below " +
+                             number_text(opt.min_angle_deg) + "°");
+    if (i < skin_problems.size()) rep.problems.push_back(skin_problems[i]);
+  }
+
+  // Topology against K0 (and the caller's per-component expectation).
+  rep.expected = opt.expected_topology ? *opt.expected_topology : skin::dual_complex_topology(skin.mixed_complex());
+  for (const auto& comp : rep.mesh.components) rep.component_euler.push_back(comp.euler);
+  std::sort(rep.component_euler.begin(), rep.component_euler.end());
+  rep.expected_component_euler = opt.expected_component_euler;
+  if (rep.expected_component_euler.empty()) {
+    if (rep.expected.total_genus() == 0)
+      rep.expected_component_euler.assign(rep.expected.components(), 2);
+    else if (rep.expected.components() == 1)
+      rep.expected_component_euler.assign(1, rep.expected.euler_skin());
+  }
+  std::sort(rep.expected_component_euler.begin(), rep.expected_component_euler.end());
+  const std::int64_t total = std::accumulate(rep.component_euler.begin(), rep.component_euler.end(), std::int64_t{0});
+  rep.topology_matches = static_cast<int>(rep.component_euler.size()) == rep.expected.components() &&
+                         total == rep.expected.euler_skin() &&
+                         (rep.expected_component_euler.empty() ||
+                          rep.expected_component_euler == rep.component_euler);
+  if (!rep.topology_matches) {
+    rep.problems.push_back("topology: components' Euler characteristics " + list_text(rep.component_euler) +
+                           ", expected " + std::to_string(rep.expected.components()) +
+                           " components with total " + std::to_string(rep.expected.euler_skin()) +
+                           (rep.expected_component_euler.empty() ? "" : " " + list_text(rep.expected_component_euler)));
+  }
+  return rep;
+}
+
+}  // namespace skinmesh::verify
