@@ -1,10 +1,9 @@
-// dynamic/dynamic_skin.cpp: mesh_skin_dynamic(), the growth schedule and the
+// dynamic/dynamic_skin.cpp: mesh_dynamic(), the growth schedule and the
 // static variant of the dynamic-skin baseline.
 // Notes: papers/dynamic/dynamic_skin.md
 #include "dynamic/dynamic_skin.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,9 +11,7 @@
 
 #include "core/errors.h"
 #include "morse/critical_points.h"
-#include "skin/singular_skin.h"
 #include "skin/mixed_complex.h"
-#include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::dynamic {
@@ -63,34 +60,29 @@ double smallest_sphere(const std::vector<geometry::WeightedPoint>& points) {
   return r;
 }
 
-DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, const DynamicOptions& opt) {
-  using Clock = std::chrono::steady_clock;
-  DynamicResult res;
-  auto t0 = Clock::now();
-  auto lap = [&](const char* name) {
-    const auto t1 = Clock::now();
-    res.seconds.emplace_back(name, std::chrono::duration<double>(t1 - t0).count());
-    t0 = t1;
-    if (opt.progress) opt.progress(name, 1.0);
-  };
-  auto report = [&](const char* name, double f) {
-    if (opt.progress) opt.progress(name, f);
-  };
+}  // namespace
 
-  report("skin", 0.0);
-  const geometry::PredicateStats predicates_before = geometry::predicate_stats();
-  const skin::SkinSurface skin(points);
-  skin::require_non_singular(skin);
-  res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
-  lap("skin");
+void validate(const DynamicOptions& options) {
+  if (!(options.seed_spacing > 0 && options.seed_spacing <= 1))
+    throw std::invalid_argument("the seed spacing must lie in (0, 1]");
+  if (!(options.max_step_motion > 0 && options.max_step_motion <= 1))
+    throw std::invalid_argument("the step motion must lie in (0, 1]");
+  if (!(options.rho_floor_fraction > 0 && options.rho_floor_fraction <= 1))
+    throw std::invalid_argument("the rho floor fraction must lie in (0, 1]");
+}
 
-  DynamicStats& stats = res.stats;
+geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::SizeConstants& size,
+                                   const DynamicOptions& opt, StageClock& clock, DynamicStats& stats) {
+  auto lap = [&clock](const char* name) { clock.end(name); };
+  auto report = [&clock](const char* name, double f) { clock.report(name, f); };
+  const std::vector<geometry::WeightedPoint>& points = skin.points();
+  geometry::IndexedMesh mesh;
   const std::size_t n_atoms = points.size();
   if (!opt.growth) {
     // Static variant: seed every sphere patch and the critical points of a
     // height function (every component has a lowest point), then refine.
     report("refine", 0.0);
-    SampleTriangulation st(skin, 0.0, opt.size);
+    SampleTriangulation st(skin, 0.0, size);
     for (Index i = 0; i < n_atoms; ++i) {
       if (!(points[i].w > 0)) continue;
       if (seed_sphere_patch(st, skin, i, std::sqrt(points[i].w / 2), opt.seed_spacing) > 0) ++stats.births;
@@ -106,7 +98,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     stats.samples = st.stats();
     stats.delaunay = st.triangulation().stats();
     lap("refine");
-    res.mesh = st.extract();
+    mesh = st.extract();
     lap("output");
   } else {
     // Growth: the level sets F_c of the final skin function, c from the birth
@@ -117,7 +109,7 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     for (const auto& p : points) wmax = std::max(wmax, p.w);
     double c = std::min(0.0, -wmax / 2 + floor * floor);
     stats.start_level = c;
-    SampleTriangulation st(skin, c, opt.size);
+    SampleTriangulation st(skin, c, size);
     st.set_rho_floor(floor);
     std::vector<std::uint8_t> born(n_atoms, 0);
     std::vector<Index> ids;
@@ -171,55 +163,10 @@ DynamicResult mesh_local(const std::vector<geometry::WeightedPoint>& points, con
     stats.kinetic_moves = st.triangulation().stats().kinetic_moves;
     stats.moves = st.stats().moves;
     lap("refine");
-    res.mesh = st.extract();
+    mesh = st.extract();
     lap("output");
   }
-
-  {
-    const geometry::PredicateStats now = geometry::predicate_stats();
-    auto diff = [](geometry::PredicateCounters a, const geometry::PredicateCounters& b) {
-      a.calls -= b.calls;
-      a.exact -= b.exact;
-      a.sos -= b.sos;
-      return a;
-    };
-    stats.predicates.orient2d = diff(now.orient2d, predicates_before.orient2d);
-    stats.predicates.orient3d = diff(now.orient3d, predicates_before.orient3d);
-    stats.predicates.power_test = diff(now.power_test, predicates_before.power_test);
-  }
-  if (opt.check) {
-    report("check", 0.0);
-    verify::SkinCheckOptions checks = opt.checks;
-    checks.size = opt.size;
-    if (!checks.expected_topology) checks.expected_topology = res.expected_topology;
-    res.check = verify::check_skin_mesh(skin, res.mesh, checks);
-    res.checked = true;
-    lap("check");
-  }
-  return res;
-}
-
-}  // namespace
-
-DynamicResult mesh_skin_dynamic(const std::vector<geometry::WeightedPoint>& points, const DynamicOptions& options) {
-  if (points.empty()) throw InputError("", 0, "no atoms");
-  if (!(options.seed_spacing > 0 && options.seed_spacing <= 1))
-    throw std::invalid_argument("the seed spacing must lie in (0, 1]");
-  if (!(options.max_step_motion > 0 && options.max_step_motion <= 1))
-    throw std::invalid_argument("the step motion must lie in (0, 1]");
-  if (!(options.rho_floor_fraction > 0 && options.rho_floor_fraction <= 1))
-    throw std::invalid_argument("the rho floor fraction must lie in (0, 1]");
-  const Vec3 centre = skin::local_frame_centre(points);
-  DynamicResult res = mesh_local(skin::translated(points, centre), options);
-  res.frame_centre = centre;
-  for (Vec3& p : res.mesh.positions) p += centre;
-  return res;
-}
-
-DynamicResult mesh_skin_dynamic(const skin::Molecule& molecule, const DynamicOptions& options) {
-  if (!(options.probe_radius >= 0 && options.probe_radius <= skin::kMaxRadius))
-    throw std::invalid_argument("the probe radius must lie in [0, " + std::to_string(skin::kMaxRadius) + "] Å");
-  return mesh_skin_dynamic(skin::weighted_points(molecule, options.probe_radius), options);
+  return mesh;
 }
 
 }  // namespace skinmesh::dynamic

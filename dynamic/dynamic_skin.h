@@ -16,23 +16,18 @@
 #include <utility>
 #include <vector>
 
+#include "core/stage_clock.h"
 #include "dynamic/sample_triangulation.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "geometry/kernel/predicates.h"
 #include "geometry/kernel/weighted_point.h"
 #include "skin/size_conditions.h"
-#include "verify/skin_mesh_check.h"
-#include "skin/dual_complex.h"
-#include "skin/molecule.h"
+#include "skin/skin_surface.h"
 
 namespace skinmesh::dynamic {
 
 /// Options of the baseline.
 struct DynamicOptions {
-  /// Probe radius (Å) for the Molecule overload: w = 2 (r + probe)².
-  double probe_radius = 1.4;
-  /// C and Q of [L] and [U], shared with the check (Cheng & Shi §2.2).
-  skin::SizeConstants size;
   /// Grow the skin from small spheres (the dynamic algorithm, default); false:
   /// the static variant, which samples the final skin and refines it.
   bool growth = true;
@@ -53,19 +48,12 @@ struct DynamicOptions {
   /// the end.
   int growth_rounds = 8;
   int final_rounds = 60;
-  /// Verify the final mesh (verify/skin_mesh_check.h); the verdict is in
-  /// DynamicResult::check.
-  bool check = true;
-  verify::SkinCheckOptions checks;
-  /// Called with a stage name ("skin", "growth", "refine", "check") and the
-  /// fraction done (0..1); empty: no reports. The library prints nothing.
-  std::function<void(const std::string& stage, double fraction)> progress;
   /// Called with the sample and its restricted Delaunay triangulation
   /// (SampleTriangulation::extract) after the refinement of every growth step
   /// ("growth") and after the final refinement ("refine"); empty: not
   /// called. For recorders (trace/trace_recorder.h); positions are in the
-  /// local frame (DynamicResult::frame_centre). The run is the same with or
-  /// without an observer.
+  /// local frame (mesher::MeshResult::frame_centre). The run is the same with
+  /// or without an observer.
   std::function<void(const char* stage, const SampleTriangulation&)> observer;
 };
 
@@ -87,31 +75,21 @@ struct DynamicStats {
   geometry::PredicateStats predicates;
 };
 
-/// Result of mesh_skin_dynamic().
-struct DynamicResult {
-  /// The mesh (Å; triangles counter-clockwise seen from outside; per vertex
-  /// unit outward normal and atom index).
-  geometry::IndexedMesh mesh;
-  skin::SkinTopology expected_topology;
-  DynamicStats stats;
-  bool checked = false;
-  verify::SkinCheckReport check;
-  /// Wall-clock seconds per stage: "skin", "growth" (absent for the static
-  /// variant), "refine" (the final level), "output", "check".
-  std::vector<std::pair<std::string, double>> seconds;
-  Vec3 frame_centre = Vec3::Zero();
-  bool ok() const { return !checked || check.ok(); }
-};
+/// Throws std::invalid_argument if an option is out of range (seed spacing,
+/// step motion or rho floor fraction outside (0, 1]).
+void validate(const DynamicOptions& options);
 
-/// Meshes the skin of `points` (centres Å, weights Å², shrink factor 1/2) with
-/// the dynamic-skin baseline. Throws InputError for an empty input or a
-/// singular skin (skin::require_non_singular, as mesh_skin does),
-/// std::invalid_argument for options out of range. A mesh that
-/// fails its check is returned with the report (ok() false).
-DynamicResult mesh_skin_dynamic(const std::vector<geometry::WeightedPoint>& points,
-                                const DynamicOptions& options = {});
-
-/// mesh_skin_dynamic() of a molecule's atoms with options.probe_radius.
-DynamicResult mesh_skin_dynamic(const skin::Molecule& molecule, const DynamicOptions& options = {});
+/// The dynamic-skin baseline on `skin` (centres Å, weights Å², shrink factor
+/// 1/2; the caller has refused singular skins, skin::require_non_singular):
+/// the restricted Delaunay triangulation of a sample kept under [L] and [U]
+/// of `size` (Cheng & Shi §2.2) while the skin grows (options.growth) or on
+/// the final skin alone (the static variant). Returns the mesh in the skin's
+/// frame (Å; triangles counter-clockwise seen from outside; per vertex the
+/// unit outward normal, atom, rho and mixed-cell dimension) and fills `stats`
+/// except stats.predicates, which the caller measures. Ends the stages
+/// "growth" (not for the static variant), "refine" (the final level) and
+/// "output" on `clock`. Throws GeometryError if a sample cannot be placed.
+geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::SizeConstants& size,
+                                   const DynamicOptions& options, StageClock& clock, DynamicStats& stats);
 
 }  // namespace skinmesh::dynamic

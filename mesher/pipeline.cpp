@@ -1,13 +1,10 @@
 // mesher/pipeline.cpp: mesh_skin(), the stages of Cheng & Shi 2004 §4.1
 // "Algorithm" in order (skin, Morse–Smale complex, sweep, local refinement,
-// angle improvement, check), timed one by one.
+// angle improvement, check) or the baseline's (skin, growth, refinement,
+// check), timed one by one.
 // Notes: papers/mesher/pipeline.md
 #include "mesher/pipeline.h"
 
-#include <chrono>
-#if defined(__GLIBC__)
-#include <malloc.h>  // malloc_trim
-#endif
 #include <cmath>
 #include <cstdio>
 #include <future>
@@ -17,6 +14,8 @@
 
 #include "core/errors.h"
 #include "core/parallel.h"
+#include "core/stage_clock.h"
+#include "geometry/kernel/predicates.h"
 #include "morse/critical_points.h"
 #include "skin/singular_skin.h"
 #include "skin/molecule_io.h"
@@ -52,15 +51,6 @@ geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry:
   return out;
 }
 
-/// Returns the allocator's free pages to the system (glibc: malloc_trim). The
-/// sweep frees many small blocks (the collision grids' cells) that the heap
-/// would otherwise keep resident through the check, the stage of the peak.
-void release_free_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
-
 /// mesh_skin() on points already in their local frame.
 MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options);
 
@@ -83,6 +73,7 @@ StageOptions with_size(StageOptions stage_options, const skin::SizeConstants& si
 }  // namespace
 
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, const MeshOptions& options) {
+  if (options.algorithm == Algorithm::Dynamic) dynamic::validate(options.dynamic);
   // Every stage works in the local frame of the points (their bounding-box
   // centre at the origin); the output mesh is translated back at the end.
   const Vec3 centre = skin::local_frame_centre(input_points);
@@ -100,29 +91,28 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
 
 namespace {
 
-MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  MeshResult res;
-  auto t0 = Clock::now();
-  auto stage = [&](const char* name) {
-    if (options.progress) options.progress(name, 0.0);
+/// The calling thread's predicate counts since `before`.
+geometry::PredicateStats predicates_since(const geometry::PredicateStats& before) {
+  const geometry::PredicateStats now = geometry::predicate_stats();
+  auto diff = [](geometry::PredicateCounters a, const geometry::PredicateCounters& b) {
+    a.calls -= b.calls;
+    a.exact -= b.exact;
+    a.sos -= b.sos;
+    return a;
   };
-  auto lap = [&](const char* name) {
-    const auto t1 = Clock::now();
-    res.seconds.emplace_back(name, std::chrono::duration<double>(t1 - t0).count());
-    t0 = t1;
-    if (options.progress) options.progress(name, 1.0);
-  };
+  geometry::PredicateStats d;
+  d.orient2d = diff(now.orient2d, before.orient2d);
+  d.orient3d = diff(now.orient3d, before.orient3d);
+  d.power_test = diff(now.power_test, before.power_test);
+  return d;
+}
 
-  // 1. The skin: regular triangulation and mixed complex (§2.1).
-  stage("skin");
-  const skin::SkinSurface skin(points);
-  skin::require_non_singular(skin);
-  lap("skin");
-
+/// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
+/// refinement and the angle improvement; fills res.mesh.
+void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
   // 2. Critical points and the Morse–Smale complex (§3), checked against the
   //    Euler characteristic of the skin from its dual complex.
-  stage("morse");
+  clock.begin("morse");
   // The dual complex (for the Euler characteristic and the check) needs only
   // the skin: with two threads it is computed beside the Morse–Smale complex.
   const int threads = thread_count(options.threads);
@@ -144,54 +134,89 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
-  // peak (7 MB on maltoporin).
+  // peak.
   for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
-  lap("morse");
+  clock.end("morse");
 
   // 3. The sweep (§4.1, §4.2).
-  stage("sweep");
+  clock.begin("sweep");
   front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
   front::SweepResult swept = front::sweep_mesh(skin, *ms, sweep_options);
   res.sweep = swept.stats;
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
-  lap("sweep");
+  clock.end("sweep");
 
   // 4. The local refinement (§4.3).
   if (options.refine) {
-    stage("refine");
+    clock.begin("refine");
     res.refinement = refine::refine_mesh(skin, swept.mesh, with_size(options.refinement, options.size));
     if (options.observers.stage_end) options.observers.stage_end("refine", skin, swept.mesh);
-    lap("refine");
+    clock.end("refine");
     // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
     if (options.improve_angles) {
-      stage("angles");
+      clock.begin("angles");
       res.angle_improvement =
           refine::improve_angles(skin, swept.mesh, with_size(options.angle_improvement, options.size));
       if (options.observers.stage_end) options.observers.stage_end("angles", skin, swept.mesh);
-      lap("angles");
+      clock.end("angles");
     }
   }
   res.mesh = output_mesh(skin, swept.mesh);
   swept.mesh = geometry::SurfaceMesh();  // the check reads res.mesh: free the half-edge mesh first
-  release_free_memory();
-  lap("output");
+  if (options.observers.memory_released) options.observers.memory_released();
+  clock.end("output");
+}
+
+MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
+  MeshResult res;
+  res.algorithm = options.algorithm;
+  StageClock clock(options.progress);
+  const bool dynamic = options.algorithm == Algorithm::Dynamic;
+  const geometry::PredicateStats predicates_before = geometry::predicate_stats();
+
+  // 1. The skin: regular triangulation and mixed complex (§2.1).
+  clock.begin("skin");
+  const skin::SkinSurface skin(points);
+  skin::require_non_singular(skin);
+  if (dynamic) {
+    res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+    clock.end("skin");
+    res.mesh = dynamic::mesh_dynamic(skin, options.size, options.dynamic, clock, res.dynamic);
+    res.dynamic.predicates = predicates_since(predicates_before);
+    if (options.observers.memory_released) options.observers.memory_released();
+  } else {
+    clock.end("skin");
+    run_sweep(skin, options, clock, res);
+  }
 
   // 5. The check.
   if (options.check) {
-    stage("check");
+    clock.begin("check");
     verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
     if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
-    if (check_options.threads == verify::SkinCheckOptions{}.threads) check_options.threads = threads;
+    if (check_options.threads == verify::SkinCheckOptions{}.threads)
+      check_options.threads = thread_count(options.threads);
     res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
     res.checked = true;
-    lap("check");
+    clock.end("check");
   }
+  res.seconds = clock.seconds();
   return res;
 }
 
 }  // namespace
+
+const char* algorithm_name(Algorithm algorithm) {
+  return algorithm == Algorithm::Dynamic ? "dynamic" : "sweep";
+}
+
+Algorithm algorithm_named(const std::string& name) {
+  if (name == "sweep") return Algorithm::Sweep;
+  if (name == "dynamic") return Algorithm::Dynamic;
+  throw std::invalid_argument("unknown algorithm '" + name + "' (sweep or dynamic)");
+}
 
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options) {
   if (!(options.probe_radius >= 0 && options.probe_radius <= skin::kMaxRadius))

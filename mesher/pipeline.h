@@ -1,7 +1,11 @@
-// mesher/pipeline.h: the whole algorithm of Cheng & Shi 2004 as one call, the
-// entry point that the command line, the benchmarks and the tests share.
-// §4.1 "Algorithm": the input is a set of weighted points B, the output a
-// triangulation K of the skin F_B; the stages are
+// mesher/pipeline.h: the program layer — one call meshes a skin with either
+// algorithm, the entry point that the command line, Python, the benchmarks,
+// the recorder and the tests share. Both algorithms run in the same frame of
+// stages: the local frame of the points, the skin and the refusal of
+// singular skins, the stopwatch and progress, the output mesh, the check.
+// Cheng & Shi 2004 §4.1 "Algorithm" (Algorithm::Sweep): the input is a set of
+// weighted points B, the output a triangulation K of the skin F_B; the
+// stages are
 //   1. skin       the regular triangulation and the mixed complex of B (§2.1)
 //   2. morse      the critical points of the height function, the Morse–Smale
 //                 complex and its simplification (§3), checked against the
@@ -12,6 +16,9 @@
 //                 [U] and the restricted Delaunay property (not in the paper;
 //                 refine/angle_improvement.h)
 //   5. check      the skin-aware verifier (verify/skin_mesh_check.h)
+// The dynamic-skin baseline (Algorithm::Dynamic, dynamic/dynamic_skin.h)
+// replaces stages 2–4b by "growth" (absent in the static variant) and
+// "refine".
 // Notes: papers/mesher/pipeline.md
 #pragma once
 
@@ -20,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "dynamic/dynamic_skin.h"
 #include "front/sweep.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "geometry/kernel/weighted_point.h"
@@ -34,6 +42,17 @@
 
 namespace skinmesh::mesher {
 
+/// The two meshers of Table 1.
+enum class Algorithm {
+  Sweep,    ///< the advancing front of Cheng & Shi 2004
+  Dynamic,  ///< the dynamic-skin baseline of Cheng, Dey, Edelsbrunner & Sullivan 2001
+};
+
+/// "sweep" or "dynamic", as the command line and Python spell them.
+const char* algorithm_name(Algorithm algorithm);
+/// The algorithm named "sweep" or "dynamic"; std::invalid_argument otherwise.
+Algorithm algorithm_named(const std::string& name);
+
 /// Observers of the pipeline's stages, for recorders (trace/trace_recorder.h);
 /// an empty one is not called. Everything they see is in the local frame
 /// (MeshResult::frame_centre). They must not throw unless the pipeline is to
@@ -46,16 +65,23 @@ struct PipelineObservers {
   /// ("sweep", "refine", "angles"), with the half-edge mesh before it is
   /// compacted (deleted elements still present, marked deleted).
   std::function<void(const char* stage, const skin::SkinSurface&, const geometry::SurfaceMesh&)> stage_end;
+  /// Called once the output mesh is made and the stages' working memory (the
+  /// half-edge mesh, the Morse–Smale complex, the sample) is freed, before the
+  /// check, the stage of the peak: a program may return the allocator's free
+  /// pages to the system there. The library makes no process-wide calls.
+  std::function<void()> memory_released;
 };
 
 /// Options of the whole pipeline, one struct per stage.
 struct MeshOptions {
+  /// Which mesher runs between the skin and the check.
+  Algorithm algorithm = Algorithm::Sweep;
   /// Probe radius (Å) used by the Molecule overload of mesh_skin: atom weight
   /// w = 2 (r + probe)² (Cheng & Shi §2.1; papers/skin/molecule_io.md).
   double probe_radius = 1.4;
   /// C and Q of [L] and [U] (Cheng & Shi §2.2). They are copied into the
-  /// sweep, refinement, angle-improvement and check options (whose own
-  /// `size` fields are ignored), so that all stages agree.
+  /// sweep, refinement, angle-improvement, baseline and check options (whose
+  /// own `size` fields are ignored), so that all stages agree.
   skin::SizeConstants size;
   /// Unit height direction of the sweep (§3.1 uses +y; the default is tilted
   /// slightly so that no two atoms are at the same height by accident).
@@ -76,6 +102,9 @@ struct MeshOptions {
   /// Default on; off gives the mesh of the paper's algorithm alone.
   bool improve_angles = true;
   refine::AngleImprovementOptions angle_improvement;
+  /// Algorithm::Dynamic: growth or the static variant, the sample's spacing,
+  /// the growth schedule, its observer.
+  dynamic::DynamicOptions dynamic;
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
   verify::SkinCheckOptions checks;
@@ -87,9 +116,9 @@ struct MeshOptions {
   /// (papers/bench/profile.md, "Threads"). morse.threads and checks.threads,
   /// when left at their defaults, follow this.
   int threads = 0;
-  /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles", "check")
-  /// and the fraction of it done (0..1); empty: no reports. The library
-  /// itself prints nothing.
+  /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles",
+  /// "growth", "check") and the fraction of it done (0..1); empty: no
+  /// reports. The library itself prints nothing.
   std::function<void(const std::string& stage, double fraction)> progress;
   /// Observers of whole stages; the sweep's operations are observed through
   /// sweep.observer, the refinement's through refinement.observer.
@@ -98,11 +127,14 @@ struct MeshOptions {
 
 /// What the pipeline produced and measured.
 struct MeshResult {
+  /// The algorithm that made the mesh.
+  Algorithm algorithm = Algorithm::Sweep;
   /// The mesh: positions (Å, on the skin), triangles counter-clockwise about
   /// the outward normal, unit outward normals per vertex, and per vertex the
   /// index (into the input points) of the atom whose mixed cell holds it.
   geometry::IndexedMesh mesh;
-  /// Critical points of the height function before and after simplification.
+  /// Critical points of the height function before and after simplification
+  /// (Algorithm::Sweep; zero for the baseline).
   morse::MorseCount critical, live;
   /// Topology of the skin computed from the dual complex (independent of the mesh).
   skin::SkinTopology expected_topology;
@@ -110,12 +142,16 @@ struct MeshResult {
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).
   refine::AngleImprovementStats angle_improvement;
+  /// What the baseline did (Algorithm::Dynamic; stats.predicates counts the
+  /// calling thread's predicates from the skin to the output mesh).
+  dynamic::DynamicStats dynamic;
   /// True if stage 5 ran; then `check` holds its report.
   bool checked = false;
   verify::SkinCheckReport check;
   /// Wall-clock seconds per stage, in order ("skin", "morse", "sweep",
-  /// "refine", "angles", "output" (compaction, normals, atoms), "check";
-  /// stages that did not run are absent).
+  /// "refine", "angles" — or "growth", "refine" for the baseline — then
+  /// "output" (compaction, normals, atoms) and "check"; stages that did not
+  /// run are absent).
   std::vector<std::pair<std::string, double>> seconds;
 
   /// Centre of the local frame (Å, skin::local_frame_centre): every stage ran
@@ -128,12 +164,14 @@ struct MeshResult {
 };
 
 /// Meshes the skin of the weighted points `points` (centres in Å, weights in
-/// Å²) with the algorithm of Cheng & Shi 2004 (stages listed in this header).
-/// Throws InputError if `points` is empty, TopologyError if the Morse count
+/// Å²) with options.algorithm (stages listed in this header). Throws
+/// InputError if `points` is empty or the skin is singular
+/// (skin::require_non_singular), TopologyError if the Morse count
 /// of the critical points differs from the skin's Euler characteristic or
 /// the sweep cannot close the front, GeometryError if a projection fails,
 /// std::invalid_argument for options out of range (a tangent-disc factor
-/// outside the window of C and Q). A mesh that fails its check is returned
+/// outside the window of C and Q, a baseline option outside
+/// dynamic::validate's ranges). A mesh that fails its check is returned
 /// with the report (ok() false), never silently. Every stage works in the
 /// local frame of the points (skin::local_frame_centre at the origin); when
 /// that centre is not the origin, an error that names positions says so.

@@ -20,11 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "dynamic/dynamic_skin.h"
 #include "mesher/pipeline.h"
+#include "mesher/summary.h"
 #include "core/errors.h"
 #include "geometry/io/mesh_io.h"
-#include "geometry/mesh/mesh_measures.h"
 #include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_measures.h"
@@ -84,26 +83,6 @@ py::array_t<T> array_of(std::size_t rows, std::size_t cols, const Get& get) {
   return out;
 }
 
-py::dict surface_stats(const geometry::IndexedMesh& m) {
-  py::list parts;
-  double area = 0, volume = 0;
-  for (const geometry::ComponentMeasure& c : geometry::component_measures(m)) {
-    py::dict d;
-    d["vertices"] = c.vertices;
-    d["triangles"] = c.triangles;
-    d["area_A2"] = c.area;
-    d["volume_A3"] = c.volume;
-    d["kind"] = c.volume >= 0 ? "body" : "cavity";
-    parts.append(d);
-    area += c.area, volume += c.volume;
-  }
-  py::dict s;
-  s["area_A2"] = area;
-  s["volume_A3"] = volume;
-  s["components"] = parts;
-  return s;
-}
-
 /// The exact skin's area and volume (skin/skin_measures.h) as a dict.
 py::dict analytic_measures(const skin::Molecule& mol, double probe, int threads) {
   skin::SkinMeasures m;
@@ -129,66 +108,28 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     throw InputError("", 0, "algorithm must be 'sweep' or 'dynamic', not '" + algorithm + "'");
   check_probe_and_threads(probe, threads);
   const skin::Molecule mol = molecule_of(source);
+  mesher::MeshOptions options;
+  options.algorithm = mesher::algorithm_named(algorithm);
+  options.probe_radius = probe;
+  options.check = check;
+  options.threads = threads;
+  mesher::SummaryContext context;
+  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__"))
+    context.input = py::str(py::module_::import("os").attr("fspath")(source));
+  context.atoms = mol.atoms.size();
   PyMesh out;
-  py::dict stats;
-  mesher::MeshResult res;
+  std::string summary;
   {
     py::gil_scoped_release release;
-    if (algorithm == "sweep") {
-      mesher::MeshOptions opt;
-      opt.probe_radius = probe;
-      opt.check = check;
-      opt.threads = threads;
-      res = mesher::mesh_skin(mol, opt);
-    } else {
-      dynamic::DynamicOptions opt;
-      opt.probe_radius = probe;
-      opt.check = check;
-      opt.checks.threads = threads;
-      dynamic::DynamicResult d = dynamic::mesh_skin_dynamic(mol, opt);
-      res.mesh = std::move(d.mesh);
-      res.checked = d.checked;
-      res.check = std::move(d.check);
-      res.seconds = d.seconds;
-    }
+    mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, probe);
+    if (analytic) context.exact_measures_of = &points;
+    // The same schema as `skinmesh mesh --stats` (mesher/summary.h).
+    summary = mesher::run_summary(res, options, context).dump();
+    out.ok = res.ok();
+    out.mesh = std::move(res.mesh);
   }
-  stats["atoms"] = mol.atoms.size();
-  stats["probe_radius"] = probe;
-  stats["algorithm"] = algorithm;
-  stats["vertices"] = res.mesh.positions.size();
-  stats["triangles"] = res.mesh.triangles.size();
-  stats["checked"] = res.checked;
-  if (res.checked) {
-    stats["checks_passed"] = res.check.ok();
-    stats["min_angle_deg"] = res.check.mesh.min_angle_deg;
-    stats["max_angle_deg"] = res.check.mesh.max_angle_deg;
-    stats["problems"] = res.check.problems;
-  }
-  if (algorithm == "sweep") {
-    py::dict ops;
-    ops["creations"] = res.sweep.creations;
-    ops["creeps"] = res.sweep.creeps;
-    ops["wings"] = res.sweep.wings;
-    ops["bridges"] = res.sweep.bridges;
-    ops["seals"] = res.sweep.seals;
-    ops["flips"] = res.refinement.flips;
-    ops["contractions"] = res.refinement.contractions;
-    ops["insertions"] = res.refinement.insertions;
-    stats["operations"] = ops;
-    py::dict cp;
-    cp["minima"] = res.critical.minima;
-    cp["saddles"] = res.critical.saddles;
-    cp["maxima"] = res.critical.maxima;
-    stats["critical_points"] = cp;
-  }
-  py::dict seconds;
-  for (const auto& [stage, t] : res.seconds) seconds[py::str(stage)] = t;
-  stats["seconds"] = seconds;
-  stats["surface"] = surface_stats(res.mesh);
-  if (analytic) stats["surface"]["analytic"] = analytic_measures(mol, probe, threads);
-  out.mesh = std::move(res.mesh);
-  out.stats = stats;
-  out.ok = res.ok();
+  out.stats = py::module_::import("json").attr("loads")(summary);
   return out;
 }
 

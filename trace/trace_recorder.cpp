@@ -330,9 +330,8 @@ long stride(std::size_t operations, double steps) {
 
 /// The last step (the output mesh, with its check's verdict; the quality
 /// was set at the end of the last stage) and the document's remaining keys;
-/// fills `summary`. `Result` is mesher::MeshResult or dynamic::DynamicResult.
-template <class Result>
-void finish(const Result& res, json counters, json every, std::size_t operations, History& history,
+/// fills `summary`.
+void finish(const mesher::MeshResult& res, json counters, json every, std::size_t operations, History& history,
             std::vector<json>& steps, json& doc, TraceSummary& summary) {
   Pending last;
   last.add("final mesh",
@@ -504,20 +503,20 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
 /// one for the final refinement.
 json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                     TraceSummary& summary) {
-  dynamic::DynamicOptions run = options.dynamic;
+  mesher::MeshOptions run = options.mesh;
   long every = options.every;
   if (options.every <= 0) {
     OperationCounts counts;
-    dynamic::DynamicOptions counting = run;
+    mesher::MeshOptions counting = run;
     counting.check = false;
-    counting.observer = [&counts](const char* stage, const dynamic::SampleTriangulation& st) {
+    counting.dynamic.observer = [&counts](const char* stage, const dynamic::SampleTriangulation& st) {
       if (std::string(stage) != "growth") return;
       ++counts.growth;
       counts.max_samples = std::max(counts.max_samples, st.samples().size());
     };
     if (options.progress)
       counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
-    dynamic::mesh_skin_dynamic(points, counting);
+    mesher::mesh_skin(points, counting);
     // Every recorded growth step moves every sample: about 45 bytes each.
     const double affordable = double(options.growth_budget_bytes) / (45.0 * double(std::max<std::size_t>(counts.max_samples, 1)));
     every = stride(counts.growth, std::min(0.9 * double(options.max_steps), affordable));
@@ -533,7 +532,7 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
   doc["critical"] = json::array();
   doc["lines"] = json::array();
   const skin::SizeConstants size = run.size;
-  run.observer = [&](const char* stage, const dynamic::SampleTriangulation& st) {
+  run.dynamic.observer = [&](const char* stage, const dynamic::SampleTriangulation& st) {
     const bool final_stage = std::string(stage) == "refine";
     if (!final_stage && growth++ % every != 0) return;
     std::vector<Index> ids;
@@ -551,7 +550,7 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
     if (final_stage) history.set_quality([&st](Index id) { return st.rho(id); }, size);
   };
   if (options.progress) run.progress = options.progress;
-  const dynamic::DynamicResult res = dynamic::mesh_skin_dynamic(points, run);
+  const mesher::MeshResult res = mesher::mesh_skin(points, run);
   finish(res, json{{"growth_steps", growth}}, json{{"growth", every}}, growth + 1, history, steps, doc, summary);
   return doc;
 }
@@ -560,18 +559,17 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
 
 json record_trace(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                   TraceSummary* summary) {
-  if (options.algorithm != "sweep" && options.algorithm != "dynamic")
-    throw std::invalid_argument("unknown algorithm '" + options.algorithm + "' (sweep or dynamic)");
   if (options.max_steps < 10) throw std::invalid_argument("the trace needs at least 10 steps");
   TraceSummary local;
   TraceSummary& s = summary ? *summary : local;
   s = TraceSummary{};
-  json doc = options.algorithm == "sweep" ? record_sweep(points, options, s) : record_dynamic(points, options, s);
+  json doc = options.mesh.algorithm == mesher::Algorithm::Sweep ? record_sweep(points, options, s)
+                                                                : record_dynamic(points, options, s);
   doc["format"] = "skinmesh-trace";
   doc["version"] = 1;
   doc["title"] = options.title;
   doc["input"] = options.input;
-  doc["algorithm"] = options.algorithm;
+  doc["algorithm"] = mesher::algorithm_name(options.mesh.algorithm);
   doc["probe"] = options.probe >= 0 ? json(options.probe) : json(nullptr);
   doc["atoms"] = points.size();
   doc["min_angle_bound"] = round_to(options.mesh.size.min_angle_bound_deg(), 1e4);

@@ -18,7 +18,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dynamic/dynamic_skin.h"
 #include "mesher/pipeline.h"
 #include "geometry/kernel/weighted_point.h"
 
@@ -26,12 +25,9 @@ namespace skinmesh::trace {
 
 /// Options of a recording.
 struct TraceOptions {
-  /// "sweep" (Cheng & Shi 2004) or "dynamic" (the dynamic-skin baseline).
-  std::string algorithm = "sweep";
-  /// Options of the sweep pipeline (its observers are set by the recorder).
+  /// Options of the pipeline, its algorithm included (the recorder sets its
+  /// observers: the sweep's, the refinement's, the stages' and the baseline's).
   mesher::MeshOptions mesh;
-  /// Options of the baseline (its observer is set by the recorder).
-  dynamic::DynamicOptions dynamic;
   /// Record at most about this many steps: consecutive operations are merged
   /// k to a step beyond it (creations, bridges and seals always end a step).
   /// The numbers of operations are counted by a first run without recording.
@@ -60,9 +56,8 @@ struct TraceSummary {
 };
 
 /// Runs the algorithm on `points` (centres Å, weights Å²) and returns the
-/// trace document (trace/FORMAT.md). Throws what mesher::mesh_skin() and
-/// mesh_skin_dynamic() throw, and std::invalid_argument for an unknown
-/// algorithm. A mesh that fails its check is recorded all the same; the
+/// trace document (trace/FORMAT.md). Throws what mesher::mesh_skin()
+/// throws, and std::invalid_argument for fewer than 10 steps. A mesh that fails its check is recorded all the same; the
 /// document's "check" says so, and so does `summary`.
 nlohmann::json record_trace(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                             TraceSummary* summary = nullptr);

@@ -96,15 +96,13 @@ const std::vector<geometry::WeightedPoint>& points_of(const Case& c, const Conve
 
 /// The mesh of `points` by algorithm `a` (no check), and its frame centre.
 geometry::IndexedMesh run(Algorithm a, const std::vector<geometry::WeightedPoint>& points) {
-  if (a == Algorithm::Sweep) {
-    mesher::MeshOptions o;
-    o.check = false;
-    return mesher::mesh_skin(points, o).mesh;
-  }
-  dynamic::DynamicOptions o;
+  mesher::MeshOptions o;
   o.check = false;
-  o.growth = a == Algorithm::Dynamic;
-  return dynamic::mesh_skin_dynamic(points, o).mesh;
+  if (a != Algorithm::Sweep) {
+    o.algorithm = mesher::Algorithm::Dynamic;
+    o.dynamic.growth = a == Algorithm::Dynamic;
+  }
+  return mesher::mesh_skin(points, o).mesh;
 }
 
 void bm_case(benchmark::State& state, const Case* c, const Convention* v, Algorithm a) {

@@ -4,7 +4,8 @@
 // triangulation agree with a dense search along every Voronoi edge, and both
 // variants (growth, static) produce meshes that pass the whole skin check
 // (closed, manifold, outward, no self-intersections, topology, on-skin, [L],
-// [U], restricted Delaunay, angles).
+// [U], restricted Delaunay, angles). The baseline in the pipeline (local
+// frame, singular skins): tests/mesher/dynamic_test.cpp.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -18,6 +19,8 @@
 #include "dynamic/sample_triangulation.h"
 #include "geometry/triangulation/delaunay_triangulation.h"
 #include "core/errors.h"
+#include "core/stage_clock.h"
+#include "skin/singular_skin.h"
 #include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
@@ -36,18 +39,34 @@ std::vector<WeightedPoint> test_points(const std::string& name, double probe = 0
                                          probe);
 }
 
-void require_clean(const sd::DynamicResult& res, const std::string& what) {
+/// The baseline's mesh of `points` (the static variant unless `growth`), as
+/// the pipeline runs it: in the points' local frame, after the singular-skin
+/// refusal; `stats` gets its counts.
+skinmesh::geometry::IndexedMesh mesh_of(const std::vector<WeightedPoint>& points, bool growth, sd::DynamicStats& stats,
+                                        skinmesh::verify::SkinCheckReport& check) {
+  const Vec3 centre = skinmesh::skin::local_frame_centre(points);
+  const skinmesh::skin::SkinSurface skin(skinmesh::skin::translated(points, centre));
+  skinmesh::skin::require_non_singular(skin);
+  sd::DynamicOptions opt;
+  opt.growth = growth;
+  skinmesh::StageClock clock;
+  skinmesh::geometry::IndexedMesh mesh = sd::mesh_dynamic(skin, {}, opt, clock, stats);
+  check = skinmesh::verify::check_skin_mesh(skin, mesh);
+  return mesh;
+}
+
+void require_clean(const skinmesh::geometry::IndexedMesh& mesh, const sd::DynamicStats& stats,
+                   const skinmesh::verify::SkinCheckReport& check, const std::string& what) {
   INFO(what);
-  REQUIRE(res.checked);
-  for (const std::string& p : res.check.problems) INFO(p);
-  CHECK(res.check.ok());
-  CHECK(res.check.topology_matches);
-  CHECK(res.check.num_L_violations == 0);
-  CHECK(res.check.num_U_violations == 0);
-  CHECK(res.check.num_rdt_violations == 0);
-  CHECK(res.check.mesh.min_angle_deg > 21.5);
-  CHECK(res.stats.converged);
-  CHECK(res.mesh.triangles.size() > 100);
+  for (const std::string& p : check.problems) INFO(p);
+  CHECK(check.ok());
+  CHECK(check.topology_matches);
+  CHECK(check.num_L_violations == 0);
+  CHECK(check.num_U_violations == 0);
+  CHECK(check.num_rdt_violations == 0);
+  CHECK(check.mesh.min_angle_deg > 21.5);
+  CHECK(stats.converged);
+  CHECK(mesh.triangles.size() > 100);
 }
 
 }  // namespace
@@ -167,36 +186,39 @@ TEST_CASE("dynamic: the static variant passes every check") {
   // Two atoms (one neck), a void (two components), a ring (genus 1), the
   // paper's Figure 4 configuration (8 atoms at the corners of a cube).
   for (const char* name : {"two_atoms.xyzr", "tetra_void.xyzr", "three_ring.xyzr", "cube_corners.xyzr"}) {
-    sd::DynamicOptions opt;
-    opt.growth = false;
-    const sd::DynamicResult res = sd::mesh_skin_dynamic(test_points(name), opt);
-    require_clean(res, name);
-    CHECK(res.stats.samples.seeds > 0);
-    CHECK(res.stats.steps == 0);
+    sd::DynamicStats stats;
+    skinmesh::verify::SkinCheckReport check;
+    const auto mesh = mesh_of(test_points(name), false, stats, check);
+    require_clean(mesh, stats, check, name);
+    CHECK(stats.samples.seeds > 0);
+    CHECK(stats.steps == 0);
   }
 }
 
 TEST_CASE("dynamic: growth from small spheres passes every check") {
   for (const char* name : {"two_atoms.xyzr", "three_ring.xyzr"}) {
-    sd::DynamicOptions opt;
-    const sd::DynamicResult res = sd::mesh_skin_dynamic(test_points(name), opt);
-    require_clean(res, name);
-    CHECK(res.stats.steps >= 3);
-    CHECK(res.stats.start_level < 0);
-    CHECK(res.stats.births >= 2);
-    CHECK(res.stats.moves > 0);
+    sd::DynamicStats stats;
+    skinmesh::verify::SkinCheckReport check;
+    const auto mesh = mesh_of(test_points(name), true, stats, check);
+    require_clean(mesh, stats, check, name);
+    CHECK(stats.steps >= 3);
+    CHECK(stats.start_level < 0);
+    CHECK(stats.births >= 2);
+    CHECK(stats.moves > 0);
   }
 }
 
-TEST_CASE("dynamic: a molecule far from the origin meshes like the same molecule at the origin") {
-  std::vector<WeightedPoint> pts = test_points("two_atoms.xyzr");
+TEST_CASE("dynamic: options out of range are refused") {
   sd::DynamicOptions opt;
-  opt.growth = false;
-  const sd::DynamicResult near = sd::mesh_skin_dynamic(pts, opt);
-  for (auto& p : pts) p.z += Vec3(1e5, -2e5, 3e5);
-  const sd::DynamicResult far = sd::mesh_skin_dynamic(pts, opt);
-  require_clean(far, "far");
-  CHECK(far.mesh.triangles.size() == near.mesh.triangles.size());
+  opt.seed_spacing = 0;
+  CHECK_THROWS_AS(sd::validate(opt), std::invalid_argument);
+  opt = {};
+  opt.max_step_motion = 1.5;
+  CHECK_THROWS_AS(sd::validate(opt), std::invalid_argument);
+  opt = {};
+  opt.rho_floor_fraction = -1;
+  CHECK_THROWS_AS(sd::validate(opt), std::invalid_argument);
+  CHECK_NOTHROW(sd::validate({}));
 }
 
 TEST_CASE("dynamic: lowering the rho floor re-refines the facets it makes violate [U]") {
@@ -227,21 +249,4 @@ TEST_CASE("dynamic: lowering the rho floor re-refines the facets it makes violat
   const skinmesh::verify::SkinCheckReport rep = skinmesh::verify::check_skin_mesh(skin, st.extract());
   for (const std::string& p : rep.problems) INFO(p);
   CHECK(rep.ok());
-}
-
-TEST_CASE("dynamic: a singular skin is refused with the atoms named, as the sweep refuses it") {
-  // Two balls of radius sqrt(8) Å at distance sqrt(32) Å touch exactly (the
-  // sweep's test of the same refusal, tests/mesher/sweep_test.cpp).
-  const double w = skinmesh::skin::atom_weight(1.5, 0.5);
-  const std::vector<WeightedPoint> touching = {{Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
-  for (const bool growth : {false, true}) {
-    sd::DynamicOptions opt;
-    opt.growth = growth;
-    try {
-      (void)sd::mesh_skin_dynamic(touching, opt);
-      FAIL("a skin with a cone point was meshed");
-    } catch (const skinmesh::InputError& e) {
-      CHECK(std::string(e.what()).find("#2 and #3") != std::string::npos);
-    }
-  }
 }

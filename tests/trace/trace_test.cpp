@@ -187,10 +187,12 @@ TEST_CASE("every operation is a step with --every 1; the trace is the same for e
 TEST_CASE("a trace of the dynamic-skin baseline replays to its output mesh") {
   const auto points = test::two_balls();
   trace::TraceOptions opt;
-  opt.algorithm = "dynamic";
+  opt.mesh.algorithm = mesher::Algorithm::Dynamic;
   trace::TraceSummary summary;
   const json doc = trace::record_trace(points, opt, &summary);
-  const dynamic::DynamicResult res = dynamic::mesh_skin_dynamic(points);
+  mesher::MeshOptions dynamic;
+  dynamic.algorithm = mesher::Algorithm::Dynamic;
+  const mesher::MeshResult res = mesher::mesh_skin(points, dynamic);
   REQUIRE(res.ok());
   CHECK(summary.ok);
   check_against(doc, res.mesh, res.frame_centre);
@@ -216,10 +218,8 @@ TEST_CASE("the page template is filled once, and no string in the data can end i
 }
 
 TEST_CASE("bad options are errors") {
+  CHECK_THROWS_AS(mesher::algorithm_named("marching cubes"), std::invalid_argument);
   trace::TraceOptions opt;
-  opt.algorithm = "marching cubes";
-  CHECK_THROWS_AS(trace::record_trace(test::two_balls(), opt), std::invalid_argument);
-  opt.algorithm = "sweep";
   opt.max_steps = 3;
   CHECK_THROWS_AS(trace::record_trace(test::two_balls(), opt), std::invalid_argument);
 }

@@ -1,0 +1,223 @@
+// apps/batch.cpp: `skinmesh mesh IN IN ... -O DIR` (or --list) — many inputs
+// meshed by --jobs workers, each as `skinmesh mesh` would mesh it alone, and
+// a summary table, CSV and JSON of what became of each.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "apps/mesh_command.h"
+#include "apps/output.h"
+#include "core/errors.h"
+#include "geometry/io/mesh_io.h"
+#include "geometry/mesh/mesh_measures.h"
+#include "skin/molecule_io.h"
+
+namespace skinmesh::app {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+/// One input of a batch run and what became of it.
+struct BatchItem {
+  std::string input, output;
+  std::size_t atoms = 0, triangles = 0;
+  double min_angle = 0, area = 0, volume = 0, seconds = 0;
+  bool checked = false;
+  int exit_code = -1;      ///< as `skinmesh mesh` on this input alone; -1: not run
+  std::string status = "not run", message;
+};
+
+/// The inputs of a batch: the IN arguments, then the lines of --list (blank
+/// lines and '#' comments skipped; relative paths are relative to the list's
+/// folder). Throws InputError for an unreadable or empty list.
+std::vector<std::string> batch_inputs(const MeshArgs& a) {
+  std::vector<std::string> inputs = a.mol.inputs;
+  if (!a.list.empty()) {
+    const std::string text = read_text_file(a.list);
+    const std::filesystem::path folder = std::filesystem::path(a.list).parent_path();
+    std::size_t at = 0;
+    while (at <= text.size()) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      std::string entry = text.substr(at, end - at);
+      if (const std::size_t hash = entry.find('#'); hash != std::string::npos) entry.resize(hash);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back()))) entry.pop_back();
+      std::size_t first = 0;
+      while (first < entry.size() && std::isspace(static_cast<unsigned char>(entry[first]))) ++first;
+      entry = entry.substr(first);
+      if (!entry.empty()) {
+        const std::filesystem::path p(entry);
+        inputs.push_back(p.is_absolute() || folder.empty() ? entry : (folder / p).string());
+      }
+      at = end + 1;
+    }
+  }
+  if (inputs.empty()) throw InputError(a.list, 0, "no molecule files listed");
+  return inputs;
+}
+
+/// The output name of an input: its file name without .gz and its extension
+/// (run_batch keeps the whole file name when two inputs share this name).
+std::string batch_stem(const std::string& input) {
+  std::filesystem::path p = std::filesystem::path(input).filename();
+  if (p.extension() == ".gz" || p.extension() == ".GZ") p = p.stem();
+  return p.stem().string();
+}
+
+/// Meshes one input of a batch (never throws: the outcome is in the item).
+void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchItem& item) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  try {
+    MoleculeArgs m = a.mol;
+    m.input = item.input;
+    m.quiet = true;
+    const skin::Molecule mol = load_molecule(m);
+    item.atoms = mol.atoms.size();
+    const mesher::MeshResult res = mesher::mesh_skin(mol, base);
+    item.triangles = res.mesh.triangles.size();
+    item.checked = res.checked;
+    if (res.checked) item.min_angle = res.check.mesh.min_angle_deg;
+    for (const geometry::ComponentMeasure& c : geometry::component_measures(res.mesh))
+      item.area += c.area, item.volume += c.volume;
+    if (!res.ok()) {
+      item.exit_code = 3;
+      item.status = "failed check";
+      item.message = res.check.problems.empty() ? std::string() : res.check.problems.front();
+      if (!a.force) {
+        item.message += " (not written; --force writes it)";
+        item.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return;
+      }
+    }
+    geometry::write_mesh(item.output, res.mesh);
+    if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
+  } catch (const InputError& e) {
+    item.exit_code = 1, item.status = "bad input", item.message = e.what();
+  } catch (const TopologyError& e) {
+    item.exit_code = 3, item.status = "topology error", item.message = e.what();
+  } catch (const GeometryError& e) {
+    item.exit_code = 3, item.status = "geometry error", item.message = e.what();
+  } catch (const std::invalid_argument& e) {
+    item.exit_code = 2, item.status = "bad option", item.message = e.what();
+  } catch (const std::exception& e) {
+    item.exit_code = 4, item.status = "internal error", item.message = e.what();
+  }
+  item.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// A CSV field, quoted if it needs to be (RFC 4180).
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+int run_batch(const MeshArgs& a) {
+  if (a.out_dir.empty()) throw CLI::ValidationError("-O", "several inputs (or --list) need an output folder -O DIR");
+  const std::vector<std::string> inputs = batch_inputs(a);
+  std::vector<BatchItem> items(inputs.size());
+  // Outputs DIR/NAME.FORMAT; inputs that share a NAME (crambin.pdb and
+  // crambin.pqr) keep their whole file name (crambin.pdb.ply, crambin.pqr.ply).
+  std::map<std::string, int> stems;
+  for (const std::string& in : inputs) ++stems[batch_stem(in)];
+  std::map<std::string, std::string> taken;  // output -> input
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    items[i].input = inputs[i];
+    const std::string stem = batch_stem(inputs[i]);
+    const std::string name = stems[stem] > 1 ? std::filesystem::path(inputs[i]).filename().string() : stem;
+    items[i].output = (std::filesystem::path(a.out_dir) / (name + "." + a.batch_format)).string();
+    if (auto [it, fresh] = taken.emplace(items[i].output, inputs[i]); !fresh)
+      throw InputError(inputs[i], 0, "would write " + items[i].output + " as " + it->second + " does (rename one)");
+  }
+  std::error_code made;
+  std::filesystem::create_directories(a.out_dir, made);
+  if (made) throw InputError(a.out_dir, 0, "cannot create the output folder (" + made.message() + ")");
+  require_writable(items.front().output);
+  mesher::MeshOptions base = mesh_options(a);
+  if (!a.threads_given) base.threads = 1;  // the workers share the cores
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  std::atomic<std::size_t> next{0}, done{0};
+  std::mutex print;
+  const int jobs = std::max(1, std::min<int>(a.jobs, static_cast<int>(items.size())));
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < items.size();) {
+      run_batch_item(a, base, items[i]);
+      const std::size_t k = ++done;
+      if (a.mol.quiet) continue;
+      const BatchItem& it = items[i];
+      std::lock_guard<std::mutex> lock(print);
+      std::fprintf(stderr, "[%zu/%zu] %s: %s", k, items.size(), it.input.c_str(), it.status.c_str());
+      if (it.exit_code == 0) std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
+      if (!it.message.empty()) std::fprintf(stderr, ": %s", one_line(it.message).c_str());
+      std::fprintf(stderr, "\n");
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+
+  // The summary: a table on stdout, CSV and JSON in the output folder.
+  std::string table, csv = "input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
+  json rows = json::array();
+  char line[512];
+  std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle", "seconds",
+                "status");
+  table += line;
+  int exit_code = 0;
+  double sum = 0;
+  for (const BatchItem& it : items) {
+    const std::string name = std::filesystem::path(it.input).filename().string();
+    std::snprintf(line, sizeof line, "%-36s %8zu %10zu %9.3f %8.2f  %s\n", name.c_str(), it.atoms, it.triangles,
+                  it.min_angle, it.seconds, it.status.c_str());
+    table += line;
+    char num[160];
+    std::snprintf(num, sizeof num, ",%zu,%zu,%.6f,%.6f,%.6f,%.3f,", it.atoms, it.triangles, it.min_angle, it.area,
+                  it.volume, it.seconds);
+    const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
+    csv += csv_field(it.input) + "," + csv_field(written ? it.output : "") + num +
+           csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
+    json row = {{"input", it.input},       {"atoms", it.atoms},         {"triangles", it.triangles},
+                {"min_angle_deg", it.min_angle}, {"area_A2", it.area}, {"volume_A3", it.volume},
+                {"seconds", it.seconds},   {"status", it.status},       {"exit_code", it.exit_code}};
+    if (written) row["output"] = it.output;
+    if (!it.message.empty()) row["message"] = it.message;
+    rows.push_back(std::move(row));
+    exit_code = std::max(exit_code, it.exit_code);
+    sum += it.seconds;
+  }
+  const std::size_t failed = static_cast<std::size_t>(
+      std::count_if(items.begin(), items.end(), [](const BatchItem& it) { return it.exit_code != 0; }));
+  std::snprintf(line, sizeof line, "%zu inputs, %zu failed; wall %.2f s with %d jobs (sum of the inputs' times %.2f s)\n",
+                items.size(), failed, wall, jobs, sum);
+  table += line;
+  std::cout << table << std::flush;
+  const std::string csv_path = (std::filesystem::path(a.out_dir) / "summary.csv").string();
+  const std::string json_path = (std::filesystem::path(a.out_dir) / "summary.json").string();
+  write_text_file(csv_path, csv);
+  write_text_file(json_path, json{{"inputs", std::move(rows)},
+                                       {"failed", failed},
+                                       {"jobs", jobs},
+                                       {"wall_seconds", wall},
+                                       {"sum_seconds", sum}}
+                                      .dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  if (!a.mol.quiet) std::cerr << "wrote " << csv_path << " and " << json_path << "\n";
+  return exit_code;
+}
+
+}  // namespace skinmesh::app

@@ -1,0 +1,91 @@
+// apps/check.cpp: `skinmesh check IN MESH` — the verifier of a mesh file
+// against the analytic skin of a molecule (verify/skin_mesh_check.h), with a
+// JSON report; exit 0 if every check passes, 1 otherwise.
+#include <iostream>
+#include <memory>
+
+#include "apps/cli.h"
+#include "apps/output.h"
+#include "geometry/io/mesh_io.h"
+#include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
+#include "verify/skin_mesh_check.h"
+
+namespace skinmesh::app {
+
+namespace {
+
+struct CheckArgs {
+  MoleculeArgs mol;
+  std::string mesh;
+  std::string report;
+  verify::SkinCheckOptions opt;
+  bool no_self_intersections = false, no_rdt = false;
+  bool max_vertex_distance_given = false;
+};
+
+int run_check(CheckArgs& a) {
+  if (!a.report.empty()) app::require_writable(a.report);
+  const skin::Molecule mol = load_molecule(a.mol);
+  geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
+  // Formats that round positions: the vertices' distance to the skin is
+  // checked to the rounding (unless --max-vertex-distance says otherwise).
+  if (!a.max_vertex_distance_given) {
+    const double rounding = geometry::position_rounding(a.mesh, mesh);
+    if (rounding > a.opt.max_vertex_distance) {
+      a.opt.max_vertex_distance = rounding;
+      if (!a.mol.quiet)
+        std::cerr << "note: " << a.mesh << " stores rounded positions: vertex distances to the skin are checked to "
+                  << rounding << " Å (--max-vertex-distance)\n";
+    }
+  }
+  // The check works in the molecule's local frame, as the mesher does.
+  const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
+  const Vec3 centre = skin::local_frame_centre(points);
+  for (Vec3& p : mesh.positions) p -= centre;
+  const skin::SkinSurface skin(skin::translated(points, centre));
+  a.opt.check_self_intersections = !a.no_self_intersections;
+  a.opt.check_restricted_delaunay = !a.no_rdt;
+  const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt);
+  const std::string text = rep.to_json();
+  std::cout << text;
+  if (!a.report.empty()) app::write_text_file(a.report, text);
+  if (!a.mol.quiet)
+    for (const std::string& p : rep.problems) std::cerr << "problem: " << p << "\n";
+  return rep.ok() ? 0 : 1;
+}
+
+}  // namespace
+
+Command add_check_command(CLI::App& app) {
+  auto args = std::make_shared<CheckArgs>();
+  CheckArgs& check = *args;
+  CLI::App* cmd = app.add_subcommand(
+      "check",
+      "verify MESH against the skin of molecule IN and print a JSON report: closed, manifold, oriented outward, "
+      "exact self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay; exit 0 "
+      "if every check passes, 1 otherwise");
+  add_molecule_options(*cmd, check.mol);
+  cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)")
+      ->required();
+  cmd->add_option("-o,--output", check.report, "also write the report to this file");
+  add_size_options(*cmd, check.opt.size);
+  cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
+      ->capture_default_str();
+  cmd->add_option("--threads", check.opt.threads,
+                  "threads (0: every core, at most 2 are used); the report is the same for every count")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
+  cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
+  cmd->add_option("--max-vertex-distance", check.opt.max_vertex_distance,
+                  "largest admissible distance of a vertex to the skin in Å (default: 1e-9, or the rounding of the "
+                  "format: 1e-3 for MSMS, the float32 rounding for STL)")
+      ->check(number_at_least_zero(true));
+  return {cmd, [args, cmd] {
+            args->max_vertex_distance_given = cmd->count("--max-vertex-distance") > 0;
+            return run_check(*args);
+          }};
+}
+
+}  // namespace skinmesh::app

@@ -1,0 +1,197 @@
+// apps/mesh.cpp: `skinmesh mesh IN -o OUT` — mesh the skin with either
+// algorithm (mesher/pipeline.h), verify it, write it and, with --stats, the
+// run's summary (mesher/summary.h). Several inputs: batch.cpp.
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "apps/mesh_command.h"
+#include "apps/output.h"
+#include "geometry/io/mesh_io.h"
+#include "mesher/summary.h"
+#include "skin/molecule_io.h"
+
+namespace skinmesh::app {
+
+namespace {
+
+/// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
+std::size_t peak_memory_bytes() {
+  std::ifstream is("/proc/self/status");
+  std::string line;
+  while (std::getline(is, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+  return 0;
+}
+
+int run_mesh(MeshArgs& a) {
+  // Unknown extension or unwritable folder: fail before the work.
+  geometry::mesh_format_from_extension(a.out);
+  require_writable(a.out);
+  if (!a.stats.empty()) require_writable(a.stats);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+
+  const skin::Molecule mol = load_molecule(a.mol);
+  const double read_s = since(start);
+  mesher::MeshOptions options = mesh_options(a);
+  if (a.trace) options.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
+  ProgressReporter progress(!a.mol.quiet);
+  options.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  progress.finish();
+
+  const bool failed = !res.ok();
+  if (failed && !a.force) {
+    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
+    std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
+    if (!a.stats.empty()) write_text_file(a.stats, res.check.to_json());
+    return 3;
+  }
+  const auto write_start = Clock::now();
+  geometry::write_mesh(a.out, res.mesh);
+  const double write_s = since(write_start);
+  const double total = since(start);
+  if (!a.stats.empty()) {
+    const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
+    mesher::SummaryContext context;
+    context.input = a.mol.input;
+    context.output = a.out;
+    context.atoms = mol.atoms.size();
+    context.exact_measures_of = &points;
+    context.read_seconds = read_s;
+    context.write_seconds = write_s;
+    context.total_seconds = total;
+    context.peak_memory_bytes = peak_memory_bytes();
+    write_text_file(a.stats, mesher::run_summary(res, options, context).dump(2) + "\n");
+  }
+  if (!a.mol.quiet)
+    std::cerr << "wrote " << a.out << ": " << res.mesh.triangles.size() << " triangles"
+              << (res.checked ? ", min angle " + std::to_string(res.check.mesh.min_angle_deg) + "°" : std::string())
+              << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s\n";
+  if (failed)
+    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
+  return failed ? 3 : 0;
+}
+
+/// Problems of the command line that CLI11 cannot see: one input and -o, or a
+/// batch run (several inputs or --list, and -O); options of one algorithm
+/// given with the other. Prints the problem and returns false.
+bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
+  mesh.threads_given = cmd.count("--threads") > 0;
+  batch_run = mesh.mol.inputs.size() > 1 || !mesh.list.empty() || !mesh.out_dir.empty();
+  std::string problem;
+  if (mesh.mol.inputs.empty() && mesh.list.empty())
+    problem = "IN is required (a molecule file, or several with -O DIR)";
+  else if (!batch_run && mesh.out.empty())
+    problem = "-o OUT is required (or -O DIR for a batch run)";
+  else if (batch_run && mesh.out_dir.empty())
+    problem = "several inputs (or --list) need -O DIR, the output folder";
+  else if (batch_run)
+    for (const char* name : {"--output", "--stats", "--trace", "--paranoid", "--max-steps", "--dump-partial"})
+      if (cmd.count(name) > 0) {
+        problem = std::string(name) + " applies to one input, not to a batch run (-O)";
+        break;
+      }
+  if (!problem.empty()) {
+    std::cerr << "skinmesh mesh: " << problem << " (see 'skinmesh mesh --help')\n";
+    return false;
+  }
+  if (!batch_run) mesh.mol.input = mesh.mol.inputs.front();
+  return options_fit_algorithm(cmd, mesh.algorithm == "dynamic",
+                               {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction",
+                                "--disc-factor", "--no-angle-improvement", "--no-growth", "--growth-step"},
+                               {"--no-growth", "--growth-step"});
+}
+
+}  // namespace
+
+mesher::MeshOptions mesh_options(const MeshArgs& a) {
+  mesher::MeshOptions options = a.opt;
+  options.algorithm = mesher::algorithm_named(a.algorithm);
+  options.probe_radius = a.mol.probe;
+  options.height_direction = height_direction(a.direction);
+  options.check = !a.no_check;
+  options.improve_angles = !a.no_angle_improvement;
+  options.dynamic.growth = !a.no_growth;
+  options.observers.memory_released = release_free_memory;
+  return options;
+}
+
+Command add_mesh_command(CLI::App& app) {
+  auto args = std::make_shared<MeshArgs>();
+  MeshArgs& mesh = *args;
+  CLI::App* cmd = app.add_subcommand(
+      "mesh",
+      "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
+      "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off, .obj, .stl, "
+      ".vtk, or MSMS .vert/.face)");
+  add_molecule_options(*cmd, mesh.mol, /*many=*/true);
+  cmd->add_option("-o,--output", mesh.out,
+                  "output mesh, format by extension: .ply .off .obj .stl .vtk, or .vert (MSMS: NAME.vert and "
+                  "NAME.face)");
+  const char* batch = "Batch runs (several IN, or --list)";
+  cmd->add_option("-O,--output-dir", mesh.out_dir,
+                  "output folder of a batch run: DIR/NAME.FORMAT per input, DIR/summary.csv and DIR/summary.json")
+      ->group(batch);
+  cmd->add_option("--list", mesh.list,
+                  "a file of molecule files, one per line ('#' comments; relative to the list's folder)")
+      ->group(batch);
+  cmd->add_option("--jobs,-j", mesh.jobs, "inputs meshed at the same time (each on one thread unless --threads)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str()
+      ->group(batch);
+  cmd->add_option("--out-format", mesh.batch_format, "format of a batch run's meshes")
+      ->check(CLI::IsMember({"ply", "off", "obj", "stl", "vtk", "vert"}))
+      ->capture_default_str()
+      ->group(batch);
+  cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
+  add_direction_option(*cmd, mesh.direction);
+  add_size_options(*cmd, mesh.opt.size);
+  cmd->add_option("--disc-factor", mesh.opt.sweep.disc_factor,
+                  "tangent-disc radius / rho; must lie in (2C/(Q-2C), 2CQ sqrt((1+CQ)(1+3CQ))/(1+2CQ)^2]")
+      ->check(number_at_least_zero(true))
+      ->capture_default_str();
+  cmd->add_option("--algorithm", mesh.algorithm,
+                  "sweep: the advancing front of Cheng & Shi (2004); dynamic: the dynamic-skin baseline "
+                  "(Cheng, Dey, Edelsbrunner & Sullivan 2001: restricted Delaunay triangulation of a sample, "
+                  "3D Delaunay triangulation, the skin grown from small spheres; papers/dynamic/dynamic_skin.md)")
+      ->check(CLI::IsMember({"sweep", "dynamic"}))
+      ->capture_default_str();
+  cmd->add_flag("--no-growth", mesh.no_growth,
+                "with --algorithm dynamic: sample and refine the final skin directly (the static variant)");
+  cmd->add_option("--growth-step", mesh.opt.dynamic.max_step_motion,
+                  "with --algorithm dynamic: largest motion of a sample per growth step, as a fraction of "
+                  "its local length scale rho (the growth schedule)")
+      ->check(CLI::Range(1e-3, 1.0))
+      ->capture_default_str();
+  cmd->add_flag("--no-angle-improvement", mesh.no_angle_improvement,
+                "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
+                "the paper's algorithm alone; papers/refine/angle_improvement.md)");
+  cmd->add_option("--threads", mesh.opt.threads,
+                  "threads (0: every core); the mesh is the same, byte for byte, for every count")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
+  cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
+  const char* debug = "Debugging the sweep (papers/front/sweep.md)";
+  cmd->add_flag("--paranoid", mesh.opt.sweep.paranoid, "check for folds after every operation of the sweep")
+      ->group(debug);
+  cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
+  cmd->add_option("--max-steps", mesh.opt.sweep.max_steps, "stop the sweep after N departures")
+      ->check(number_at_least_zero(false))
+      ->group(debug);
+  cmd->add_option("--dump-partial", mesh.opt.sweep.dump_path,
+                  "write the partial mesh to this file before the seal or when stopped")
+      ->group(debug);
+  return {cmd, [args, cmd] {
+            bool batch_run = false;
+            if (!usage_is_consistent(*cmd, *args, batch_run)) return 2;
+            return batch_run ? run_batch(*args) : run_mesh(*args);
+          }};
+}
+
+}  // namespace skinmesh::app

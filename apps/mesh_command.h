@@ -1,0 +1,44 @@
+// apps/mesh_command.h: the arguments of `skinmesh mesh`, shared by its single
+// run (mesh.cpp) and its batch run (batch.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "apps/cli.h"
+#include "mesher/pipeline.h"
+
+namespace skinmesh::app {
+
+/// `skinmesh mesh` as parsed.
+struct MeshArgs {
+  MoleculeArgs mol;
+  std::string out, stats;
+  std::vector<double> direction;
+  /// The pipeline's options that the command line sets directly (C, Q, the
+  /// disc factor, threads, the sweep's debugging aids, the baseline's growth
+  /// step); the rest are set by mesh_options().
+  mesher::MeshOptions opt;
+  bool no_check = false, force = false, trace = false, no_angle_improvement = false;
+  /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
+  std::string algorithm = "sweep";
+  bool no_growth = false;
+  // Batch runs (several IN or --list): outputs DIR/<name>.<format>.
+  std::string out_dir, list, batch_format = "ply";
+  int jobs = 1;
+  bool threads_given = false;
+};
+
+/// The pipeline's options of a run: `a.opt` with the probe, the height
+/// direction, the algorithm, the check and the angle improvement of the
+/// command line, and the program's memory release between the meshing and
+/// the check. Throws CLI::ValidationError for a bad --direction.
+mesher::MeshOptions mesh_options(const MeshArgs& a);
+
+/// `skinmesh mesh IN IN ... -O DIR` (or --list): every input meshed by --jobs
+/// workers, one failing input does not stop the others; a summary table on
+/// stdout and in DIR/summary.csv and DIR/summary.json. Returns 0 if every
+/// input succeeded, else the largest of their exit codes.
+int run_batch(const MeshArgs& a);
+
+}  // namespace skinmesh::app

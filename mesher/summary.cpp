@@ -1,0 +1,175 @@
+// mesher/summary.cpp: run_summary(), the result schema of `--stats` and of
+// Python's Mesh.stats.
+// Notes: papers/mesher/pipeline.md ("The result schema")
+#include "mesher/summary.h"
+
+#include <chrono>
+#include <cstdio>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/parallel.h"
+#include "geometry/mesh/mesh_measures.h"
+#include "skin/skin_measures.h"
+
+namespace skinmesh::mesher {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+/// The counts of the baseline's run (Algorithm::Dynamic).
+void add_dynamic_counts(const MeshOptions& options, const dynamic::DynamicStats& d, json& j) {
+  const dynamic::SampleStats& st = d.samples;
+  j["growth"] = options.dynamic.growth;
+  j["operations"] = {{"growth_steps", d.steps},
+                     {"start_level", d.start_level},
+                     {"sphere_patches_seeded", d.births},
+                     {"seeds", st.seeds},
+                     {"u_insertions", st.u_insertions},
+                     {"bounding_insertions", st.bounding_insertions},
+                     {"manifold_insertions", st.manifold_insertions},
+                     {"l_deletions", st.l_deletions},
+                     {"ring_samples", st.ring_samples},
+                     {"isolated_deletions", st.isolated_deletions},
+                     {"lost_samples", d.lost_samples},
+                     {"failed_insertions", st.failed_insertions},
+                     {"moves", d.moves},
+                     {"kinetic_moves", d.kinetic_moves},
+                     {"voronoi_vertices_evaluated", st.tets_classified},
+                     {"peak_samples", d.peak_samples},
+                     {"peak_tetrahedra", d.peak_tets},
+                     {"refine_rounds", st.rounds},
+                     {"converged", d.converged},
+                     {"L_left", st.L_left},
+                     {"U_left", st.U_left},
+                     {"nonmanifold_left", st.nonmanifold_left}};
+  const auto& dt = d.delaunay;
+  j["delaunay"] = {{"insertions", dt.insertions},       {"removals", dt.removals},
+                   {"kinetic_moves", dt.kinetic_moves}, {"conflict_tets", dt.conflict_tets},
+                   {"star_tets", dt.star_tets},         {"link_vertices", dt.link_vertices},
+                   {"local_tets", dt.local_tets},       {"walk_steps", dt.walk_steps}};
+  const auto& pr = d.predicates;
+  j["predicates"] = {
+      {"orient3d", {{"calls", pr.orient3d.calls}, {"exact", pr.orient3d.exact}, {"sos", pr.orient3d.sos}}},
+      {"power_test", {{"calls", pr.power_test.calls}, {"exact", pr.power_test.exact}, {"sos", pr.power_test.sos}}}};
+}
+
+/// The counts of the sweep, the refinement and the angle improvement (Algorithm::Sweep).
+void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j) {
+  const front::SweepStats& s = res.sweep;
+  const refine::RefineStats& r = res.refinement;
+  j["operations"] = {{"creations", s.creations},
+                     {"creeps", s.creeps},
+                     {"wings", s.wings},
+                     {"bridges", s.bridges},
+                     {"seals", s.seals},
+                     {"held", s.held},
+                     {"deferred", s.deferred},
+                     {"bridge_rows", s.bridge_rows},
+                     {"contacts", s.contacts},
+                     {"collisions", s.collisions},
+                     {"stuck", s.stuck},
+                     {"enlarged_holes", s.enlarged_holes},
+                     {"reopened_holes", s.reopened_holes},
+                     {"merged_minima", s.merged_minima},
+                     {"released_saddles", s.released},
+                     {"flips", r.flips},
+                     {"contractions", r.contractions},
+                     {"insertions", r.insertions},
+                     {"refine_rounds", r.rounds},
+                     {"refused_contractions", r.refused_contractions},
+                     {"protected_contractions", r.protected_contractions},
+                     {"refused_insertions", r.refused_insertions},
+                     {"crowded_insertions", r.crowded_insertions},
+                     {"flip_caps", r.flip_caps},
+                     {"L_left", r.L_left},
+                     {"U_left", r.U_left}};
+  const refine::AngleImprovementStats& ai = res.angle_improvement;
+  j["angle_improvement"] = {{"enabled", options.improve_angles},
+                            {"low_triangles", ai.low_triangles},
+                            {"passes", ai.passes},
+                            {"attempts", ai.attempts},
+                            {"moves", ai.moves},
+                            {"refused", ai.refused},
+                            {"refused_orientation", ai.refused_orientation},
+                            {"refused_rdt", ai.refused_rdt},
+                            {"refused_intersection", ai.refused_intersection},
+                            {"refused_L", ai.refused_L},
+                            {"refused_U", ai.refused_U},
+                            {"skipped", ai.skipped},
+                            {"min_angle_before_deg", ai.min_angle_before_deg},
+                            {"min_angle_after_deg", ai.min_angle_after_deg}};
+}
+
+}  // namespace
+
+json run_summary(const MeshResult& res, const MeshOptions& options, const SummaryContext& context) {
+  json j;
+  j["input"] = context.input;
+  j["output"] = context.output;
+  j["atoms"] = context.atoms;
+  j["probe_radius"] = options.probe_radius;
+  j["vertices"] = res.mesh.positions.size();
+  j["triangles"] = res.mesh.triangles.size();
+  double analytic_seconds = -1;
+  {
+    // Area and enclosed volume from the mesh, per component and in all.
+    json parts = json::array();
+    double area = 0, volume = 0;
+    for (const geometry::ComponentMeasure& c : geometry::component_measures(res.mesh)) {
+      parts.push_back({{"vertices", c.vertices},
+                       {"triangles", c.triangles},
+                       {"area_A2", c.area},
+                       {"volume_A3", c.volume},
+                       {"kind", c.volume >= 0 ? "body" : "cavity"}});
+      area += c.area;
+      volume += c.volume;
+    }
+    j["surface"] = {{"area_A2", area}, {"volume_A3", volume}, {"components", std::move(parts)}};
+    // The same two numbers of the exact skin, integrated over its sphere and
+    // hyperboloid patches, and how far the mesh is off.
+    if (context.exact_measures_of) {
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        const skin::SkinMeasures exact = skin::skin_measures(*context.exact_measures_of, options.threads);
+        analytic_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        j["surface"]["analytic"] = {
+            {"area_A2", exact.area}, {"volume_A3", exact.volume}, {"patch_cells", exact.patch_cells}};
+        j["surface"]["mesh_relative_difference"] = {{"area", area / exact.area - 1},
+                                                    {"volume", volume / exact.volume - 1}};
+      } catch (const GeometryError& e) {
+        j["surface"]["analytic"] = {{"error", e.what()}};
+        std::fprintf(stderr, "skinmesh: warning: no exact area and volume: %s\n", e.what());
+      }
+    }
+  }
+  j["checked"] = res.checked;
+  if (res.checked) {
+    j["min_angle_deg"] = res.check.mesh.min_angle_deg;
+    j["max_angle_deg"] = res.check.mesh.max_angle_deg;
+    j["checks_passed"] = res.check.ok();
+    j["problems"] = res.check.problems;
+  }
+  j["critical_points"] = {{"minima", res.critical.minima}, {"saddles", res.critical.saddles},
+                          {"maxima", res.critical.maxima}};
+  j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles},
+                               {"maxima", res.live.maxima}};
+  j["algorithm"] = algorithm_name(res.algorithm);
+  j["threads"] = thread_count(options.threads);
+  if (res.algorithm == Algorithm::Dynamic)
+    add_dynamic_counts(options, res.dynamic, j);
+  else
+    add_sweep_counts(options, res, j);
+  json seconds = json::object();
+  if (context.read_seconds >= 0) seconds["read"] = context.read_seconds;
+  for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
+  if (analytic_seconds >= 0) seconds["analytic"] = analytic_seconds;
+  if (context.write_seconds >= 0) seconds["write"] = context.write_seconds;
+  if (context.total_seconds >= 0) seconds["total"] = context.total_seconds;
+  j["seconds"] = seconds;
+  if (context.peak_memory_bytes > 0) j["peak_memory_bytes"] = context.peak_memory_bytes;
+  return j;
+}
+
+}  // namespace skinmesh::mesher
