@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 
 namespace skinmesh {
 
@@ -14,6 +15,11 @@ namespace skinmesh {
 using Vec3 = Eigen::Vector3d;
 /// A 3x3 matrix (projectors, quadric forms).
 using Mat3 = Eigen::Matrix3d;
+
+/// pi, the one definition of the project, and the radians of one degree
+/// (angles are radians inside the code and degrees at its edges).
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kDegree = kPi / 180.0;
 
 /// Index into a flat array (vertices, simplices, mesh elements).
 using Index = std::uint32_t;

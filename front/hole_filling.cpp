@@ -11,37 +11,37 @@
 // Notes: papers/front/hole_filling.md
 #include <algorithm>
 
-#include "front/sweep_internal.h"
+#include "front/operations.h"
 #include "geometry/check/mesh_checks.h"
 
 namespace skinmesh::front::detail {
 
 using geometry::min_angle;
 
-bool Sweep::small_hole(Vertex v) const {
-  const double reach = opt_.small_hole_reach * disc_radius(v);
-  const Halfedge start = mesh_.halfedge(v);
+bool small_hole(const FrontState& fs, Vertex v) {
+  const double reach = fs.opt.small_hole_reach * fs.disc_radius(v);
+  const Halfedge start = fs.mesh.halfedge(v);
   // First the cheap part: the loop closes within small_hole_vertices vertices,
   // all within reach of v (most departures stop here, before any angle).
   Halfedge h = start;
   int count = 1;
   for (;; ++count) {
-    if (count > opt_.small_hole_vertices) return false;
-    const Vertex x = mesh_.to_vertex(h);
+    if (count > fs.opt.small_hole_vertices) return false;
+    const Vertex x = fs.mesh.to_vertex(h);
     if (x == v) break;
-    if ((mesh_.position(x) - mesh_.position(v)).norm() > reach) return false;
-    h = mesh_.next(h);
+    if ((fs.mesh.position(x) - fs.mesh.position(v)).norm() > reach) return false;
+    h = fs.mesh.next(h);
   }
   // A loop of k vertices bounds a small hole iff its hole angles add up to
   // less than k 180°: (k - 2) 180° inside a polygon, (k + 2) 180° around the
   // outside of a small disc (like a fresh bowl).
   double angle_sum = 0;
   h = start;
-  for (int i = 0; i < count; ++i, h = mesh_.next(h)) angle_sum += corner(mesh_.to_vertex(h)).angle;
+  for (int i = 0; i < count; ++i, h = fs.mesh.next(h)) angle_sum += corner(fs, fs.mesh.to_vertex(h)).angle;
   return angle_sum < count * kPi;
 }
 
-bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
+bool fill_hole_dp(FrontState& fs, const std::vector<Vertex>& poly) {
   const std::size_t k = poly.size();
   const double kNone = -1;
   // q[i][j]: best minimum angle of a triangulation of the sub-polygon
@@ -51,16 +51,16 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
   auto at = [k](std::size_t i, std::size_t j) { return i * k + j; };
   auto diagonal_ok = [&](std::size_t i, std::size_t j) {
     if (j == i + 1 || (i == 0 && j == k - 1)) return true;  // a hole edge
-    return !mesh_.find_halfedge(poly[i], poly[j]).is_valid();
+    return !fs.mesh.find_halfedge(poly[i], poly[j]).is_valid();
   };
   auto tri_quality = [&](std::size_t i, std::size_t m, std::size_t j) {
-    const Vec3 &a = mesh_.position(poly[i]), &b = mesh_.position(poly[m]), &c = mesh_.position(poly[j]);
+    const Vec3 &a = fs.mesh.position(poly[i]), &b = fs.mesh.position(poly[m]), &c = fs.mesh.position(poly[j]);
     const Vec3 nt = (b - a).cross(c - a);
-    if (nt.dot(normal_[poly[i]]) <= 0 || nt.dot(normal_[poly[m]]) <= 0 || nt.dot(normal_[poly[j]]) <= 0) return kNone;
+    if (nt.dot(fs.normal[poly[i]]) <= 0 || nt.dot(fs.normal[poly[m]]) <= 0 || nt.dot(fs.normal[poly[j]]) <= 0) return kNone;
     // Each corner's span must lie in that vertex's hole wedge (no overlap
     // with the triangles already there).
-    if (!fits_at(poly[i], poly[m], poly[j]) || !fits_at(poly[m], poly[j], poly[i]) ||
-        !fits_at(poly[j], poly[i], poly[m]))
+    if (!fits_at(fs, poly[i], poly[m], poly[j]) || !fits_at(fs, poly[m], poly[j], poly[i]) ||
+        !fits_at(fs, poly[j], poly[i], poly[m]))
       return kNone;
     return min_angle(a, b, c);
   };
@@ -83,89 +83,89 @@ bool Sweep::fill_hole_dp(const std::vector<Vertex>& poly) {
     stack.pop_back();
     if (j == i + 1) continue;
     const std::size_t m = arg[at(i, j)];
-    add_triangle(poly[i], poly[m], poly[j]);
+    fs.add_triangle(poly[i], poly[m], poly[j]);
     stack.push_back({i, m});
     stack.push_back({m, j});
   }
-  for (Vertex v : poly) set_state(v, VState::Interior);
-  ++stats_.seals;
-  if (trace_) tracef("seal loop of %zu by the max-min-angle programme\n", k);
+  for (Vertex v : poly) fs.set_state(v, VState::Interior);
+  ++fs.stats.seals;
+  if (fs.tracing) fs.tracef("seal loop of %zu by the max-min-angle programme\n", k);
   return true;
 }
 
-Halfedge Sweep::enlarge_hole(const std::vector<Vertex>& poly) {
+Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly) {
   std::vector<Vertex> rim;  // surviving corners of the deleted faces
   // Deletes every face around the vertices `around`; their corners that keep
   // a face join the rim.
   auto delete_faces_around = [&](const std::vector<Vertex>& around) {
     std::vector<Face> faces;
     for (Vertex v : around)
-      for (Face f : mesh_.faces(v))
+      for (Face f : fs.mesh.faces(v))
         if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
     std::vector<Vertex> corners;
     for (Face f : faces)
-      for (Vertex x : mesh_.vertices(f)) corners.push_back(x);
-    for (Face f : faces) mesh_.delete_face(f);
+      for (Vertex x : fs.mesh.vertices(f)) corners.push_back(x);
+    for (Face f : faces) fs.mesh.delete_face(f);
     for (Vertex x : corners)
-      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x)) rim.push_back(x);
+      if (!fs.mesh.is_deleted(x) && !fs.mesh.is_isolated(x)) rim.push_back(x);
   };
   auto gaps = [&](Vertex x) {
     int n = 0;
-    for (Halfedge h : mesh_.halfedges(x)) n += mesh_.is_boundary(h);
+    for (Halfedge h : fs.mesh.halfedges(x)) n += fs.mesh.is_boundary(h);
     return n;
   };
   delete_faces_around(poly);
   // A pinched vertex (two boundary gaps) cannot be handled by the front:
   // delete its remaining faces too, a few times at most.
-  for (int round = 0; round < opt_.max_pinch_rounds; ++round) {
+  for (int round = 0; round < fs.opt.max_pinch_rounds; ++round) {
     std::vector<Vertex> pinched;
     for (Vertex x : rim)
-      if (!mesh_.is_deleted(x) && !mesh_.is_isolated(x) && gaps(x) > 1) pinched.push_back(x);
+      if (!fs.mesh.is_deleted(x) && !fs.mesh.is_isolated(x) && gaps(x) > 1) pinched.push_back(x);
     if (pinched.empty()) break;
     delete_faces_around(pinched);
   }
   Halfedge start;
   for (Vertex x : rim) {
-    if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
+    if (fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x)) continue;
     if (gaps(x) != 1) return Halfedge();
-    set_state(x, VState::Front);
-    start = mesh_.halfedge(x);
+    fs.set_state(x, VState::Front);
+    start = fs.mesh.halfedge(x);
   }
   return start;
 }
 
-bool Sweep::reopen_hole(const std::vector<Vertex>& poly) {
+bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
   // Bound the re-meshing: a vertex on the rim of too many re-opened regions
   // means the sweep keeps tangling there.
   for (Vertex v : poly)
-    if (reopenings_[v] >= opt_.max_reopenings) return false;
+    if (fs.reopenings[v] >= fs.opt.max_reopenings) return false;
   // The region: the faces around the hole's vertices, grown at every corner
   // that would be pinched (two separate gaps in its fan) until none is, so
   // that the rim is a plain front (it may join the front around it: the sweep
   // goes on from there). Decided before anything is deleted.
   std::vector<Face> region;
   auto add_faces_around = [&](Vertex v) {
-    for (Face f : mesh_.faces(v))
+    for (Face f : fs.mesh.faces(v))
       if (std::find(region.begin(), region.end(), f) == region.end()) region.push_back(f);
   };
   for (Vertex v : poly) add_faces_around(v);
   std::sort(region.begin(), region.end());
   auto open = [&](Halfedge h) {  // the slot of h in its vertex's fan: a gap or a deleted face
-    return mesh_.is_boundary(h) || std::binary_search(region.begin(), region.end(), mesh_.face(h));
+    return fs.mesh.is_boundary(h) || std::binary_search(region.begin(), region.end(), fs.mesh.face(h));
   };
   const std::size_t max_faces = 64 * std::max<std::size_t>(region.size(), 1);
   std::vector<Vertex> rim;
   for (int round = 0;; ++round) {
     rim.clear();
     for (Face f : region)
-      for (Vertex x : mesh_.vertices(f)) rim.push_back(x);
+      for (Vertex x : fs.mesh.vertices(f)) rim.push_back(x);
     std::sort(rim.begin(), rim.end());
     rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
     std::vector<Vertex> pinched;
     for (Vertex x : rim) {
       int runs = 0, slots = 0, open_slots = 0;
       bool prev = false, first = false;
-      for (Halfedge h : mesh_.halfedges(x)) {
+      for (Halfedge h : fs.mesh.halfedges(x)) {
         const bool o = open(h);
         if (slots == 0) first = o;
         else if (o && !prev) ++runs;
@@ -175,20 +175,20 @@ bool Sweep::reopen_hole(const std::vector<Vertex>& poly) {
       if (open_slots < slots && runs > 1) pinched.push_back(x);
     }
     if (pinched.empty()) break;
-    if (round >= opt_.max_pinch_rounds || region.size() > max_faces) return false;
+    if (round >= fs.opt.max_pinch_rounds || region.size() > max_faces) return false;
     for (Vertex x : pinched) add_faces_around(x);
     std::sort(region.begin(), region.end());
   }
-  for (Face f : region) mesh_.delete_face(f);
-  ++stats_.reopened_holes;
+  for (Face f : region) fs.mesh.delete_face(f);
+  ++fs.stats.reopened_holes;
   for (Vertex x : rim) {
-    if (mesh_.is_deleted(x) || mesh_.is_isolated(x)) continue;
-    if (reopenings_[x] < 255) ++reopenings_[x];
-    if (held_by_[x] != kInvalidIndex && !resolved_[held_by_[x]] && state_[x] == VState::Held) continue;
-    set_state(x, VState::Front);
-    push(x);
+    if (fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x)) continue;
+    if (fs.reopenings[x] < 255) ++fs.reopenings[x];
+    if (fs.held_by[x] != kInvalidIndex && !fs.resolved[fs.held_by[x]] && fs.state[x] == VState::Held) continue;
+    fs.set_state(x, VState::Front);
+    push(fs, x);
   }
-  if (trace_) tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
+  if (fs.tracing) fs.tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
   return true;
 }
 

@@ -9,7 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "front/sweep_internal.h"
+#include "front/operations.h"
 #include "core/errors.h"
 #include "geometry/check/mesh_checks.h"
 #include "geometry/kernel/predicates.h"
@@ -52,8 +52,8 @@ bool simple_ccw(const std::vector<std::array<double, 2>>& P) {
 
 }  // namespace
 
-void Sweep::seal_all() {
-  const std::size_t max_loops = mesh_.n_halfedges() + 1;
+void seal_all(FrontState& fs) {
+  const std::size_t max_loops = fs.mesh.n_halfedges() + 1;
   // The vertices are scanned once, from a cursor (a scan from the first vertex
   // per hole was quadratic: 16 % of the time on 30,000 atoms); an enlargement
   // can re-open a hole behind the cursor, so the end of the scan is confirmed
@@ -63,11 +63,11 @@ void Sweep::seal_all() {
   for (std::size_t iter = 0;; ++iter) {
     if (iter > max_loops) throw TopologyError("seal: the holes do not close");
     Halfedge start;
-    const std::size_t n = mesh_.vertices_size();
+    const std::size_t n = fs.mesh.vertices_size();
     for (; cursor < n; ++cursor) {
       const Vertex v(static_cast<Index>(cursor));
-      if (!mesh_.is_deleted(v) && !mesh_.is_isolated(v) && mesh_.is_boundary(v)) {
-        start = mesh_.halfedge(v);
+      if (!fs.mesh.is_deleted(v) && !fs.mesh.is_isolated(v) && fs.mesh.is_boundary(v)) {
+        start = fs.mesh.halfedge(v);
         break;
       }
     }
@@ -78,19 +78,19 @@ void Sweep::seal_all() {
       continue;
     }
     rescanned = false;
-    const std::size_t f0 = mesh_.faces_size();
-    seal_loop(start, opt_.max_hole_enlargements);
-    notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
+    const std::size_t f0 = fs.mesh.faces_size();
+    seal_loop(fs, start, fs.opt.max_hole_enlargements);
+    fs.notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
   }
 }
 
-void Sweep::close_small_hole(Vertex v) { seal_loop(mesh_.halfedge(v), 0, /*in_sweep=*/true); }
+void close_small_hole(FrontState& fs, Vertex v) { seal_loop(fs, fs.mesh.halfedge(v), 0, /*in_sweep=*/true); }
 
-void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
-  std::vector<Halfedge> loop = mesh_.boundary_loop(start);
+void seal_loop(FrontState& fs, Halfedge start, int enlargements_left, bool in_sweep) {
+  std::vector<Halfedge> loop = fs.mesh.boundary_loop(start);
   std::vector<Vertex> poly;
-  for (Halfedge h : loop) poly.push_back(mesh_.to_vertex(h));
-  if (poly.size() <= static_cast<std::size_t>(opt_.dp_max_hole_vertices) && fill_hole_dp(poly)) return;
+  for (Halfedge h : loop) poly.push_back(fs.mesh.to_vertex(h));
+  if (poly.size() <= static_cast<std::size_t>(fs.opt.dp_max_hole_vertices) && fill_hole_dp(fs, poly)) return;
   // Plane of projection: the first of (the average vertex normal, the normal
   // of the best-fit plane, each vertex normal) in which the hole is a simple,
   // counter-clockwise polygon. A hole with a narrow waist can cross itself in
@@ -98,7 +98,7 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
   HolePlane plane;
   plane.centre = Vec3::Zero();
   Vec3 nbar = Vec3::Zero();
-  for (Vertex v : poly) plane.centre += mesh_.position(v), nbar += normal_[v];
+  for (Vertex v : poly) plane.centre += fs.mesh.position(v), nbar += fs.normal[v];
   plane.centre /= double(poly.size());
   if (nbar.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
   nbar.normalize();
@@ -106,19 +106,19 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
   {
     Mat3 cov = Mat3::Zero();
     for (Vertex v : poly) {
-      const Vec3 d = mesh_.position(v) - plane.centre;
+      const Vec3 d = fs.mesh.position(v) - plane.centre;
       cov += d * d.transpose();
     }
     Eigen::SelfAdjointEigenSolver<Mat3> es(cov);
     Vec3 pn = es.eigenvectors().col(0);
     planes.push_back(pn.dot(nbar) < 0 ? Vec3(-pn) : pn);
-    for (Vertex v : poly) planes.push_back(normal_[v]);
+    for (Vertex v : poly) planes.push_back(fs.normal[v]);
   }
-  auto proj = [&](Vertex v) { return plane(mesh_.position(v)); };
+  auto proj = [&](Vertex v) { return plane(fs.mesh.position(v)); };
   bool found = false;
   std::vector<std::array<double, 2>> P(poly.size());
   for (const Vec3& cand : planes) {
-    if (cand.dot(nbar) <= opt_.seal_plane_min_cosine) continue;
+    if (cand.dot(nbar) <= fs.opt.seal_plane_min_cosine) continue;
     plane.n = cand;
     plane.t1 = cand.unitOrthogonal(), plane.t2 = cand.cross(plane.t1);
     for (std::size_t i = 0; i < poly.size(); ++i) P[i] = proj(poly[i]);
@@ -129,29 +129,29 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
     os << "seal: the hole of " << poly.size() << " vertices near (" << plane.centre.transpose()
        << ") is not a simple polygon in any plane tried";
     if (in_sweep) {
-      if (trace_) tracef("%s: re-opening it\n", os.str().c_str());
-      if (reopen_hole(poly)) return;
+      if (fs.tracing) fs.tracef("%s: re-opening it\n", os.str().c_str());
+      if (reopen_hole(fs, poly)) return;
       os << "; re-opening it pinched the front";
     } else if (enlargements_left > 0) {
-      if (trace_) tracef("%s: enlarging it\n", os.str().c_str());
-      const Halfedge h = enlarge_hole(poly);
-      ++stats_.enlarged_holes;
+      if (fs.tracing) fs.tracef("%s: enlarging it\n", os.str().c_str());
+      const Halfedge h = enlarge_hole(fs, poly);
+      ++fs.stats.enlarged_holes;
       if (h.is_valid()) {
-        seal_loop(h, enlargements_left - 1);
+        seal_loop(fs, h, enlargements_left - 1);
         return;
       }
       os << "; enlarging it pinched the front";
     }
     throw TopologyError(os.str());
   }
-  if (trace_) {
+  if (fs.tracing) {
     std::ostringstream os;
     os << "seal loop of " << poly.size() << ":";
     for (Vertex x : poly) {
       const auto px = proj(x);
-      os << " v" << x.idx() << "[" << px[0] << "," << px[1] << "|hole " << corner(x).angle / kDeg << "]";
+      os << " v" << x.idx() << "[" << px[0] << "," << px[1] << "|hole " << corner(fs, x).angle / kDegree << "]";
     }
-    opt_.trace(os.str());
+    fs.opt.trace(os.str());
   }
   // Ear clipping: the hole is on the left of u -> v -> w; an ear at v is a
   // left turn with no other polygon vertex inside; take the best 3D angle.
@@ -164,7 +164,7 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
       const Vertex u = poly[(i + k - 1) % k], v = poly[i], w = poly[(i + 1) % k];
       const auto pu = proj(u), pv = proj(v), pw = proj(w);
       if (geometry::orient2d(pu[0], pu[1], pv[0], pv[1], pw[0], pw[1]) != Sign::Positive) continue;
-      if (mesh_.find_halfedge(w, u).is_valid()) continue;
+      if (fs.mesh.find_halfedge(w, u).is_valid()) continue;
       bool empty = true;
       for (std::size_t j = 0; j < k && empty; ++j) {
         const Vertex x = poly[j];
@@ -178,10 +178,10 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
       if (!empty) continue;
       // The ear must also face outwards at its three corners (a sliver across
       // a narrow waist can turn over between the projection plane and T_x).
-      const Vec3 nt = (mesh_.position(w) - mesh_.position(v)).cross(mesh_.position(u) - mesh_.position(v));
-      if (nt.dot(normal_[u]) <= 0 || nt.dot(normal_[v]) <= 0 || nt.dot(normal_[w]) <= 0) continue;
-      if (strict && (!fits_at(u, v, w) || !fits_at(v, w, u) || !fits_at(w, u, v))) continue;
-      const double q = min_angle(mesh_.position(u), mesh_.position(v), mesh_.position(w));
+      const Vec3 nt = (fs.mesh.position(w) - fs.mesh.position(v)).cross(fs.mesh.position(u) - fs.mesh.position(v));
+      if (nt.dot(fs.normal[u]) <= 0 || nt.dot(fs.normal[v]) <= 0 || nt.dot(fs.normal[w]) <= 0) continue;
+      if (strict && (!fits_at(fs, u, v, w) || !fits_at(fs, v, w, u) || !fits_at(fs, w, u, v))) continue;
+      const double q = min_angle(fs.mesh.position(u), fs.mesh.position(v), fs.mesh.position(w));
       if (q > best) best = q, bi = i;
     }
     if (bi == k && strict) {
@@ -189,28 +189,28 @@ void Sweep::seal_loop(Halfedge start, int enlargements_left, bool in_sweep) {
       continue;
     }
     if (bi == k) {
-      if (trace_) {
+      if (fs.tracing) {
         std::ostringstream os;
         os << "seal: no ear; the hole's vertices in its projection plane:";
         for (Vertex x : poly) {
           const auto px = proj(x);
           os << " [" << px[0] << "," << px[1] << "]";
         }
-        opt_.trace(os.str());
+        fs.opt.trace(os.str());
       }
       std::ostringstream os;
       os << "seal: no ear in a hole of " << k << " vertices near (" << plane.centre.transpose() << ")";
       throw TopologyError(os.str());
     }
     const Vertex u = poly[(bi + k - 1) % k], v = poly[bi], w = poly[(bi + 1) % k];
-    if (trace_) tracef("  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
-    add_triangle(v, w, u);
-    set_state(v, VState::Interior);
+    if (fs.tracing) fs.tracef("  ear v%u v%u v%u\n", u.idx(), v.idx(), w.idx());
+    fs.add_triangle(v, w, u);
+    fs.set_state(v, VState::Interior);
     poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(bi));
   }
-  add_triangle(poly[0], poly[1], poly[2]);
-  for (Vertex v : poly) set_state(v, VState::Interior);
-  ++stats_.seals;
+  fs.add_triangle(poly[0], poly[1], poly[2]);
+  for (Vertex v : poly) fs.set_state(v, VState::Interior);
+  ++fs.stats.seals;
 }
 
 }  // namespace skinmesh::front::detail

@@ -29,7 +29,6 @@ using Vec2 = Eigen::Vector2d;
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kSqrt5 = 2.2360679774997896964;
 /// The pass runs only if every triangle has R <= kMaxKappa · rho_min: then
 /// 2 sqrt(5) kappa <= 0.895 < 1 and the neighbourhood radius of

@@ -14,7 +14,6 @@ namespace skinmesh::geometry::mesh_checks_detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
 
 /// An estimate (degrees) of atan2(y, x) * kDegPerRad for y >= 0, within 3e-6

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "front/sweep_internal.h"
+#include "front/operations.h"
 #include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
@@ -24,13 +24,12 @@
 #include "tests/skin/skin_test_util.h"
 
 using namespace skinmesh;
-using front::detail::Sweep;
+using front::detail::FrontState;
+using namespace front::detail;
 using front::detail::VState;
 using geometry::Vertex;
 
 namespace {
-
-constexpr double kDeg = front::detail::kDeg;
 
 double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
 
@@ -49,11 +48,11 @@ struct Fixture {
 };
 
 /// Number of boundary loops (front polygons) of the partial mesh.
-std::size_t front_loops(const Sweep& s) { return s.mesh().boundary_loops().size(); }
+std::size_t front_loops(const FrontState& s) { return s.mesh.boundary_loops().size(); }
 
 /// V - E + F of the partial mesh (isolated and deleted vertices excluded).
-long euler(const Sweep& s) {
-  const auto& m = s.mesh();
+long euler(const FrontState& s) {
+  const auto& m = s.mesh;
   long v = 0;
   for (Vertex x : m.vertices())
     if (!m.is_deleted(x) && !m.is_isolated(x)) ++v;
@@ -62,14 +61,14 @@ long euler(const Sweep& s) {
 
 /// The invariants of a partial mesh of the skin: every vertex on the skin,
 /// every face outward at its three corners, no fold at any vertex.
-void check_partial_mesh(const Sweep& s, const skin::SkinSurface& skin) {
-  const auto& m = s.mesh();
+void check_partial_mesh(const FrontState& s, const skin::SkinSurface& skin) {
+  const auto& m = s.mesh;
   std::size_t far = 0, inward = 0, folded = 0;
   for (Vertex v : m.vertices()) {
     if (m.is_deleted(v) || m.is_isolated(v)) continue;
     const skin::SkinSample smp = skin.sample(m.position(v), kInvalidIndex);
     if (std::abs(smp.f) / smp.gradient.norm() > 1e-9) ++far;
-    if (std::abs(s.fold_excess(v)) > 1 * kDeg) ++folded;
+    if (std::abs(fold_excess(s, v)) > 1 * kDegree) ++folded;
   }
   for (geometry::Face f : m.faces()) {
     if (m.is_deleted(f)) continue;
@@ -78,7 +77,7 @@ void check_partial_mesh(const Sweep& s, const skin::SkinSurface& skin) {
     for (Vertex v : m.vertices(f)) c[i++] = v;
     const Vec3 nt = (m.position(c[1]) - m.position(c[0])).cross(m.position(c[2]) - m.position(c[0]));
     for (Vertex v : c)
-      if (nt.dot(s.normal(v)) <= 0) ++inward;
+      if (nt.dot(s.normal[v]) <= 0) ++inward;
   }
   CHECK(far == 0);
   CHECK(inward == 0);
@@ -91,13 +90,13 @@ TEST_SUITE("front operations") {
 
 TEST_CASE("creation on a single sphere: six triangles and one front loop of six") {
   Fixture fx({{Vec3(0.3, -0.2, 0.1), w_of(1.6, 1.4)}});
-  Sweep s(fx.skin, fx.ms, fx.opt);
+  FrontState s(fx.skin, fx.ms, fx.opt);
   const Index c = fx.first_live(morse::CriticalKind::Minimum);
   REQUIRE(c != kInvalidIndex);
-  s.creation(c);
-  CHECK(s.mesh().n_faces() == 6);
-  CHECK(s.mesh().n_vertices() == 7);
-  const auto loops = s.mesh().boundary_loops();
+  creation(s, c);
+  CHECK(s.mesh.n_faces() == 6);
+  CHECK(s.mesh.n_vertices() == 7);
+  const auto loops = s.mesh.boundary_loops();
   REQUIRE(loops.size() == 1);
   CHECK(loops[0].size() == 6);
   CHECK(euler(s) == 1);  // a disc
@@ -107,11 +106,11 @@ TEST_CASE("creation on a single sphere: six triangles and one front loop of six"
   const double rho = fx.ms.critical[c].rho, r = fx.opt.disc_factor * rho;
   const Vec3 p0 = fx.ms.critical[c].position;
   for (const auto h : loops[0]) {
-    const double d = (s.mesh().position(s.mesh().to_vertex(h)) - p0).norm();
+    const double d = (s.mesh.position(s.mesh.to_vertex(h)) - p0).norm();
     CHECK(d >= r * (1 - 1e-9));
     CHECK(d <= r / std::cos(std::asin(r / rho)) * (1 + 1e-9));
     // Outside the bowl: each rim vertex sees 360° - 2 · 60° of hole.
-    CHECK(s.corner(s.mesh().to_vertex(h)).angle / kDeg == doctest::Approx(240).epsilon(0.02));
+    CHECK(corner(s, s.mesh.to_vertex(h)).angle / kDegree == doctest::Approx(240).epsilon(0.02));
   }
 }
 
@@ -121,75 +120,75 @@ TEST_CASE("wing closes a front angle below 90°") {
   Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}});
   fx.opt.wing_angle_deg = 0;
   fx.opt.forced_wing_angle_deg = 0;
-  Sweep s(fx.skin, fx.ms, fx.opt);
-  s.create_initial_front();
+  FrontState s(fx.skin, fx.ms, fx.opt);
+  create_initial_front(s);
   Vertex target;
   for (int step = 0; step < 400 && !target.is_valid(); ++step) {
-    REQUIRE(s.departure_step());
-    for (Vertex v : s.mesh().vertices())
-      if (!s.mesh().is_deleted(v) && s.mesh().is_boundary(v) && s.state(v) == VState::Front &&
-          s.corner(v).angle < 85 * kDeg) {
+    REQUIRE(departure_step(s));
+    for (Vertex v : s.mesh.vertices())
+      if (!s.mesh.is_deleted(v) && s.mesh.is_boundary(v) && s.state[v] == VState::Front &&
+          corner(s, v).angle < 85 * kDegree) {
         fx.opt.wing_angle_deg = 90;  // the sweep reads its options by reference
-        if (s.wing_refusal(v, false) == nullptr) target = v;
+        if (wing_refusal(s, v, false) == nullptr) target = v;
         fx.opt.wing_angle_deg = 0;
         if (target.is_valid()) break;
       }
   }
   REQUIRE(target.is_valid());
   fx.opt.wing_angle_deg = 90;
-  const Sweep::Corner k = s.corner(target);
+  const front::detail::Corner k = corner(s, target);
   // The new edge u-w is bounded by wing_max_edge_factor times the larger disc
   // radius of u and w: with the bound set just below its length the wing is
   // refused, and at the default it is taken.
-  const double uw = (s.mesh().position(k.u) - s.mesh().position(k.w)).norm();
+  const double uw = (s.mesh.position(k.u) - s.mesh.position(k.w)).norm();
   const double r_uw = std::max(s.disc_radius(k.u), s.disc_radius(k.w));
   CHECK(uw <= fx.opt.wing_max_edge_factor * r_uw);
   const double default_factor = fx.opt.wing_max_edge_factor;
   fx.opt.wing_max_edge_factor = 0.99 * uw / r_uw;
-  CHECK(std::string(s.wing_refusal(target, false)) == "the new edge u-w would be too long");
+  CHECK(std::string(wing_refusal(s, target, false)) == "the new edge u-w would be too long");
   fx.opt.wing_max_edge_factor = default_factor;
-  const std::size_t faces = s.mesh().n_faces(), loops = front_loops(s);
+  const std::size_t faces = s.mesh.n_faces(), loops = front_loops(s);
   const long chi = euler(s);
-  CHECK(s.wing(target, false));
-  CHECK(s.mesh().n_faces() == faces + 1);
-  CHECK(s.state(target) == VState::Interior);
-  CHECK_FALSE(s.mesh().is_boundary(target));
-  CHECK(s.mesh().find_halfedge(k.w, k.u).is_valid());  // the new front edge u -> w
-  CHECK(s.mesh().is_boundary(s.mesh().find_halfedge(k.u, k.w)));
+  CHECK(wing(s, target, false));
+  CHECK(s.mesh.n_faces() == faces + 1);
+  CHECK(s.state[target] == VState::Interior);
+  CHECK_FALSE(s.mesh.is_boundary(target));
+  CHECK(s.mesh.find_halfedge(k.w, k.u).is_valid());  // the new front edge u -> w
+  CHECK(s.mesh.is_boundary(s.mesh.find_halfedge(k.u, k.w)));
   CHECK(front_loops(s) == loops);
   CHECK(euler(s) == chi);
-  CHECK(s.stats().wings == 1);
-  CHECK(std::abs(s.fold_excess(k.u)) < 1 * kDeg);
-  CHECK(std::abs(s.fold_excess(k.w)) < 1 * kDeg);
+  CHECK(s.stats.wings == 1);
+  CHECK(std::abs(fold_excess(s, k.u)) < 1 * kDegree);
+  CHECK(std::abs(fold_excess(s, k.w)) < 1 * kDegree);
   // A second wing at the same place is refused: target is interior now.
-  CHECK_FALSE(s.wing(target, false));
+  CHECK_FALSE(wing(s, target, false));
 }
 
 TEST_CASE("after every departure no free front angle below 90° is left that wing() would take") {
   Fixture fx(test::three_ball_ring());
-  Sweep s(fx.skin, fx.ms, fx.opt);
-  s.create_initial_front();
-  while (s.departure_step())
-    for (Vertex v : s.mesh().vertices())
-      if (!s.mesh().is_deleted(v) && s.mesh().is_boundary(v) && s.state(v) == VState::Front)
-        REQUIRE(s.wing_refusal(v, false) != nullptr);
-  CHECK(s.stats().wings > 0);
+  FrontState s(fx.skin, fx.ms, fx.opt);
+  create_initial_front(s);
+  while (departure_step(s))
+    for (Vertex v : s.mesh.vertices())
+      if (!s.mesh.is_deleted(v) && s.mesh.is_boundary(v) && s.state[v] == VState::Front)
+        REQUIRE(wing_refusal(s, v, false) != nullptr);
+  CHECK(s.stats.wings > 0);
 }
 
 TEST_CASE("bridge: two loops merge below the neck's saddle, one splits above it; chi drops by one") {
   Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(4.5, 0.8, 0.3), w_of(1.6, 1.4)}});
   REQUIRE(fx.ms.live_count().saddles == 2);
   REQUIRE(fx.ms.live_count().minima == 2);
-  Sweep s(fx.skin, fx.ms, fx.opt);
-  s.create_initial_front();
+  FrontState s(fx.skin, fx.ms, fx.opt);
+  create_initial_front(s);
   CHECK(front_loops(s) == 2);
   std::vector<long> loop_changes;
   for (;;) {
-    const std::size_t bridges = s.stats().bridges, loops = front_loops(s);
+    const std::size_t bridges = s.stats.bridges, loops = front_loops(s);
     const long chi = euler(s);
-    if (!s.departure_step()) break;
-    if (s.stats().bridges == bridges) continue;
-    REQUIRE(s.stats().bridges == bridges + 1);
+    if (!departure_step(s)) break;
+    if (s.stats.bridges == bridges) continue;
+    REQUIRE(s.stats.bridges == bridges + 1);
     loop_changes.push_back(static_cast<long>(front_loops(s)) - static_cast<long>(loops));
     CHECK(euler(s) == chi - 1);  // a 1-handle: a ladder adds 2(k-1) vertices, 4k-1 edges, 2k faces
     check_partial_mesh(s, fx.skin);
@@ -197,31 +196,31 @@ TEST_CASE("bridge: two loops merge below the neck's saddle, one splits above it;
   // Index-1 critical points: the lower saddle joins the two bowls' fronts, the
   // upper one splits the front around the neck into two caps.
   CHECK(loop_changes == std::vector<long>{-1, +1});
-  CHECK(s.stats().released == 0);
+  CHECK(s.stats.released == 0);
 }
 
 TEST_CASE("seal closes each hole left at the maxima; the mesh is closed with chi = 2") {
   Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(4.5, 0.8, 0.3), w_of(1.6, 1.4)}});
-  Sweep s(fx.skin, fx.ms, fx.opt);
-  s.create_initial_front();
-  while (s.departure_step() || s.release_saddles()) {
+  FrontState s(fx.skin, fx.ms, fx.opt);
+  create_initial_front(s);
+  while (departure_step(s) || release_saddles(s)) {
   }
   check_partial_mesh(s, fx.skin);
   std::size_t loops = front_loops(s);
   REQUIRE(loops >= 1);
   while (loops > 0) {
     const long chi = euler(s);
-    const std::size_t seals = s.stats().seals;
-    s.seal_loop(s.mesh().boundary_loops().front().front(), fx.opt.max_hole_enlargements);
+    const std::size_t seals = s.stats.seals;
+    seal_loop(s, s.mesh.boundary_loops().front().front(), fx.opt.max_hole_enlargements);
     CHECK(front_loops(s) == loops - 1);
     CHECK(euler(s) == chi + 1);  // a disc glued in
-    CHECK(s.stats().seals == seals + 1);
+    CHECK(s.stats.seals == seals + 1);
     loops = front_loops(s);
   }
   check_partial_mesh(s, fx.skin);
   CHECK(euler(s) == 2);
-  for (Vertex v : s.mesh().vertices())
-    if (!s.mesh().is_deleted(v)) CHECK(s.state(v) == VState::Interior);
+  for (Vertex v : s.mesh.vertices())
+    if (!s.mesh.is_deleted(v)) CHECK(s.state[v] == VState::Interior);
 }
 
 TEST_CASE("contact: without the saddle's hold, the safety net joins the two fronts at the neck") {
@@ -230,17 +229,17 @@ TEST_CASE("contact: without the saddle's hold, the safety net joins the two fron
   // protecting sphere, the situation the safety net exists for.
   for (std::size_t i = 0; i < fx.ms.critical.size(); ++i)
     if (fx.ms.critical[i].kind == morse::CriticalKind::Saddle) fx.ms.live[i] = 0;
-  Sweep s(fx.skin, fx.ms, fx.opt);
-  s.create_initial_front();
+  FrontState s(fx.skin, fx.ms, fx.opt);
+  create_initial_front(s);
   REQUIRE(front_loops(s) == 2);
   bool seen = false;
   for (int step = 0; step < 20000 && !seen; ++step) {
-    const std::size_t contacts = s.stats().contacts, loops = front_loops(s);
+    const std::size_t contacts = s.stats.contacts, loops = front_loops(s);
     const long chi = euler(s);
-    REQUIRE(s.departure_step());
-    if (s.stats().contacts == contacts) continue;
+    REQUIRE(departure_step(s));
+    if (s.stats.contacts == contacts) continue;
     seen = true;
-    CHECK(s.stats().contacts == contacts + 1);
+    CHECK(s.stats.contacts == contacts + 1);
     CHECK(front_loops(s) == loops - 1);  // the two bowls' fronts are one now
     CHECK(euler(s) == chi - 1);          // one ladder row: 3 edges, 2 faces
     check_partial_mesh(s, fx.skin);
@@ -279,75 +278,6 @@ TEST_CASE("a tangent-disc factor outside the window of C and Q is refused") {
   CHECK_THROWS_AS(front::sweep_mesh(fx.skin, fx.ms, fx.opt), std::invalid_argument);
   fx.opt.disc_factor = 0.1;  // below 0.1074
   CHECK_THROWS_AS(front::sweep_mesh(fx.skin, fx.ms, fx.opt), std::invalid_argument);
-}
-
-TEST_CASE("coarse_ccw_angle: within 2e-5 rad of ccw_angle for tangents of any length, 0 for a zero tangent") {
-  // Random unit normals and tangent pairs at random lengths (1e-9 to 1e3),
-  // plus the octant boundaries (angles k * 45°), against the exact angle.
-  std::uint64_t seed = 12345;
-  auto uniform = [&] {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return double(seed >> 11) / double(1ull << 53);
-  };
-  double worst = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const Vec3 n = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
-    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    const double ta = 2 * front::detail::kPi * uniform();
-    const double tb = i % 10 == 0 ? ta + (i / 10 % 8) * front::detail::kPi / 4 : 2 * front::detail::kPi * uniform();
-    const Vec3 a = std::cos(ta) * t1 + std::sin(ta) * t2, b = std::cos(tb) * t1 + std::sin(tb) * t2;
-    const double la = std::pow(10.0, -9 + 12 * uniform()), lb = std::pow(10.0, -9 + 12 * uniform());
-    const double exact = front::detail::ccw_angle(a, b, n);
-    const double coarse = front::detail::coarse_ccw_angle(la * a, lb * b, n);
-    CHECK(coarse >= 0);
-    CHECK(coarse < 2 * front::detail::kPi);
-    // Angles near 0 and 2 pi are the same direction.
-    const double d = std::abs(coarse - exact);
-    worst = std::max(worst, std::min(d, 2 * front::detail::kPi - d));
-  }
-  CHECK(worst < 2e-5);
-  CHECK(front::detail::coarse_ccw_angle(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 0, 1)) == 0.0);
-}
-
-TEST_CASE("pseudo_angle: monotone in the angle with slope between 1 and 2; pseudo_exceeds never contradicts the angles") {
-  // Random tangent pairs plus the axis directions with signed zeros; for
-  // every pair of directions the angle difference lies between the
-  // pseudo-angle difference and twice it, and a certain verdict of
-  // pseudo_exceeds agrees with the angles for tolerances from 1e-9 to 1.
-  std::uint64_t seed = 777;
-  auto uniform = [&] {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return double(seed >> 11) / double(1ull << 53);
-  };
-  const Vec3 n(0, 0, 1), e(1, 0, 0);
-  std::vector<Vec3> dirs = {Vec3(1, 0.0, 0), Vec3(1, -0.0, 0), Vec3(-1, 0.0, 0), Vec3(-1, -0.0, 0),
-                            Vec3(0.0, 1, 0), Vec3(-0.0, 1, 0), Vec3(0.0, -1, 0), Vec3(-0.0, -1, 0)};
-  for (int i = 0; i < 400; ++i) {
-    const double t = 2 * front::detail::kPi * uniform();
-    dirs.push_back(Vec3(std::cos(t), std::sin(t), 0));
-    dirs.push_back(Vec3(std::cos(t), std::sin(t) * 1e-9, 0).normalized());  // near the reference direction
-  }
-  for (const Vec3& a : dirs) {
-    const double ta = front::detail::ccw_angle(e, a, n);
-    const double pa = front::detail::pseudo_angle(e.cross(a).dot(n), e.dot(a));
-    CHECK(pa >= 0);
-    CHECK(pa <= 4);
-    for (const Vec3& b : dirs) {
-      const double tb = front::detail::ccw_angle(e, b, n);
-      const double pb = front::detail::pseudo_angle(e.cross(b).dot(n), e.dot(b));
-      if (pb >= pa) {
-        CHECK(tb - ta >= (pb - pa) - 1e-12);
-        CHECK(tb - ta <= 2 * (pb - pa) + 1e-12);
-      }
-      for (double tol : {1e-9, 1e-6, 1e-3, 0.1, 1.0}) {
-        const int verdict = front::detail::pseudo_exceeds(pb, pa, tol);
-        if (verdict >= 0) CHECK(verdict == int(tb - ta > tol));
-      }
-    }
-  }
-  CHECK(front::detail::pseudo_angle(0.0, 0.0) == 0.0);
-  CHECK(std::isnan(front::detail::pseudo_angle(std::nan(""), 1.0)));
-  CHECK(front::detail::pseudo_exceeds(std::nan(""), 0.0, 1e-6) == -1);
 }
 
 }  // TEST_SUITE

@@ -18,7 +18,6 @@ using geometry::WeightedPoint;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Area and volume of the skin of two weighted points from the definition,
 /// without the mixed complex: the skin is a surface of revolution about the

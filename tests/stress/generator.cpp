@@ -99,7 +99,6 @@ StressCase rotated_translated(const StressCase& c, Rng& rng) {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Short decimal text of x ("1.4", "0.001", "1e-06").
 std::string num(double x) {

@@ -1,0 +1,165 @@
+// front/front_state.h: the state of the sweep as a value — the partial mesh
+// and its per-vertex data, the departure queue, the holds in protecting
+// spheres and the grids that keep the front's queries local. Every operation
+// of Algorithm 1 (front/operations.h) is a free function over it, so a
+// FrontState can be made, inspected and driven one operation at a time (the
+// tests of tests/front do), and several can exist side by side.
+// Only front/*.cpp and the unit tests of tests/front include this header.
+// Notes: papers/front/sweep.md
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "front/sweep.h"
+#include "geometry/kernel/tangent_angles.h"
+#include "geometry/mesh/surface_mesh.h"
+#include "geometry/triangulation/point_grid.h"
+
+namespace skinmesh::front::detail {
+
+using geometry::Face;
+using geometry::Halfedge;
+using geometry::SurfaceMesh;
+using geometry::Vertex;
+using geometry::ccw_angle;
+using geometry::coarse_ccw_angle;
+using geometry::pseudo_angle;
+using geometry::pseudo_exceeds;
+using geometry::rotate;
+using geometry::tangent_dir;
+
+/// Angular tolerance (radians) of the hole-wedge tests: spans that agree to
+/// this are taken as equal ([derived] tangent angles are accurate to ~1e-12 rad).
+inline constexpr double kWedgeTolerance = 1e-6;
+
+/// State of a mesh vertex during the sweep.
+enum class VState : std::uint8_t {
+  Interior,  ///< every triangle around it is there
+  Front,     ///< on the front, free to depart
+  Held,      ///< on the front, stopped in a protecting sphere (or stuck)
+};
+
+/// Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
+struct Corner {
+  Vertex u, w;
+  Halfedge in, out;
+  double angle;  ///< hole angle at v (radians), measured in T_v
+  Vec3 dw;       ///< unit tangent direction to w
+};
+
+/// The rails of a bridge's ladder: the inner points of its left and right
+/// rails, pulled back onto the skin, with their mixed cells (empty for one row).
+struct Rails {
+  std::vector<Vec3> left, right;
+  std::vector<Index> left_cell, right_cell;
+};
+
+/// An entry of the departure queue: a min-heap on height with lazy deletion
+/// by stamp (papers/front/open_questions.md Q1.2 (the departure queue)).
+struct QueueEntry {
+  double h;
+  Index v;
+  std::uint32_t stamp;
+  bool operator>(const QueueEntry& o) const { return h != o.h ? h > o.h : v > o.v; }
+};
+
+/// The sweep's state. The front is the set of boundary half-edges of the
+/// partial SurfaceMesh (a boundary half-edge has the hole on its left; faces
+/// are counter-clockwise about the outward normal), so there is no second
+/// front list to keep in sync (papers/front/open_questions.md Q1.1 (the front
+/// as a data structure)).
+struct FrontState {
+  /// An empty mesh, the grids of the protecting spheres and of the vertices.
+  /// Throws std::invalid_argument if opt.disc_factor lies outside the
+  /// tangent-disc window of opt.size (Cheng & Shi §4.2). `skin`, `ms` and
+  /// `opt` must outlive the state.
+  FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt);
+
+  // What the sweep reads.
+  const skin::SkinSurface& skin;
+  const morse::MorseSmaleComplex& ms;
+  const SweepOptions& opt;
+  const Vec3 e;  ///< unit height direction (§3.1)
+
+  // The partial mesh and its per-vertex data.
+  SurfaceMesh mesh;
+  geometry::VertexProperty<Vec3> normal;    ///< unit outward skin normal
+  geometry::VertexProperty<double> rho;     ///< local length scale (Å)
+  geometry::VertexProperty<Index> cell;     ///< mixed cell
+  geometry::VertexProperty<VState> state;
+  geometry::VertexProperty<Index> held_by;  ///< the critical point holding a Held vertex
+  geometry::VertexProperty<std::uint32_t> stamp;      ///< queue stamp (lazy deletion)
+  geometry::VertexProperty<std::uint8_t> deferrals;   ///< creeps postponed at the vertex
+  geometry::VertexProperty<std::uint8_t> reopenings;  ///< re-opened regions whose rim held the vertex
+
+  // The departure queue, the wings to try, the holds.
+  std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue;
+  std::vector<Vertex> wing_worklist;
+  /// Scratch lists of creep() (the fan) and try_contact() (the vertices a
+  /// few hops along the front), kept to reuse their memory; neither call
+  /// re-enters itself.
+  std::vector<Vertex> scratch_fan, scratch_near_hops;
+  std::vector<char> resolved;             ///< saddle bridged or released (holds no more)
+  std::vector<std::vector<Vertex>> held;  ///< vertices held per critical point
+
+  // Grids that keep the queries local.
+  std::unique_ptr<geometry::PointGrid> hold_grid;              ///< live saddles and maxima
+  std::unique_ptr<geometry::ErasablePointGrid> vertex_grid;    ///< every vertex: the fan-collision net
+  /// The vertices whose state is not Interior (the front, free or held): the
+  /// contact search reads only these (set_state keeps it).
+  std::unique_ptr<geometry::ErasablePointGrid> front_grid;
+  double max_hold_radius = 0;
+
+  // Counters, limits and progress.
+  long steps = 0;                  ///< departures so far (for max_steps)
+  double h_min = 0, h_max = 0;     ///< height range of the critical points (progress)
+  double next_progress = 0;        ///< next fraction to report
+  const bool tracing = static_cast<bool>(opt.trace);
+  std::size_t vertex_budget = 0;     ///< runaway guard (new_vertex)
+  double base_vertex_budget = 0;     ///< the budget at the atoms' scale
+  double rho_max = 0;                ///< largest sphere radius sqrt(w/2) (Å)
+  double rho_min_seen = std::numeric_limits<double>::infinity();  ///< smallest rho of a vertex so far (Å)
+  SweepStats stats;
+
+  /// Sets v's state, and keeps front_grid to the vertices not Interior.
+  void set_state(Vertex v, VState s) {
+    if ((s == VState::Interior) != (state[v] == VState::Interior)) {
+      if (s == VState::Interior)
+        front_grid->erase(v.idx());
+      else
+        front_grid->insert(v.idx(), mesh.position(v));
+    }
+    state[v] = s;
+  }
+  /// The height e·x of v (Å).
+  double height(Vertex v) const { return e.dot(mesh.position(v)); }
+  /// The critical point holding x, or kInvalidIndex (x free, interior, or
+  /// stuck: held by no critical point).
+  Index holder_of(Vertex x) const { return state[x] == VState::Held ? held_by[x] : kInvalidIndex; }
+  /// The tangent-disc radius r = disc_factor · rho at v (Å), Figure 6.
+  double disc_radius(Vertex v) const { return opt.disc_factor * rho[v]; }
+  Face add_triangle(Vertex a, Vertex b, Vertex c) { return mesh.add_triangle(a, b, c); }
+  /// Tells opt.observer (if any) that `op` ran at departure vertex v (or
+  /// invalid) for critical point c (or kInvalidIndex), adding the faces from
+  /// first_face on.
+  void notify(SweepOperation op, Vertex v, Index c, std::size_t first_face) const {
+    if (opt.observer) opt.observer(SweepEvent{op, v, c, first_face, mesh, stats});
+  }
+  /// printf-style line to opt.trace.
+  template <class... Args>
+  void tracef(const char* fmt, Args... args) const {
+    char buf[512];
+    std::snprintf(buf, sizeof buf, fmt, args...);
+    std::string line(buf);
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    opt.trace(line);
+  }
+};
+
+}  // namespace skinmesh::front::detail
