@@ -10,7 +10,7 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 20
 FUZZ_CXX ?= clang++-14
 
-.PHONY: all deps configure build mesh test sanitize fuzz bench table1 stress viewer viewer-if-possible clean
+.PHONY: all deps configure build mesh test sanitize fuzz bench table1 stress viewer viewer-if-possible layers clean
 
 all: build
 
@@ -87,6 +87,11 @@ table1: build
 # Failing cases can be written out with e.g. STRESS_ARGS="--dump /tmp/stress-fail".
 stress: build
 	$(BUILD)/skinmesh_stress $(STRESS_ARGS)
+
+# The module graph (one library per folder), printed and checked one-way
+# (tests/layers/check_layers.py; also ctest 'layers').
+layers:
+	@python3 tests/layers/check_layers.py .
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)

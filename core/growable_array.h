@@ -1,6 +1,7 @@
 // core/growable_array.h: a contiguous array that grows with realloc, for
 // the half-edge mesh's property arrays (geometry/mesh/surface_mesh.h).
-// Notes: papers/bench/profile.md, "Session of 2026-11-22 (fourth): memory".
+// Why: papers/bench/profile.md ("After", the memory rows): large property
+// arrays grow in place without a copy and go back to the system when freed.
 #pragma once
 
 #include <Eigen/Core>

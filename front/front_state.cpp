@@ -38,8 +38,8 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   for (std::size_t i = 0; i < nc; ++i) rmax = std::max(rmax, ms.protect_radius[i]);
   // Cells of four protecting radii: the hold query (rmax + r) then probes 1-2
   // cells per axis; the critical points are sparse, so a probe of an empty
-  // cell costs more than reading a few more points (crambin probe 0:
-  // hold_region 70 -> 37 million instructions, against cells of 2 rmax).
+  // cell costs more than reading a few more points ([measured]
+  // papers/bench/profile.md, "After": the grids' cell sizes).
   hold_grid = std::make_unique<geometry::PointGrid>(std::max(4 * rmax, 1e-6));
   for (std::size_t i = 0; i < nc; ++i)
     if (ms.live[i] && ms.critical[i].kind != CriticalKind::Minimum)
@@ -48,12 +48,10 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   for (const auto& wp : skin.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
   // The front grid's cells are four disc radii at the largest scale: the
   // contact query (1.5 r) then probes 1-2 cells per axis, and the front is a
-  // curve, so most probed cells would be empty at a finer size (maltoporin:
-  // sweep 3,000 -> 2,940 million instructions against two disc radii). The
-  // vertex grid's are one disc radius: the fan-collision query
-  // (0.5 r) reads a quarter of the points per cell (crambin probe 0: sweep
-  // 1,650 -> 1,578 million instructions; maltoporin, whose vertices are mostly
-  // at the largest scale: 3,294 -> 3,310 million).
+  // curve, so most probed cells would be empty at a finer size. The vertex
+  // grid's are one disc radius: the fan-collision query (0.5 r) reads a
+  // quarter of the points per cell ([measured] papers/bench/profile.md,
+  // "After": the grids' cell sizes).
   vertex_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, 1e-6),
                                                                /*erasable=*/false);
   front_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, 1e-6));

@@ -14,10 +14,9 @@ namespace skinmesh::geometry {
 /// Numbers keys below 2^63 densely, 0, 1, 2, ..., in the order they are first
 /// added: an open-addressing table (linear probing, at most half full,
 /// Fibonacci hashing; the all-ones key marks an empty slot). No allocation per
-/// key. Callers keep per-key data in arrays indexed by the number. [measured:
-/// it replaced std::unordered_map in the point grids (maltoporin sweep 1.58 ->
-/// 1.48 s) and in the mixed complex (construction 529 -> 462 million
-/// instructions); papers/bench/profile.md]
+/// key. Callers keep per-key data in arrays indexed by the number: the point
+/// grids and the mixed complex look keys up millions of times, and a node per
+/// key cost more than the lookup ([measured] papers/bench/profile.md, "After").
 class KeyIndex {
  public:
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();

@@ -81,9 +81,9 @@ class CellIndex {
 /// Layout: detail::CellIndex numbers the occupied cells; each cell keeps the
 /// first and last of its points; the points live in one flat array, each
 /// linked to the next point of its cell. No allocation per cell, one probe
-/// sequence per visited cell. [measured: it replaced a node-based
-/// std::unordered_map of per-cell vectors; same queries, same order,
-/// byte-identical meshes, the sweep of maltoporin 1.58 -> 1.48 s]
+/// sequence per visited cell: the queries of the sweep and the refinement
+/// are many and small, and a node per cell cost more than the points it
+/// held ([measured] papers/bench/profile.md, "After").
 class PointGrid {
  public:
   /// Pre: cell_size > 0.

@@ -1,0 +1,77 @@
+// tests/front/front_fixture.h: what the tests of the sweep's operations
+// share — a skin with its Morse–Smale complex kept alive for a FrontState, and
+// the invariants every partial mesh must keep: vertices on the skin, faces
+// outward at their three corners, no fold in any tangent plane.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "front/operations.h"
+#include "morse/critical_points.h"
+#include "morse/morse_smale_complex.h"
+#include "skin/skin_surface.h"
+
+namespace skinmesh::test {
+
+using front::detail::FrontState;
+using geometry::Vertex;
+
+
+inline double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
+
+/// A skin with its Morse–Smale complex, kept alive for a Sweep.
+struct Fixture {
+  skin::SkinSurface skin;
+  morse::MorseSmaleComplex ms;
+  front::SweepOptions opt;
+  explicit Fixture(std::vector<geometry::WeightedPoint> pts, Vec3 e = morse::default_height_direction())
+      : skin(std::move(pts)), ms(morse::build_morse_smale_complex(skin, e)) {}
+  Index first_live(morse::CriticalKind kind) const {
+    for (std::size_t i = 0; i < ms.critical.size(); ++i)
+      if (ms.live[i] && ms.critical[i].kind == kind) return static_cast<Index>(i);
+    return kInvalidIndex;
+  }
+};
+
+/// Number of boundary loops (front polygons) of the partial mesh.
+inline std::size_t front_loops(const FrontState& s) { return s.mesh.boundary_loops().size(); }
+
+/// V - E + F of the partial mesh (isolated and deleted vertices excluded).
+inline long euler(const FrontState& s) {
+  const auto& m = s.mesh;
+  long v = 0;
+  for (Vertex x : m.vertices())
+    if (!m.is_deleted(x) && !m.is_isolated(x)) ++v;
+  return v - static_cast<long>(m.n_edges()) + static_cast<long>(m.n_faces());
+}
+
+/// The invariants of a partial mesh of the skin: every vertex on the skin,
+/// every face outward at its three corners, no fold at any vertex.
+inline void check_partial_mesh(const FrontState& s, const skin::SkinSurface& skin) {
+  const auto& m = s.mesh;
+  std::size_t far = 0, inward = 0, folded = 0;
+  for (Vertex v : m.vertices()) {
+    if (m.is_deleted(v) || m.is_isolated(v)) continue;
+    const skin::SkinSample smp = skin.sample(m.position(v), kInvalidIndex);
+    if (std::abs(smp.f) / smp.gradient.norm() > 1e-9) ++far;
+    if (std::abs(front::detail::fold_excess(s, v)) > 1 * kDegree) ++folded;
+  }
+  for (geometry::Face f : m.faces()) {
+    if (m.is_deleted(f)) continue;
+    std::array<Vertex, 3> c{};
+    int i = 0;
+    for (Vertex v : m.vertices(f)) c[i++] = v;
+    const Vec3 nt = (m.position(c[1]) - m.position(c[0])).cross(m.position(c[2]) - m.position(c[0]));
+    for (Vertex v : c)
+      if (nt.dot(s.normal[v]) <= 0) ++inward;
+  }
+  CHECK(far == 0);
+  CHECK(inward == 0);
+  CHECK(folded == 0);
+}
+
+}  // namespace skinmesh::test
