@@ -3,6 +3,7 @@
 // vertices and of the front.
 // Notes: papers/front/sweep.md
 #include "front/front_state.h"
+#include "skin/vertex_data.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,14 +24,14 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
        << ", Q = " << opt.size.Q << " (Cheng & Shi §4.2)";
     throw std::invalid_argument(os.str());
   }
-  normal = mesh.add_vertex_property<Vec3>("v:normal", Vec3::Zero());
-  rho = mesh.add_vertex_property<double>("v:rho", 0.0);
-  cell = mesh.add_vertex_property<Index>("v:cell", kInvalidIndex);
-  state = mesh.add_vertex_property<VState>("v:state", VState::Interior);
-  held_by = mesh.add_vertex_property<Index>("v:held_by", kInvalidIndex);
-  stamp = mesh.add_vertex_property<std::uint32_t>("v:stamp", 0);
-  deferrals = mesh.add_vertex_property<std::uint8_t>("v:deferrals", 0);
-  reopenings = mesh.add_vertex_property<std::uint8_t>("v:reopenings", 0);
+  normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
+  rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
+  cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
+  state = mesh.add_vertex_property(kVertexState, VState::Interior);
+  held_by = mesh.add_vertex_property(kVertexHeldBy, kInvalidIndex);
+  stamp = mesh.add_vertex_property(kVertexStamp, 0);
+  deferrals = mesh.add_vertex_property(kVertexDeferrals, 0);
+  reopenings = mesh.add_vertex_property(kVertexReopenings, 0);
   const std::size_t nc = ms.critical.size();
   resolved.assign(nc, 0);
   held.resize(nc);

@@ -45,6 +45,13 @@ enum class VState : std::uint8_t {
   Held,      ///< on the front, stopped in a protecting sphere (or stuck)
 };
 
+/// The sweep's own per-vertex properties (the shared ones: skin/vertex_data.h).
+inline constexpr geometry::VertexPropertyKey<VState> kVertexState{"v:state"};
+inline constexpr geometry::VertexPropertyKey<Index> kVertexHeldBy{"v:held_by"};
+inline constexpr geometry::VertexPropertyKey<std::uint32_t> kVertexStamp{"v:stamp"};
+inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexDeferrals{"v:deferrals"};
+inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexReopenings{"v:reopenings"};
+
 /// Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
 struct Corner {
   Vertex u, w;

@@ -198,8 +198,9 @@ struct SweepStats {
 struct SweepResult {
   /// Closed triangle mesh of the skin, faces counter-clockwise about the
   /// outward normal, every vertex on the skin. Elements may be marked deleted
-  /// (call garbage_collection()). Vertex properties: "v:normal" (unit outward
-  /// skin normal), "v:rho" (local length scale, Å), "v:cell" (mixed cell).
+  /// (call garbage_collection()). Vertex properties (skin/vertex_data.h):
+  /// skin::kVertexNormal (unit outward skin normal), skin::kVertexRho (local
+  /// length scale, Å), skin::kVertexCell (mixed cell).
   geometry::SurfaceMesh mesh;
   SweepStats stats;
 };

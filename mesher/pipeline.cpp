@@ -20,22 +20,24 @@
 #include "skin/singular_skin.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::mesher {
 
 namespace {
 
 /// The output mesh of a closed SurfaceMesh of the skin: positions, triangles,
-/// and per vertex the normal from "v:normal", the atom and the dimension of
-/// its mixed cell ("v:cell") and rho ("v:rho"). Deleted elements are left out.
+/// and per vertex the normal (skin::kVertexNormal), the atom and the dimension
+/// of its mixed cell (skin::kVertexCell) and rho (skin::kVertexRho). Deleted
+/// elements are left out.
 geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh) {
   // No garbage_collection(): to_indexed_mesh() and vertices() skip deleted
   // elements in index order, which is the order the compaction keeps (the same
   // output without moving every property array of the mesh once more).
   geometry::IndexedMesh out = mesh.to_indexed_mesh();
-  const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
-  const auto cell = mesh.get_vertex_property<Index>("v:cell");
-  const auto rho = mesh.get_vertex_property<double>("v:rho");
+  const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
+  const auto cell = mesh.get_vertex_property(skin::kVertexCell);
+  const auto rho = mesh.get_vertex_property(skin::kVertexRho);
   out.normals.resize(out.positions.size());
   out.atom.resize(out.positions.size());
   out.rho.resize(out.positions.size());

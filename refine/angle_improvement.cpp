@@ -17,6 +17,7 @@
 #include "geometry/triangulation/point_grid.h"
 #include "geometry/kernel/triangle_intersection.h"
 #include "skin/restricted_delaunay.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::refine {
 
@@ -60,7 +61,9 @@ struct FaceGeometry {
   std::array<Index, 3> v;
   Vec3 cc;
   double R;
-  std::uint8_t ball = 0;  ///< 0 not computed, 1 valid, 2 none (the dual line misses the skin)
+  /// The surface Delaunay ball: not computed yet, computed (m, r), or none
+  /// (the dual line misses the skin).
+  enum class Ball : std::uint8_t { NotComputed, Valid, None } ball = Ball::NotComputed;
   Vec3 m = Vec3::Zero();
   double r = 0;
 };
@@ -80,9 +83,9 @@ class AngleImprover {
  public:
   AngleImprover(const skin::SkinSurface& skin, SurfaceMesh& mesh, const AngleImprovementOptions& opt)
       : skin_(skin), mesh_(mesh), opt_(opt), L_(skin.length_scale()) {
-    normal_ = mesh_.vertex_property<Vec3>("v:normal", Vec3::Zero());
-    rho_ = mesh_.vertex_property<double>("v:rho", 0.0);
-    cell_ = mesh_.vertex_property<Index>("v:cell", kInvalidIndex);
+    normal_ = mesh_.vertex_property(skin::kVertexNormal, Vec3::Zero());
+    rho_ = mesh_.vertex_property(skin::kVertexRho, 0.0);
+    cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     for (Vertex v : mesh_.vertices())
       if (!(rho_[v] > 0)) {
         const skin::SkinSample s = skin_.sample(mesh_.position(v), cell_[v]);
@@ -325,16 +328,16 @@ Trial AngleImprover::evaluate(const Vec2& x, Vertex v, const Vec3& n0, const Vec
 bool AngleImprover::in_ball(FaceGeometry& g, const Vec3& x) const {
   const Vec3 &a = pos(Vertex(g.v[0])), &b = pos(Vertex(g.v[1])), &c = pos(Vertex(g.v[2]));
   if (skin::outside_every_surface_ball(a, b, c, x, L_)) return false;
-  if (g.ball == 0) {
+  if (g.ball == FaceGeometry::Ball::NotComputed) {
     Index cell = cell_[Vertex(g.v[0])];
     if (skin::surface_delaunay_centre(skin_, a, b, c, g.m, cell)) {
-      g.ball = 1;
+      g.ball = FaceGeometry::Ball::Valid;
       g.r = std::max({(g.m - a).norm(), (g.m - b).norm(), (g.m - c).norm()});
     } else {
-      g.ball = 2;
+      g.ball = FaceGeometry::Ball::None;
     }
   }
-  if (g.ball == 2) return true;  // already a violation for the verifier: leave its surroundings alone
+  if (g.ball == FaceGeometry::Ball::None) return true;  // already a violation for the verifier: leave its surroundings alone
   return (x - g.m).norm() < g.r * (1 + opt_.ball_margin);
 }
 

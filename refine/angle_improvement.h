@@ -91,7 +91,7 @@ struct AngleImprovementStats {
 /// Positions in Å, angles of the options and statistics in degrees.
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;
-/// it uses the vertex properties "v:normal", "v:rho", "v:cell" of the
+/// it uses the vertex properties skin::kVertexNormal, kVertexRho, kVertexCell of the
 /// refinement (refine_mesh; sampled from the skin where absent) and keeps
 /// them up to date for the moved vertices. Meant to
 /// run after refine_mesh(): a vertex whose star breaks one of the conditions

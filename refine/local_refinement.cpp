@@ -11,6 +11,7 @@
 #include "geometry/check/mesh_checks.h"
 #include "geometry/triangulation/point_grid.h"
 #include "skin/restricted_delaunay.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::refine {
 
@@ -27,10 +28,10 @@ class Refiner {
  public:
   Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt)
       : skin_(skin), mesh_(mesh), opt_(opt) {
-    normal_ = mesh_.vertex_property<Vec3>("v:normal", Vec3::Zero());
-    rho_ = mesh_.vertex_property<double>("v:rho", 0.0);
-    cell_ = mesh_.vertex_property<Index>("v:cell", kInvalidIndex);
-    inserted_ = mesh_.vertex_property<std::uint8_t>("v:inserted", 0);
+    normal_ = mesh_.vertex_property(skin::kVertexNormal, Vec3::Zero());
+    rho_ = mesh_.vertex_property(skin::kVertexRho, 0.0);
+    cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
+    inserted_ = mesh_.vertex_property(skin::kVertexInserted, 0);
     for (Vertex v : mesh_.vertices())
       if (!(rho_[v] > 0)) sample(v);
     // Grid of the vertices inserted here, for the separation test of insert():

@@ -90,8 +90,9 @@ struct RefineStats {
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;
 /// it uses (and creates if absent, sampling the skin) the vertex properties
-/// "v:normal" (unit outward normal), "v:rho" (Å) and "v:cell" (mixed cell),
-/// and sets "v:inserted" (std::uint8_t, 1 on the vertices it inserted).
+/// skin::kVertexNormal (unit outward normal), skin::kVertexRho (Å) and
+/// skin::kVertexCell (mixed cell), and sets skin::kVertexInserted (1 on the
+/// vertices it inserted) (skin/vertex_data.h).
 /// No operation turns a triangle against the normals of its corners, no vertex
 /// moves, and a vertex inserted here is never deleted; the number of
 /// operations is finite (papers/refine/local_refinement.md, "Termination").

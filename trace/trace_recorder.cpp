@@ -22,6 +22,7 @@
 
 #include "geometry/check/mesh_checks.h"
 #include "skin/size_conditions.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::trace {
 
@@ -470,8 +471,8 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     if (pending.n >= every_refine) record("refine", mesh, refine_counters());
   };
   auto rho_quality = [&](const skin::SkinSurface&, const SurfaceMesh& mesh) {
-    if (!mesh.has_vertex_property("v:rho")) return;
-    const auto rho = mesh.get_vertex_property<double>("v:rho");
+    if (!mesh.has_vertex_property(skin::kVertexRho)) return;
+    const auto rho = mesh.get_vertex_property(skin::kVertexRho);
     history.set_quality([&](Index id) { return rho[Vertex(id)]; }, size);
   };
   run.observers.stage_end = [&](const char* stage, const skin::SkinSurface& skin, const SurfaceMesh& mesh) {

@@ -261,6 +261,14 @@ using EdgeProperty = Property<Edge, T>;
 template <class T>
 using FaceProperty = Property<Face, T>;
 
+/// The name and value type of a vertex property that several stages share:
+/// declared once (constexpr), used wherever the property is added or read, so
+/// that a mismatch of name or type cannot compile.
+template <class T>
+struct VertexPropertyKey {
+  const char* name;
+};
+
 // ---------------------------------------------------------------------------
 // Ranges and circulators
 // ---------------------------------------------------------------------------
@@ -616,48 +624,24 @@ class SurfaceMesh {
   }
 
   // SurfaceMesh Properties
+  // The stages share per-vertex data through named vertex properties; each
+  // name is declared once with its type as a VertexPropertyKey (the skin's:
+  // skin/vertex_data.h), and the key overloads below are how code outside the
+  // mesh names them. The half-edge, edge and face properties are the mesh's
+  // own (connectivity, deletion flags).
+
   /// Add a vertex property named `name` with default value `init` for existing
   /// and new elements. Throws std::invalid_argument if the name is taken for
-  /// vertices. The same holds for the halfedge/edge/face versions below.
+  /// vertices.
   template <class T>
   VertexProperty<T> add_vertex_property(const std::string& name, T init = T()) {
     return VertexProperty<T>(add_property<T>(vprops_, name, std::move(init)));
-  }
-  /// Add a half-edge property (see add_vertex_property).
-  template <class T>
-  HalfedgeProperty<T> add_halfedge_property(const std::string& name, T init = T()) {
-    return HalfedgeProperty<T>(add_property<T>(hprops_, name, std::move(init)));
-  }
-  /// Add an edge property (see add_vertex_property).
-  template <class T>
-  EdgeProperty<T> add_edge_property(const std::string& name, T init = T()) {
-    return EdgeProperty<T>(add_property<T>(eprops_, name, std::move(init)));
-  }
-  /// Add a face property (see add_vertex_property).
-  template <class T>
-  FaceProperty<T> add_face_property(const std::string& name, T init = T()) {
-    return FaceProperty<T>(add_property<T>(fprops_, name, std::move(init)));
   }
   /// The vertex property `name` of type T, or an invalid property if there is
   /// none of that name and type. Likewise for the other kinds below.
   template <class T>
   VertexProperty<T> get_vertex_property(const std::string& name) const {
     return VertexProperty<T>(vprops_.get<T>(name));
-  }
-  /// The half-edge property `name` of type T, or an invalid property.
-  template <class T>
-  HalfedgeProperty<T> get_halfedge_property(const std::string& name) const {
-    return HalfedgeProperty<T>(hprops_.get<T>(name));
-  }
-  /// The edge property `name` of type T, or an invalid property.
-  template <class T>
-  EdgeProperty<T> get_edge_property(const std::string& name) const {
-    return EdgeProperty<T>(eprops_.get<T>(name));
-  }
-  /// The face property `name` of type T, or an invalid property.
-  template <class T>
-  FaceProperty<T> get_face_property(const std::string& name) const {
-    return FaceProperty<T>(fprops_.get<T>(name));
   }
   /// The property `name` if it exists with type T, else a new one with default `init`.
   /// Throws std::invalid_argument if the name exists with another type.
@@ -666,32 +650,26 @@ class SurfaceMesh {
     auto p = get_vertex_property<T>(name);
     return p ? p : add_vertex_property<T>(name, std::move(init));
   }
-  /// Get-or-add for half-edges (see vertex_property).
+  /// add_vertex_property / get_vertex_property / vertex_property /
+  /// has_vertex_property of the property that `key` names, with its type.
   template <class T>
-  HalfedgeProperty<T> halfedge_property(const std::string& name, T init = T()) {
-    auto p = get_halfedge_property<T>(name);
-    return p ? p : add_halfedge_property<T>(name, std::move(init));
+  VertexProperty<T> add_vertex_property(VertexPropertyKey<T> key, std::type_identity_t<T> init = T()) {
+    return add_vertex_property<T>(key.name, std::move(init));
   }
-  /// Get-or-add for edges (see vertex_property).
   template <class T>
-  EdgeProperty<T> edge_property(const std::string& name, T init = T()) {
-    auto p = get_edge_property<T>(name);
-    return p ? p : add_edge_property<T>(name, std::move(init));
+  VertexProperty<T> get_vertex_property(VertexPropertyKey<T> key) const {
+    return get_vertex_property<T>(key.name);
   }
-  /// Get-or-add for faces (see vertex_property).
   template <class T>
-  FaceProperty<T> face_property(const std::string& name, T init = T()) {
-    auto p = get_face_property<T>(name);
-    return p ? p : add_face_property<T>(name, std::move(init));
+  VertexProperty<T> vertex_property(VertexPropertyKey<T> key, std::type_identity_t<T> init = T()) {
+    return vertex_property<T>(key.name, std::move(init));
+  }
+  template <class T>
+  bool has_vertex_property(VertexPropertyKey<T> key) const {
+    return get_vertex_property<T>(key.name).is_valid();
   }
   /// True if a vertex property of that name exists (any type).
   bool has_vertex_property(const std::string& name) const { return vprops_.find(name) != nullptr; }
-  /// True if a half-edge property of that name exists (any type).
-  bool has_halfedge_property(const std::string& name) const { return hprops_.find(name) != nullptr; }
-  /// True if an edge property of that name exists (any type).
-  bool has_edge_property(const std::string& name) const { return eprops_.find(name) != nullptr; }
-  /// True if a face property of that name exists (any type).
-  bool has_face_property(const std::string& name) const { return fprops_.find(name) != nullptr; }
   /// Remove a property and invalidate the handle. Built-in properties ("v:point",
   /// "v:connectivity", ...) cannot be removed: std::invalid_argument.
   template <class T>
@@ -699,32 +677,8 @@ class SurfaceMesh {
     remove_property(vprops_, p.array_);
     p.array_ = nullptr;
   }
-  /// Remove a half-edge property (see remove_vertex_property).
-  template <class T>
-  void remove_halfedge_property(HalfedgeProperty<T>& p) {
-    remove_property(hprops_, p.array_);
-    p.array_ = nullptr;
-  }
-  /// Remove an edge property (see remove_vertex_property).
-  template <class T>
-  void remove_edge_property(EdgeProperty<T>& p) {
-    remove_property(eprops_, p.array_);
-    p.array_ = nullptr;
-  }
-  /// Remove a face property (see remove_vertex_property).
-  template <class T>
-  void remove_face_property(FaceProperty<T>& p) {
-    remove_property(fprops_, p.array_);
-    p.array_ = nullptr;
-  }
   /// Names of the vertex properties (built-in ones included), for debugging.
   std::vector<std::string> vertex_property_names() const { return vprops_.names(); }
-  /// Names of the face properties.
-  std::vector<std::string> face_property_names() const { return fprops_.names(); }
-  /// Names of the edge properties.
-  std::vector<std::string> edge_property_names() const { return eprops_.names(); }
-  /// Names of the half-edge properties.
-  std::vector<std::string> halfedge_property_names() const { return hprops_.names(); }
 
   // SurfaceMesh Refinement Operations (check first, then modify)
   /// True if the interior edge e = (a, b) with faces (a, b, c) and (b, a, d) can

@@ -150,7 +150,7 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
   work_points_.resize(n + 4);
   for (Index k = 0; k < n + 4; ++k) work_points_[k] = points_[work_ids_[k]];
   vertex_tet_.assign(n + 4, kInvalidIndex);
-  vertex_state_.assign(n + 4, 0);
+  vertex_state_.assign(n + 4, PointState::NotInserted);
   vertex_mark_.assign(n + 4, 0);
   std::array<Index, 4> first = {0, 1, 2, 3};
   if (orient3d(work_points_[0].z, work_points_[1].z, work_points_[2].z, work_points_[3].z) !=
@@ -164,7 +164,7 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
   tet_mark_.push_back(0);
   for (Index v = 0; v < 4; ++v) {
     vertex_tet_[v] = 0;
-    vertex_state_[v] = 1;
+    vertex_state_[v] = PointState::Vertex;
   }
 
   // Insert the inputs in BRIO order ----------------------------------------
@@ -247,7 +247,7 @@ void RegularTriangulation::insert(Index v) {
   SKINMESH_ASSERT_MSG(start != kInvalidIndex, "input point outside the bounding tetrahedron");
   if (work_conflict(start, v) != Sign::Positive) {
     // The lifted point lies above the lower hull: redundant, never inserted.
-    vertex_state_[v] = 2;
+    vertex_state_[v] = PointState::Redundant;
     last_tet_ = start;
     return;
   }
@@ -359,12 +359,12 @@ void RegularTriangulation::insert(Index v) {
   // Vertices of the old cavity that are not on its boundary are now hidden ----
   for (const Index w : cavity_vertices_) {
     if (vertex_mark_[w] != on_boundary) {
-      vertex_state_[w] = 3;
+      vertex_state_[w] = PointState::Hidden;
       vertex_tet_[w] = kInvalidIndex;
       ++stats_.hidden_vertices;
     }
   }
-  vertex_state_[v] = 1;
+  vertex_state_[v] = PointState::Vertex;
   last_tet_ = nt;
 }
 
@@ -446,7 +446,7 @@ void RegularTriangulation::compact() {
   cells_.shrink_to_fit();
   const Index np = static_cast<Index>(points_.size());
   std::vector<Index> vertex_tet(np, kInvalidIndex);
-  std::vector<std::uint8_t> vertex_state(np, 0);
+  std::vector<PointState> vertex_state(np, PointState::NotInserted);
   for (Index k = 0; k < np; ++k) {
     const Index t = vertex_tet_[k];
     vertex_tet[work_ids_[k]] = t == kInvalidIndex ? kInvalidIndex : remap[t];
@@ -477,13 +477,13 @@ const WeightedPoint& RegularTriangulation::point(Index v) const {
 
 bool RegularTriangulation::is_vertex(Index v) const {
   SKINMESH_DEBUG_ASSERT(v < points_.size());
-  return vertex_state_[v] == 1;
+  return vertex_state_[v] == PointState::Vertex;
 }
 
 std::vector<Index> RegularTriangulation::redundant_points() const {
   std::vector<Index> out;
   for (Index v = 0; v < n_input_; ++v) {
-    if (vertex_state_[v] != 1) out.push_back(v);
+    if (vertex_state_[v] != PointState::Vertex) out.push_back(v);
   }
   return out;
 }

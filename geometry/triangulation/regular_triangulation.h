@@ -203,8 +203,14 @@ class RegularTriangulation {
   };
   std::vector<Cell> cells_;
   std::vector<Index> vertex_tet_;
-  // 0: not inserted yet, 1: vertex, 2: redundant (never inserted), 3: hidden.
-  std::vector<std::uint8_t> vertex_state_;
+  /// What became of an input point.
+  enum class PointState : std::uint8_t {
+    NotInserted,  ///< not inserted yet (construction only)
+    Vertex,       ///< a vertex of the triangulation
+    Redundant,    ///< never inserted: its lifted point lies above the lower hull
+    Hidden,       ///< inserted, then hidden by a later point
+  };
+  std::vector<PointState> vertex_state_;
   BuildStats stats_;
 
   // Construction scratch (empty after construction). During construction the

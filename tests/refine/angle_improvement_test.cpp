@@ -24,6 +24,7 @@
 #include "verify/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
 #include "tests/verify/check_expectations.h"
+#include "skin/vertex_data.h"
 
 using namespace skinmesh;
 
@@ -96,9 +97,9 @@ double min_angle_deg(const geometry::SurfaceMesh& mesh) {
 /// every pair of triangles tested for intersection).
 void check_by_brute_force(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
                           const skin::SizeConstants& size) {
-  const auto normal = mesh.get_vertex_property<Vec3>("v:normal");
-  const auto rho = mesh.get_vertex_property<double>("v:rho");
-  const auto cell = mesh.get_vertex_property<Index>("v:cell");
+  const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
+  const auto rho = mesh.get_vertex_property(skin::kVertexRho);
+  const auto cell = mesh.get_vertex_property(skin::kVertexCell);
   REQUIRE(normal);
   REQUIRE(rho);
   REQUIRE(cell);

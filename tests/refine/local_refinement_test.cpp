@@ -15,6 +15,7 @@
 #include "verify/skin_mesh_check.h"
 #include "tests/geometry/test_meshes.h"
 #include "tests/verify/check_expectations.h"
+#include "skin/vertex_data.h"
 
 using namespace skinmesh;
 
@@ -75,8 +76,8 @@ TEST_CASE("refinement: the invariants of the termination argument hold") {
     CHECK(st.L_left == 0);
     CHECK(st.flip_caps == 0);
     REQUIRE(st.insertions > 10);
-    auto inserted = mesh.vertex_property<std::uint8_t>("v:inserted", 0);
-    auto rho = mesh.vertex_property<double>("v:rho", 0.0);
+    auto inserted = mesh.vertex_property(skin::kVertexInserted, 0);
+    auto rho = mesh.vertex_property(skin::kVertexRho, 0.0);
     std::vector<geometry::Vertex> ins;
     for (geometry::Vertex v : mesh.vertices())
       if (inserted[v]) ins.push_back(v);
