@@ -30,9 +30,12 @@ std::size_t seed_sphere_patch(SampleTriangulation& st, const skin::SkinSurface& 
   const Vec3 z = skin.points()[atom].z;
   // Hexagonal lattice of spacing h: area sqrt(3)/2 h² per point.
   const double h = spacing;
-  const int n = std::max(12, static_cast<int>(std::ceil(4 * kPi / (0.5 * std::sqrt(3.0) * h * h))));
+  constexpr int kMinSeeds = 12;  // [measured] the fewest seeds of a sphere patch, however small
+  // The golden angle and the golden ratio's fractional part (the Fibonacci lattice's turns). [derived]
+  constexpr double kGoldenFraction = 0.6180339887498949;
+  const int n = std::max(kMinSeeds, static_cast<int>(std::ceil(4 * kPi / (0.5 * std::sqrt(3.0) * h * h))));
   const double golden = kPi * (3 - std::sqrt(5.0));
-  const double turn = 2 * kPi * std::fmod(0.6180339887498949 * (atom + 1), 1.0);
+  const double turn = 2 * kPi * std::fmod(kGoldenFraction * (atom + 1), 1.0);
   std::size_t added = 0;
   Index hint = kInvalidIndex;
   for (int k = 0; k < n; ++k) {
@@ -132,7 +135,8 @@ geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::Si
       for (const Index v : ids) rmin = std::min(rmin, std::max(st.rho(v), floor));
       if (ids.empty()) rmin = floor;
       const double dc = 2 * opt.max_step_motion * rmin * rmin;
-      const double next = c + dc >= -1e-12 * dc ? 0.0 : c + dc;
+      constexpr double kLastStepSlack = 1e-12;  // [derived] a step that ends within rounding of 0 ends at 0
+      const double next = c + dc >= -kLastStepSlack * dc ? 0.0 : c + dc;
       st.begin_batch();
       st.set_level(next);
       for (const Index v : ids) {

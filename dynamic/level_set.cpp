@@ -18,7 +18,8 @@ LevelSet::LevelSet(const skin::SkinSurface& skin, double c) : skin_(&skin), c_(c
     r = std::max(r, std::sqrt(std::max(p.w, 0.0)));
   }
   // A margin of rounding size: points at the box's face are still located.
-  const double margin = r * (1 + 1e-9) + 1e-9 * length_scale();
+  constexpr double kHullSlack = 1e-9;  // [derived] relative, and times L: rounding size
+  const double margin = r * (1 + kHullSlack) + kHullSlack * length_scale();
   lo_.array() -= margin;
   hi_.array() += margin;
 }
@@ -39,9 +40,13 @@ double LevelSet::value(const Vec3& x, Index& cell) const {
 
 bool LevelSet::project(const Vec3& x0, Vec3& out, Index& cell, double& rho) const {
   const skin::MixedComplex& mc = skin_->mixed_complex();
-  const double tol = 1e-14 * length_scale();
+  // [derived] Newton's step converges quadratically: 1e-14 L is reached in a
+  // few steps from a sample's previous position; the last step accepts 1e-11 L.
+  constexpr double kNewtonTolerance = 1e-14, kNewtonLastTolerance = 1e-11;
+  constexpr int kNewtonSteps = 100;  // [measured] the iteration limit of the projection
+  const double tol = kNewtonTolerance * length_scale();
   Vec3 x = x0;
-  for (int it = 0; it <= 100; ++it) {
+  for (int it = 0; it <= kNewtonSteps; ++it) {
     if (outside_hull(x)) return false;
     cell = mc.locate(x, cell);
     const double v = mc.f(cell, x) - c_;
@@ -49,7 +54,7 @@ bool LevelSet::project(const Vec3& x0, Vec3& out, Index& cell, double& rho) cons
     const double g2 = g.squaredNorm();
     if (!(g2 > 0)) return false;
     const double dist = std::abs(v) / std::sqrt(g2);
-    if (dist <= tol || (it == 100 && dist <= 1e-11 * length_scale())) {
+    if (dist <= tol || (it == kNewtonSteps && dist <= kNewtonLastTolerance * length_scale())) {
       out = x;
       rho = mc.rho(cell, x);
       return true;
@@ -63,11 +68,13 @@ bool LevelSet::crossing(const Vec3& p, const Vec3& q, double vp, double vq, Vec3
                         double& rho) const {
   const Vec3 d = q - p;
   const double len = d.norm();
-  const double tol = 1e-12 * length_scale();
+  constexpr double kBracketTolerance = 1e-12;  // [derived] times L: a few ulps
+  constexpr int kBracketSteps = 200;            // [derived] bisection halves the bracket at least every third step
+  const double tol = kBracketTolerance * length_scale();
   double a = 0, b = 1, fa = vp, fb = vq;
   int side = 0;
   Index hint = cell;
-  for (int it = 0; it < 200 && (b - a) * len > tol; ++it) {
+  for (int it = 0; it < kBracketSteps && (b - a) * len > tol; ++it) {
     double t = it % 3 == 2 ? 0.5 * (a + b) : (a * fb - b * fa) / (fb - fa);
     if (!(t > a && t < b)) t = 0.5 * (a + b);
     const double ft = value(p + t * d, hint);

@@ -51,7 +51,7 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
     }
     if (k.angle < fs.opt.wing_angle_deg * kDegree && wing(fs, v, false)) return decided(CreepVerdict::Wing);
     if (attempt == 0 && try_contact(fs, v, k)) return decided(CreepVerdict::Contact);
-    m = std::max(1, static_cast<int>(std::ceil(k.angle / fan_angle - 1e-9)));
+    m = std::max(1, static_cast<int>(std::ceil(k.angle / fan_angle - kFanCountSlack)));
     if (attempt >= fs.opt.max_wing_rounds) break;
     const Vertex w2 = fs.mesh.to_vertex(fs.mesh.next(k.out));
     const Vertex u2 = fs.mesh.from_vertex(fs.mesh.prev(k.in));

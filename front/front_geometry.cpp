@@ -36,15 +36,16 @@ bool clearly_not_below(const FrontState& fs, Vertex v, double bound) {
   // (90° + 1e-9, 270°), a sine below -1e-9 in (180° + 1e-9, 360°), both clear
   // of the rounding of atan2 and of a bound at 90° or 180° (a few ulps off).
   // Most wing candidates after a creep have an obtuse hole angle and stop here.
-  constexpr double kUlps = 1e-12;
+  constexpr double kUlps = 1e-12;         // [derived] a few ulps of an angle in [0, 2 pi]
+  constexpr double kClearOfRounding = 1e-9;  // [derived] far above atan2's rounding, far below any decision
   if (bound > kPi + kUlps) return false;
   const Halfedge out = fs.mesh.halfedge(v);
   const Vec3& p = fs.mesh.position(v);
   const Vec3& n = fs.normal[v];
   const Vec3 dw = tangent_dir(p, n, fs.mesh.position(fs.mesh.to_vertex(out)));
   const Vec3 du = tangent_dir(p, n, fs.mesh.position(fs.mesh.from_vertex(fs.mesh.prev(out))));
-  if (dw.cross(du).dot(n) < -1e-9) return true;
-  return bound <= kPi / 2 + kUlps && dw.dot(du) < -1e-9;
+  if (dw.cross(du).dot(n) < -kClearOfRounding) return true;
+  return bound <= kPi / 2 + kUlps && dw.dot(du) < -kClearOfRounding;
 }
 
 bool fits_at(const FrontState& fs, Vertex x, Vertex y_from, Vertex y_to) {

@@ -1,15 +1,20 @@
 // front/front_state.cpp: FrontState's constructor — the empty partial mesh
 // with its per-vertex data, and the grids of the protecting spheres, of the
-// vertices and of the front.
+// vertices and of the front — and what every operation does to the state:
+// new vertices on the skin, the departure queue, the projection onto the
+// skin, the progress reports.
 // Notes: papers/front/sweep.md
 #include "front/front_state.h"
-#include "skin/vertex_data.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/errors.h"
+#include "front/operations.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::front::detail {
 
@@ -24,6 +29,9 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
        << ", Q = " << opt.size.Q << " (Cheng & Shi §4.2)";
     throw std::invalid_argument(os.str());
   }
+  // The per-vertex counters are 8 bits wide.
+  if (!(opt.max_deferrals >= 0 && opt.max_deferrals <= 255) || !(opt.max_reopenings >= 0 && opt.max_reopenings <= 255))
+    throw std::invalid_argument("sweep: max_deferrals and max_reopenings must lie in [0, 255]");
   normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
   rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
   cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
@@ -41,7 +49,7 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // cells per axis; the critical points are sparse, so a probe of an empty
   // cell costs more than reading a few more points ([measured]
   // papers/bench/profile.md, "After": the grids' cell sizes).
-  hold_grid = std::make_unique<geometry::PointGrid>(std::max(4 * rmax, 1e-6));
+  hold_grid = std::make_unique<geometry::PointGrid>(std::max(4 * rmax, kMinGridCell));
   for (std::size_t i = 0; i < nc; ++i)
     if (ms.live[i] && ms.critical[i].kind != CriticalKind::Minimum)
       hold_grid->insert(static_cast<Index>(i), ms.critical[i].position);
@@ -53,14 +61,14 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // grid's are one disc radius: the fan-collision query (0.5 r) reads a
   // quarter of the points per cell ([measured] papers/bench/profile.md,
   // "After": the grids' cell sizes).
-  vertex_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, 1e-6),
+  vertex_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, kMinGridCell),
                                                                /*erasable=*/false);
-  front_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, 1e-6));
+  front_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, kMinGridCell));
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
   // factor for the scales below the atoms' that the front has met (new_vertex).
-  const double per_atom = 4 * kPi / (opt.disc_factor * opt.disc_factor * 0.866);
-  base_vertex_budget = 1e5 + 8 * per_atom * static_cast<double>(skin.points().size());
+  const double per_atom = 4 * kPi / (opt.disc_factor * opt.disc_factor * kFanAreaPerVertex);
+  base_vertex_budget = kVertexBudgetFloor + kVertexBudgetFactor * per_atom * static_cast<double>(skin.points().size());
   vertex_budget = static_cast<std::size_t>(base_vertex_budget);
   // Height range for progress reports.
   h_min = std::numeric_limits<double>::infinity();
@@ -69,6 +77,80 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
     h_min = std::min(h_min, e.dot(cp.position));
     h_max = std::max(h_max, e.dot(cp.position));
   }
+}
+
+// Vertices and the queue
+
+Vertex new_vertex(FrontState& fs, const Vec3& p, Index cell) {
+  if (fs.mesh.vertices_size() >= fs.vertex_budget) {
+    // Near a thin neck or a narrow gap rho falls to the neck's scale and the
+    // vertex density grows like 1/rho²; since rho is 1-Lipschitz, each halving
+    // of the scale adds about as many vertices as the atom scale needs: allow
+    // 2 log2(rho_max / rho_min) more times the base budget, rho_min the
+    // smallest rho the front has met.
+    const double octaves = std::log2(std::max(1.0, fs.rho_max / fs.rho_min_seen));
+    fs.vertex_budget = static_cast<std::size_t>(fs.base_vertex_budget * (1 + 2 * octaves));
+  }
+  if (fs.mesh.vertices_size() >= fs.vertex_budget) {
+    std::ostringstream os;
+    os << "the front created more than " << fs.vertex_budget
+       << " vertices without closing: it is running away (a bug; please report the input)";
+    throw TopologyError(os.str());
+  }
+  const skin::SkinSample s = fs.skin.sample(p, cell);
+  if (s.rho > 0) fs.rho_min_seen = std::min(fs.rho_min_seen, s.rho);
+  const Vertex v = fs.mesh.add_vertex(p);
+  fs.vertex_grid->insert(v.idx(), p);
+  fs.normal[v] = s.gradient.normalized();
+  fs.rho[v] = s.rho;
+  fs.cell[v] = s.cell;
+  fs.set_state(v, VState::Front);
+  return v;
+}
+
+void push(FrontState& fs, Vertex v) {
+  ++fs.stamp[v];
+  fs.queue.push({fs.height(v), v.idx(), fs.stamp[v]});
+}
+
+void defer(FrontState& fs, Vertex v, double r) {
+  ++fs.deferrals[v];
+  ++fs.stamp[v];
+  fs.queue.push({fs.height(v) + fs.opt.defer_step * r * fs.deferrals[v], v.idx(), fs.stamp[v]});
+  ++fs.stats.deferred;
+}
+
+Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index* cell_out) {
+  // Normal-line projection of q = v + r dir (papers/skin/skin_math.md §7.2):
+  // the bracket [-delta, delta] comes from the sandwiching balls of radius rho(v).
+  const double rho = fs.rho[v];
+  const Vec3 n = fs.normal[v];
+  const Vec3 q = fs.mesh.position(v) + r * dir;
+  double delta = rho - std::sqrt(std::max(rho * rho - r * r, 0.0));
+  Vec3 out;
+  Index cell = fs.cell[v];
+  for (int attempt = 0; attempt < kProjectionAttempts; ++attempt, delta *= 2) {
+    if (fs.skin.project_along_line(q, n, delta * (1 + kBracketRelativeSlack) + kBracketAbsoluteSlack * fs.skin.length_scale(), out, cell)) {
+      if (cell_out) *cell_out = cell;
+      return out;
+    }
+  }
+  // Fall back on the gradient pull-back (papers/skin/skin_math.md §7.3).
+  cell = fs.cell[v];
+  out = fs.skin.pull_back(q, cell);
+  if (cell_out) *cell_out = cell;
+  return out;
+}
+
+// Holds in Protecting Spheres (Algorithm 1, lines 3–10)
+
+void report_progress(FrontState& fs, double h) {
+  if (!fs.opt.progress) return;
+  const double span = fs.h_max - fs.h_min;
+  const double f = span > 0 ? std::clamp((h - fs.h_min) / span, 0.0, 1.0) : 0.0;
+  if (f < fs.next_progress) return;
+  fs.next_progress = f + kProgressStep;
+  fs.opt.progress("sweep", f);
 }
 
 }  // namespace skinmesh::front::detail

@@ -38,6 +38,31 @@ using geometry::tangent_dir;
 /// this are taken as equal ([derived] tangent angles are accurate to ~1e-12 rad).
 inline constexpr double kWedgeTolerance = 1e-6;
 
+/// Smallest cell of the sweep's point grids (Å): a guard for skins whose
+/// largest radius is zero. [derived] far below any tangent-disc radius.
+inline constexpr double kMinGridCell = 1e-6;
+/// The vertex budget's floor, and its factor over the vertices that separate
+/// spheres of the atoms would need (FrontState's constructor, new_vertex).
+/// [measured] generous: the budget is a runaway guard, not a limit a correct
+/// sweep meets.
+inline constexpr double kVertexBudgetFloor = 1e5;
+inline constexpr double kVertexBudgetFactor = 8;
+/// Area of a fan triangle of the tangent circle over r² (a 60° triangle with
+/// two sides r: sqrt(3)/2 · r² per two triangles ~ per vertex). [derived]
+inline constexpr double kFanAreaPerVertex = 0.866;
+/// Attempts of the normal-line projection, the bracket doubled each time,
+/// before the gradient pull-back takes over (project_tangent). [measured]
+inline constexpr int kProjectionAttempts = 4;
+/// Relative and absolute (times the skin's length scale) slack of the
+/// projection bracket, over its rounding. [derived]
+inline constexpr double kBracketRelativeSlack = 1e-9;
+inline constexpr double kBracketAbsoluteSlack = 1e-12;
+/// Progress is reported each time another 1 % of the height range is swept.
+inline constexpr double kProgressStep = 0.01;
+/// Slack of ceil(theta / fan angle) (creep): a hole angle that is a multiple
+/// of the fan angle up to rounding gives that multiple. [derived]
+inline constexpr double kFanCountSlack = 1e-9;
+
 /// State of a mesh vertex during the sweep.
 enum class VState : std::uint8_t {
   Interior,  ///< every triangle around it is there
@@ -84,7 +109,8 @@ struct QueueEntry {
 struct FrontState {
   /// An empty mesh, the grids of the protecting spheres and of the vertices.
   /// Throws std::invalid_argument if opt.disc_factor lies outside the
-  /// tangent-disc window of opt.size (Cheng & Shi §4.2). `skin`, `ms` and
+  /// tangent-disc window of opt.size (Cheng & Shi §4.2), or max_deferrals or
+  /// max_reopenings outside [0, 255] (the width of their counters). `skin`, `ms` and
   /// `opt` must outlive the state.
   FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt);
 

@@ -10,6 +10,7 @@
 //    deleting the faces around it, and sealed again.
 // Notes: papers/front/hole_filling.md
 #include <algorithm>
+#include <limits>
 
 #include "front/operations.h"
 #include "geometry/check/mesh_checks.h"
@@ -153,7 +154,8 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
   auto open = [&](Halfedge h) {  // the slot of h in its vertex's fan: a gap or a deleted face
     return fs.mesh.is_boundary(h) || std::binary_search(region.begin(), region.end(), fs.mesh.face(h));
   };
-  const std::size_t max_faces = 64 * std::max<std::size_t>(region.size(), 1);
+  constexpr std::size_t kMaxRegionGrowth = 64;  // [measured] a region that grows more is not a local tangle
+  const std::size_t max_faces = kMaxRegionGrowth * std::max<std::size_t>(region.size(), 1);
   std::vector<Vertex> rim;
   for (int round = 0;; ++round) {
     rim.clear();
@@ -183,7 +185,7 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
   ++fs.stats.reopened_holes;
   for (Vertex x : rim) {
     if (fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x)) continue;
-    if (fs.reopenings[x] < 255) ++fs.reopenings[x];
+    if (fs.reopenings[x] < std::numeric_limits<std::uint8_t>::max()) ++fs.reopenings[x];
     if (fs.held_by[x] != kInvalidIndex && !fs.resolved[fs.held_by[x]] && fs.state[x] == VState::Held) continue;
     fs.set_state(x, VState::Front);
     push(fs, x);

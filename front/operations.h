@@ -104,7 +104,7 @@ void seal_all(FrontState& fs);
 void seal_loop(FrontState& fs, Halfedge h, int enlargements_left, bool in_sweep = false);
 
 // ---------------------------------------------------------------------------
-// The loop of Algorithm 1 (sweep.cpp)
+// The driver of Algorithm 1 (sweep.cpp)
 
 /// Algorithm 1 from start to end: initial front, departures until the queue
 /// is empty (releasing unbridged saddles), seal. The result takes the mesh.
@@ -117,10 +117,10 @@ void create_initial_front(FrontState& fs);
 /// queue was empty.
 bool departure_step(FrontState& fs);
 /// Releases the vertices held by unresolved saddles (the queue ran dry before
-/// both sides arrived); returns true if any was released.
+/// both sides arrived); returns true if any was released (holds.cpp).
 bool release_saddles(FrontState& fs);
 
-// Vertices, the queue and the holds (sweep.cpp).
+// Vertices and the queue (front_state.cpp), the holds (holds.cpp).
 /// A new front vertex at p (on the skin; `cell` a hint for its mixed cell),
 /// with its normal, rho and cell. Throws TopologyError when the vertex budget
 /// (a runaway guard that follows the smallest rho met) is exceeded.

@@ -1,8 +1,9 @@
-// front/sweep.cpp: Algorithm 1 of Cheng & Shi 2004 §4.1 ("CreepTriangles"):
-// the departure queue, the holds in protecting spheres, the release of saddles
-// never bridged, and the order of the stages (initial front, creeping
-// triangles, sealing holes). The operations live in their own files
-// (front/operations.h declares them in the paper's order).
+// front/sweep.cpp: the driver of Algorithm 1 of Cheng & Shi 2004 §4.1
+// ("CreepTriangles"): the initial front, the loop over departure vertices
+// (lines 2–14: hold, small hole or creep, then the wings), the release of
+// saddles never bridged, the seal. The operations live in their own files
+// (front/operations.h declares them in the paper's order); the state's
+// bookkeeping (vertices, queue) in front_state.cpp, the holds in holds.cpp.
 // Notes: papers/front/sweep.md
 #include <algorithm>
 #include <limits>
@@ -17,138 +18,6 @@ namespace skinmesh::front {
 namespace detail {
 
 using morse::CriticalKind;
-
-// Vertices and the Queue
-
-Vertex new_vertex(FrontState& fs, const Vec3& p, Index cell) {
-  if (fs.mesh.vertices_size() >= fs.vertex_budget) {
-    // Near a thin neck or a narrow gap rho falls to the neck's scale and the
-    // vertex density grows like 1/rho²; since rho is 1-Lipschitz, each halving
-    // of the scale adds about as many vertices as the atom scale needs: allow
-    // 2 log2(rho_max / rho_min) more times the base budget, rho_min the
-    // smallest rho the front has met.
-    const double octaves = std::log2(std::max(1.0, fs.rho_max / fs.rho_min_seen));
-    fs.vertex_budget = static_cast<std::size_t>(fs.base_vertex_budget * (1 + 2 * octaves));
-  }
-  if (fs.mesh.vertices_size() >= fs.vertex_budget) {
-    std::ostringstream os;
-    os << "the front created more than " << fs.vertex_budget
-       << " vertices without closing: it is running away (a bug; please report the input)";
-    throw TopologyError(os.str());
-  }
-  const skin::SkinSample s = fs.skin.sample(p, cell);
-  if (s.rho > 0) fs.rho_min_seen = std::min(fs.rho_min_seen, s.rho);
-  const Vertex v = fs.mesh.add_vertex(p);
-  fs.vertex_grid->insert(v.idx(), p);
-  fs.normal[v] = s.gradient.normalized();
-  fs.rho[v] = s.rho;
-  fs.cell[v] = s.cell;
-  fs.set_state(v, VState::Front);
-  return v;
-}
-
-void push(FrontState& fs, Vertex v) {
-  ++fs.stamp[v];
-  fs.queue.push({fs.height(v), v.idx(), fs.stamp[v]});
-}
-
-void defer(FrontState& fs, Vertex v, double r) {
-  ++fs.deferrals[v];
-  ++fs.stamp[v];
-  fs.queue.push({fs.height(v) + fs.opt.defer_step * r * fs.deferrals[v], v.idx(), fs.stamp[v]});
-  ++fs.stats.deferred;
-}
-
-Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index* cell_out) {
-  // Normal-line projection of q = v + r dir (papers/skin/skin_math.md §7.2):
-  // the bracket [-delta, delta] comes from the sandwiching balls of radius rho(v).
-  const double rho = fs.rho[v];
-  const Vec3 n = fs.normal[v];
-  const Vec3 q = fs.mesh.position(v) + r * dir;
-  double delta = rho - std::sqrt(std::max(rho * rho - r * r, 0.0));
-  Vec3 out;
-  Index cell = fs.cell[v];
-  for (int attempt = 0; attempt < 4; ++attempt, delta *= 2) {
-    if (fs.skin.project_along_line(q, n, delta * (1 + 1e-9) + 1e-12 * fs.skin.length_scale(), out, cell)) {
-      if (cell_out) *cell_out = cell;
-      return out;
-    }
-  }
-  // Fall back on the gradient pull-back (papers/skin/skin_math.md §7.3).
-  cell = fs.cell[v];
-  out = fs.skin.pull_back(q, cell);
-  if (cell_out) *cell_out = cell;
-  return out;
-}
-
-// Holds in Protecting Spheres (Algorithm 1, lines 3–10)
-
-Index hold_region(const FrontState& fs, Vertex v) {
-  // v is held if its tangent disc meets the protecting sphere of a live
-  // saddle or maximum not yet resolved, so that no fan enters the sphere
-  // (Cheng & Shi §4.2: "each step of the front advancing must not cross to the
-  // other side of the spheres"); the nearest such critical point holds it.
-  const Vec3& p = fs.mesh.position(v);
-  const double r = fs.disc_radius(v);
-  Index best = kInvalidIndex;
-  double best_d = std::numeric_limits<double>::infinity();
-  fs.hold_grid->for_each_near(p, fs.max_hold_radius + r, [&](Index c, const Vec3& q) {
-    if (fs.resolved[c]) return;
-    const double d = (p - q).norm();
-    // The nearest, ties to the lower index (independent of the grid's order).
-    if (d < fs.ms.protect_radius[c] + r && (d < best_d || (d == best_d && c < best))) best = c, best_d = d;
-  });
-  return best;
-}
-
-void hold(FrontState& fs, Vertex v, Index c) {
-  // Lines 7 and 10: "mark the triangle red / green"; line 4–5: a saddle that
-  // is ready is bridged at once.
-  fs.set_state(v, VState::Held);
-  fs.held_by[v] = c;
-  fs.held[c].push_back(v);
-  ++fs.stats.held;
-  if (fs.tracing) fs.tracef("hold v%u by critical point %u\n", v.idx(), c);
-  const std::size_t f0 = fs.mesh.faces_size();
-  fs.notify(SweepOperation::Hold, v, c, f0);
-  if (fs.ms.critical[c].kind == CriticalKind::Saddle && try_bridge(fs, c)) {
-    paranoid_check(fs, f0, "bridge");
-    fs.notify(SweepOperation::Bridge, Vertex(), c, f0);
-  }
-  const std::size_t f1 = fs.mesh.faces_size();
-  drain_wings(fs);
-  paranoid_check(fs, f1, "wings after a hold");
-  if (fs.mesh.faces_size() > f1) fs.notify(SweepOperation::Wings, v, kInvalidIndex, f1);
-}
-
-bool release_holds(FrontState& fs, Index c, bool requeue) {
-  bool any = false;
-  for (Vertex v : fs.held[c])
-    if (fs.state[v] == VState::Held && fs.held_by[v] == c) {
-      fs.set_state(v, VState::Front);
-      fs.held_by[v] = kInvalidIndex;
-      if (requeue && fs.mesh.is_boundary(v)) push(fs, v), any = true;
-    }
-  fs.held[c].clear();
-  return any;
-}
-
-bool release_saddles(FrontState& fs) {
-  // Saddles never bridged (the front reached them from one side only, or the
-  // two sides met elsewhere by a contact): release their holds and go on
-  // (papers/front/open_questions.md Q6.4); the final topology check decides.
-  bool any = false;
-  for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
-    if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Saddle || fs.resolved[c]) continue;
-    fs.resolved[c] = 1;
-    ++fs.stats.released;
-    if (fs.tracing) fs.tracef("release saddle %zu unbridged\n", c);
-    if (release_holds(fs, static_cast<Index>(c), /*requeue=*/true)) any = true;
-  }
-  return any;
-}
-
-// Algorithm 1
 
 void create_initial_front(FrontState& fs) {
   // "Initial front": a bowl at every live minimum (Figure 5), lowest first.
@@ -186,15 +55,6 @@ void create_initial_front(FrontState& fs) {
         fs.resolved[s] = 1;
     });
   }
-}
-
-void report_progress(FrontState& fs, double h) {
-  if (!fs.opt.progress) return;
-  const double span = fs.h_max - fs.h_min;
-  const double f = span > 0 ? std::clamp((h - fs.h_min) / span, 0.0, 1.0) : 0.0;
-  if (f < fs.next_progress) return;
-  fs.next_progress = f + 0.01;
-  fs.opt.progress("sweep", f);
 }
 
 bool departure_step(FrontState& fs) {

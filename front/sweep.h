@@ -60,24 +60,25 @@ struct SweepEvent {
 /// inputs (papers/front/*.md say which). Lengths are multiples of the
 /// tangent-disc radius r = disc_factor · rho(v) of the vertex concerned.
 struct SweepOptions {
+  // From the paper (Cheng & Shi 2004 §2.2, §4.1).
   /// C and Q of conditions [L], [U] (Cheng & Shi §2.2); the window of
   /// disc_factor is derived from them.
   skin::SizeConstants size;
+  /// Angle of one fan triangle at its apex (degrees): a bowl has 360/60 = 6
+  /// triangles, a creep fan ceil(theta / 60°). [paper §4.1]
+  double fan_angle_deg = 60;
+  /// wing() closes a front angle below this (degrees). [paper §4.1: "no
+  /// angles smaller than 90° between any two adjacent front edges"]
+  double wing_angle_deg = 90;
+
+  // Derived from the paper (papers/skin/skin_math.md §8).
   /// Tangent-disc radius r_a = disc_factor · rho(a) (Cheng & Shi §4.2). Must lie
   /// in size's window (disc_factor_lower(), disc_factor_upper()] =
   /// (0.1074, 0.2077] for the default C, Q. [derived] 0.185: below 0.1853 the
   /// fan triangles satisfy [U] themselves (papers/skin/skin_math.md §8).
   double disc_factor = 0.185;
 
-  // creation() and creep(), Figures 5 and 6.
-  /// Angle of one fan triangle at its apex (degrees): a bowl has 360/60 = 6
-  /// triangles, a creep fan ceil(theta / 60°). [paper §4.1]
-  double fan_angle_deg = 60;
-
-  // wing(), Figure 7.
-  /// wing() closes a front angle below this (degrees). [paper §4.1: "no
-  /// angles smaller than 90° between any two adjacent front edges"]
-  double wing_angle_deg = 90;
+  // Measured: the creep's and the bridge's safeguards (papers/front/creep.md, wing.md, bridge.md).
   /// A forced wing (a neighbour over which a fan would fold) closes angles
   /// below this (degrees): any convex corner. [measured]
   double forced_wing_angle_deg = 180;
@@ -92,8 +93,6 @@ struct SweepOptions {
   /// A new fan point closer than fan_clearance · r to the neighbour's other
   /// front neighbour makes that neighbour a wing candidate. [measured]
   double fan_clearance = 0.5;
-
-  // Deferral and the fold check (papers/front/creep.md).
   /// A creep whose fan would fold is postponed at most this many times.
   /// [measured]
   int max_deferrals = 8;
@@ -105,8 +104,11 @@ struct SweepOptions {
   /// below 1e-6°; a fold thinner than this goes unnoticed here and is
   /// caught by the final self-intersection check]
   double fold_tolerance_deg = 5;
+  /// After a bridge, free front vertices within bridge_requeue_factor · r_p
+  /// of the saddle are queued again (r_p: its protecting radius). [measured]
+  double bridge_requeue_factor = 3;
 
-  // The collision safety net (papers/front/collision_net.md), not in the paper.
+  // Measured: the collision safety net, not in the paper (papers/front/collision_net.md).
   /// A fan point within collision_radius · r of another vertex would come too
   /// close to another front part. [measured]
   double collision_radius = 0.5;
@@ -123,12 +125,7 @@ struct SweepOptions {
   /// to wing() instead of a contact. [measured]
   int contact_min_hops = 3;
 
-  // bridge(), Figure 8.
-  /// After a bridge, free front vertices within bridge_requeue_factor · r_p
-  /// of the saddle are queued again (r_p: its protecting radius). [measured]
-  double bridge_requeue_factor = 3;
-
-  // seal() and hole filling (papers/front/seal.md, papers/front/hole_filling.md).
+  // Measured: small holes and the seal's hole filling, not in the paper (papers/front/seal.md, hole_filling.md).
   /// A front loop of at most small_hole_vertices vertices, all within
   /// small_hole_reach · r of the departure vertex, is a small hole, closed
   /// at once. [measured]

@@ -41,13 +41,15 @@ class Refiner {
     // do not depend on it).
     double mean_edge = 0;
     std::size_t ne = 0;
-    const std::size_t stride = std::max<std::size_t>(1, mesh_.edges_size() / 4096);
+    constexpr std::size_t kEdgeSamples = 4096;  // [measured] enough edges for a mean that sets a cell size
+    const std::size_t stride = std::max<std::size_t>(1, mesh_.edges_size() / kEdgeSamples);
     for (std::size_t i = 0; i < mesh_.edges_size(); i += stride) {
       const Edge e(static_cast<Index>(i));
       if (mesh_.is_deleted(e)) continue;
       mean_edge += (pos(mesh_.vertex(e, 0)) - pos(mesh_.vertex(e, 1))).norm(), ++ne;
     }
-    inserted_grid_.emplace(ne && mean_edge > 0 ? mean_edge / double(ne) : skin_.length_scale() * 1e-3);
+    constexpr double kFallbackCell = 1e-3;  // [derived] times L, for a mesh without edges
+    inserted_grid_.emplace(ne && mean_edge > 0 ? mean_edge / double(ne) : skin_.length_scale() * kFallbackCell);
   }
 
   RefineStats run();
@@ -127,7 +129,8 @@ bool Refiner::inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const {
   Vec3 m;
   Index cell = cell_[a];
   if (!skin::surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell)) m = skin::circumcentre(pos(a), pos(b), pos(c));
-  return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - 1e-9);
+  constexpr double kStrictlyInside = 1e-9;  // [derived] relative: d on the ball's sphere is not inside
+  return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - kStrictlyInside);
 }
 
 bool Refiner::should_flip(Edge e) const {
@@ -143,7 +146,8 @@ bool Refiner::should_flip(Edge e) const {
 }
 
 void Refiner::lawson() {
-  const std::size_t cap = static_cast<std::size_t>(opt_.max_flips_factor * double(mesh_.n_edges())) + 100;
+  constexpr std::size_t kMinFlipCap = 100;  // [measured] room for the flips of a tiny mesh
+  const std::size_t cap = static_cast<std::size_t>(opt_.max_flips_factor * double(mesh_.n_edges())) + kMinFlipCap;
   std::size_t flips = 0;
   while (!stack_.empty()) {
     const Edge e = stack_.back();
@@ -254,7 +258,8 @@ bool Refiner::insert(Face f) {
   std::array<Vertex, 3> x{};
   bool found = false;
   Face came_from;  // the face the walk just left
-  for (int step = 0; step < 64 && !found; ++step) {
+  constexpr int kMaxWalkSteps = 64;  // [measured] the limit of the walk over the surface triangles
+  for (int step = 0; step < kMaxWalkSteps && !found; ++step) {
     int i = 0;
     for (Halfedge h : mesh_.halfedges(t)) {
       x[i] = mesh_.from_vertex(h);

@@ -145,7 +145,8 @@ void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
     const double d2 = std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (e2 - e1).squaredNorm(),
                                 (e3 - e1).squaredNorm(), (e3 - e2).squaredNorm()});
     const double vol6 = std::abs(e1.dot(e2.cross(e3)));
-    if (!(vol6 <= 1e-5 * d2 * std::sqrt(d2))) continue;
+    constexpr double kFlatVolume = 1e-5;  // [measured] 6 vol / diameter³ of a tetrahedron worth the flatness test
+    if (!(vol6 <= kFlatVolume * d2 * std::sqrt(d2))) continue;
     const std::array<Vec3, 4> m = facet_normals(rt, t);
     bool is_flat = true;
     for (int i = 1; i < 4 && is_flat; ++i) is_flat = 1.0 - std::abs(m[i].dot(m[0])) <= kParallel;
@@ -288,7 +289,12 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
 
   // The walk bound of locate() (computed here: a cube root per query was 4 %
   // of the sweep).
-  max_walk_steps_ = 64 + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * 8);
+  // [measured] a straight walk crosses about cbrt(cells) cells per axis; the
+  // floor and the factors are the bound of locate()'s walk before it falls
+  // back on a scan.
+  constexpr std::size_t kWalkFloor = 64;
+  constexpr double kWalkPerCubeRoot = 8;
+  max_walk_steps_ = kWalkFloor + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * kWalkPerCubeRoot);
 
   // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k}, the face
   // mu_X ∩ mu_Y = (1-s) delta_X + s nu_Y lies in the plane with unit normal n
@@ -357,7 +363,8 @@ double MixedComplex::violation(Index c, const Vec3& x) const {
 }
 
 Index MixedComplex::locate(const Vec3& x, Index hint) const {
-  const double tol = 1e-12 * length_scale_;
+  constexpr double kInsideTolerance = 1e-12;  // [derived] times L: a few ulps of coordinates of size L
+  const double tol = kInsideTolerance * length_scale_;
   Index c = hint;
   if (c == kInvalidIndex || c >= cells_.size()) {
     // Start from the vertex cell of the tet's vertex nearest in power distance.
@@ -406,7 +413,8 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
       best = i;
     }
   }
-  if (best_v > 1e-9 * length_scale_)
+  constexpr double kOutsideEveryCell = 1e-9;  // [derived] times L: far above the planes' rounding
+  if (best_v > kOutsideEveryCell * length_scale_)
     throw GeometryError("mixed complex: no cell contains the point (" + std::to_string(x.x()) + ", " +
                         std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")");
   return best;

@@ -1,0 +1,83 @@
+// front/holds.cpp: the holds of Algorithm 1 (Cheng & Shi 2004 §4.1, §4.2):
+// a front vertex whose tangent disc meets the protecting sphere of an
+// unresolved saddle or maximum stops there; a saddle is bridged when the
+// front has reached it from two sides; the holds of saddles never bridged
+// are released when the queue runs dry.
+// Notes: papers/front/sweep.md
+#include <algorithm>
+#include <limits>
+
+#include "front/operations.h"
+
+namespace skinmesh::front::detail {
+
+using morse::CriticalKind;
+
+Index hold_region(const FrontState& fs, Vertex v) {
+  // v is held if its tangent disc meets the protecting sphere of a live
+  // saddle or maximum not yet resolved, so that no fan enters the sphere
+  // (Cheng & Shi §4.2: "each step of the front advancing must not cross to the
+  // other side of the spheres"); the nearest such critical point holds it.
+  const Vec3& p = fs.mesh.position(v);
+  const double r = fs.disc_radius(v);
+  Index best = kInvalidIndex;
+  double best_d = std::numeric_limits<double>::infinity();
+  fs.hold_grid->for_each_near(p, fs.max_hold_radius + r, [&](Index c, const Vec3& q) {
+    if (fs.resolved[c]) return;
+    const double d = (p - q).norm();
+    // The nearest, ties to the lower index (independent of the grid's order).
+    if (d < fs.ms.protect_radius[c] + r && (d < best_d || (d == best_d && c < best))) best = c, best_d = d;
+  });
+  return best;
+}
+
+void hold(FrontState& fs, Vertex v, Index c) {
+  // Lines 7 and 10: "mark the triangle red / green"; line 4–5: a saddle that
+  // is ready is bridged at once.
+  fs.set_state(v, VState::Held);
+  fs.held_by[v] = c;
+  fs.held[c].push_back(v);
+  ++fs.stats.held;
+  if (fs.tracing) fs.tracef("hold v%u by critical point %u\n", v.idx(), c);
+  const std::size_t f0 = fs.mesh.faces_size();
+  fs.notify(SweepOperation::Hold, v, c, f0);
+  if (fs.ms.critical[c].kind == CriticalKind::Saddle && try_bridge(fs, c)) {
+    paranoid_check(fs, f0, "bridge");
+    fs.notify(SweepOperation::Bridge, Vertex(), c, f0);
+  }
+  const std::size_t f1 = fs.mesh.faces_size();
+  drain_wings(fs);
+  paranoid_check(fs, f1, "wings after a hold");
+  if (fs.mesh.faces_size() > f1) fs.notify(SweepOperation::Wings, v, kInvalidIndex, f1);
+}
+
+bool release_holds(FrontState& fs, Index c, bool requeue) {
+  bool any = false;
+  for (Vertex v : fs.held[c])
+    if (fs.state[v] == VState::Held && fs.held_by[v] == c) {
+      fs.set_state(v, VState::Front);
+      fs.held_by[v] = kInvalidIndex;
+      if (requeue && fs.mesh.is_boundary(v)) push(fs, v), any = true;
+    }
+  fs.held[c].clear();
+  return any;
+}
+
+bool release_saddles(FrontState& fs) {
+  // Saddles never bridged (the front reached them from one side only, or the
+  // two sides met elsewhere by a contact): release their holds and go on
+  // (papers/front/open_questions.md Q6.4); the final topology check decides.
+  bool any = false;
+  for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
+    if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Saddle || fs.resolved[c]) continue;
+    fs.resolved[c] = 1;
+    ++fs.stats.released;
+    if (fs.tracing) fs.tracef("release saddle %zu unbridged\n", c);
+    if (release_holds(fs, static_cast<Index>(c), /*requeue=*/true)) any = true;
+  }
+  return any;
+}
+
+// Algorithm 1
+
+}  // namespace skinmesh::front::detail
