@@ -43,16 +43,6 @@ std::uint64_t walk_seed(Index start) {
   return s == 0 ? 1 : s;
 }
 
-// The two local indices of a tetrahedron other than i and j (i != j).
-std::pair<int, int> other_two(int i, int j) {
-  int a = -1, b = -1;
-  for (int k = 0; k < 4; ++k) {
-    if (k == i || k == j) continue;
-    (a < 0 ? a : b) = k;
-  }
-  return {a, b};
-}
-
 // True iff (a, b, c) is a cyclic rotation of (x, y, z), which must hold the
 // same three values: the two triangles have the same orientation.
 bool same_orientation(const std::array<Index, 3>& abc, const std::array<Index, 3>& xyz) {
@@ -130,7 +120,7 @@ std::uint32_t DelaunayTriangulation::Mesh::next_generation() {
   // Marks 2g (inside) and 2g + 1 (outside) for generation g >= 1.
   if (generation >= 0x7FFFFFFEu) {
     std::fill(cell_mark.begin(), cell_mark.end(), 0u);
-    for (EdgeSlot& e : edge_table) e.stamp = 0;
+    for (cavity::EdgeSlot& e : edge_table) e.stamp = 0;
     generation = 0;
   }
   return ++generation;
@@ -205,53 +195,18 @@ void DelaunayTriangulation::Mesh::insert_vertex(Index v, Index start,
                       "the located tetrahedron is not in conflict with the new point");
   const std::uint32_t g = next_generation();
   const std::uint32_t inside = 2 * g, outside = 2 * g + 1;
-  conflict.clear();
-  cavity.clear();
-  stack.clear();
-  cell_mark[start] = inside;
-  stack.push_back(start);
-  while (!stack.empty()) {
-    const Index t = stack.back();
-    stack.pop_back();
-    conflict.push_back(t);
-    for (int i = 0; i < 4; ++i) {
-      const Index u = cells[t].n[i];
-      if (u != kInvalidIndex) {
-        if (cell_mark[u] == inside) continue;
-        if (cell_mark[u] != outside) {
-          if (conflict_with(u, v) == Sign::Positive) {
-            cell_mark[u] = inside;
-            stack.push_back(u);
-            continue;
-          }
-          cell_mark[u] = outside;
-        }
-      }
-      CavityFacet f;
-      f.vertices = cells[t].v;
-      f.vertices[i] = v;
-      f.i = i;
-      f.outside = u;
-      f.outside_face = 0;
-      if (u != kInvalidIndex) {
-        while (cells[u].n[f.outside_face] != t) ++f.outside_face;
-      }
-      cavity.push_back(f);
-    }
-  }
+  cavity::grow(
+      cells, cell_mark, inside, outside, start, v, [&](Index u) { return conflict_with(u, v); }, [](Index) {}, stack,
+      conflict, cavity_facets);
   if (conflict_count) *conflict_count += conflict.size();
   for (const Index t : conflict) kill_cell(t);
 
   // The cavity boundary is a triangulated sphere: every edge is in exactly two
   // facets, and the two cone tetrahedra on them share the face (v, edge).
   // They are matched through an open-addressing table keyed by the edge.
-  std::size_t size = 64;
-  while (size < 4 * cavity.size()) size *= 2;
-  if (edge_table.size() < size) edge_table.assign(size, EdgeSlot{});
-  const std::uint64_t mask = edge_table.size() - 1;
-  const int shift = 64 - std::countr_zero(edge_table.size());
+  const auto mask_shift = cavity::prepare_edge_table(edge_table, cavity_facets.size());
   Index nt = kInvalidIndex;
-  for (const CavityFacet& f : cavity) {
+  for (const cavity::Facet& f : cavity_facets) {
     nt = new_cell();
     Cell& c = cells[nt];
     c.v = f.vertices;
@@ -261,27 +216,7 @@ void DelaunayTriangulation::Mesh::insert_vertex(Index v, Index start,
     SKINMESH_DEBUG_ASSERT(orient3d(points[c.v[0]].z, points[c.v[1]].z, points[c.v[2]].z,
                                    points[c.v[3]].z) == Sign::Positive);
     for (const Index w : c.v) vertex_tet[w] = nt;
-    for (int j = 0; j < 4; ++j) {
-      if (j == f.i) continue;
-      const auto [ka, kb] = other_two(f.i, j);
-      Index a = c.v[ka], b = c.v[kb];
-      if (a > b) std::swap(a, b);
-      const std::uint64_t key = (std::uint64_t(a) << 32) | b;
-      std::uint64_t slot = (key * 0x9E3779B97F4A7C15ULL) >> shift;
-      while (true) {
-        EdgeSlot& e = edge_table[slot];
-        if (e.stamp != g) {  // empty in this generation: the first of the two faces
-          e = EdgeSlot{key, g, nt, j};
-          break;
-        }
-        if (e.key == key) {  // the second face: link both
-          cells[nt].n[j] = e.tet;
-          cells[e.tet].n[e.face] = nt;
-          break;
-        }
-        slot = (slot + 1) & mask;
-      }
-    }
+    cavity::link_cone_faces(cells, edge_table, mask_shift, g, nt, f);
   }
   last_cell = nt;
 }

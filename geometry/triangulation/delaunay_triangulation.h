@@ -56,6 +56,7 @@
 
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/triangulation/cavity.h"
 
 namespace skinmesh::geometry {
 
@@ -240,19 +241,6 @@ class DelaunayTriangulation {
     std::array<Index, 4> v;
     std::array<Index, 4> n;
   };
-  // A facet of a Bowyer-Watson cavity: the new tetrahedron built on it.
-  struct CavityFacet {
-    std::array<Index, 4> vertices;  // the killed tetrahedron with v_i -> the new point
-    Index outside;                  // tetrahedron across the facet (or kInvalidIndex)
-    int i;                          // local index of the new point
-    int outside_face;               // face of `outside` that is this facet
-  };
-  struct EdgeSlot {
-    std::uint64_t key = 0;
-    std::uint32_t stamp = 0;
-    Index tet = 0;
-    int face = 0;
-  };
   // A tetrahedralisation of the bounding tetrahedron with its own vertex
   // numbering: the global triangulation (sos[v] == v) and the link
   // triangulation of a removal (sos = the global ids) are both Meshes.
@@ -269,8 +257,8 @@ class DelaunayTriangulation {
     std::vector<std::uint32_t> cell_mark;
     std::uint32_t generation = 0;
     std::vector<Index> stack, conflict;
-    std::vector<CavityFacet> cavity;
-    std::vector<EdgeSlot> edge_table;
+    std::vector<cavity::Facet> cavity_facets;
+    std::vector<cavity::EdgeSlot> edge_table;
 
     void reset(const std::array<Vec3, 4>& corners);
     Index add_vertex(const Vec3& p, Index sos_index);

@@ -70,17 +70,6 @@ std::uint64_t next_random(std::uint64_t& state) {
   return state * 0x2545F4914F6CDD1DULL;
 }
 
-// For a new tetrahedron with the new point at local index i, the face opposite
-// local j != i contains the new point and the edge of the other two local
-// indices kEdgeOf[i][j]; it is shared with the new tetrahedron on the other
-// cavity facet that contains that edge.
-constexpr int kEdgeOf[4][4][2] = {
-    {{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
-    {{2, 3}, {-1, -1}, {0, 3}, {0, 2}},
-    {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
-    {{1, 2}, {0, 2}, {0, 1}, {-1, -1}},
-};
-
 // Minimum size of the first BRIO round.
 constexpr Index kBrioFirstRound = 64;
 
@@ -255,49 +244,18 @@ void RegularTriangulation::insert(Index v) {
   // Grow the conflict region: depth-first search over neighbours -------------
   ++generation_;
   const std::uint32_t in_cavity = 2 * generation_, outside = 2 * generation_ + 1;
-  conflict_.clear();
-  boundary_.clear();
   cavity_vertices_.clear();
-  stack_.clear();
-  tet_mark_[start] = in_cavity;
-  stack_.push_back(start);
-  while (!stack_.empty()) {
-    const Index t = stack_.back();
-    stack_.pop_back();
-    conflict_.push_back(t);
-    const std::array<Index, 4>& tv = cells_[t].v;
-    for (const Index w : tv) {
-      if (vertex_mark_[w] != in_cavity) {
-        vertex_mark_[w] = in_cavity;
-        cavity_vertices_.push_back(w);
-      }
-    }
-    for (int i = 0; i < 4; ++i) {
-      const Index u = cells_[t].n[i];
-      if (u != kInvalidIndex) {
-        if (tet_mark_[u] == in_cavity) continue;
-        if (tet_mark_[u] != outside) {
-          if (work_conflict(u, v) == Sign::Positive) {
-            tet_mark_[u] = in_cavity;
-            stack_.push_back(u);
-            continue;
+  cavity::grow(
+      cells_, tet_mark_, in_cavity, outside, start, v, [&](Index u) { return work_conflict(u, v); },
+      [&](Index t) {
+        for (const Index w : cells_[t].v) {
+          if (vertex_mark_[w] != in_cavity) {
+            vertex_mark_[w] = in_cavity;
+            cavity_vertices_.push_back(w);
           }
-          tet_mark_[u] = outside;
         }
-      }
-      // Facet i of t bounds the cavity: remember the new tetrahedron on it.
-      BoundaryFacet f;
-      f.vertices = tv;
-      f.vertices[i] = v;
-      f.i = static_cast<std::uint8_t>(i);
-      f.outside = u;
-      f.outside_face = 0;
-      if (u != kInvalidIndex) {
-        while (cells_[u].n[f.outside_face] != t) ++f.outside_face;
-      }
-      boundary_.push_back(f);
-    }
-  }
+      },
+      stack_, conflict_, boundary_);
   stats_.conflict_tets += conflict_.size();
 
   // Delete the conflict tetrahedra ---------------------------------------------
@@ -307,17 +265,10 @@ void RegularTriangulation::insert(Index v) {
   }
 
   // Create the cone from v over the cavity boundary ---------------------------
-  const std::size_t needed = 4 * boundary_.size();
-  if (edge_table_.size() < needed) {
-    std::size_t size = 64;
-    while (size < needed) size *= 2;
-    edge_table_.assign(size, EdgeSlot{});
-  }
-  const std::uint64_t table_mask = edge_table_.size() - 1;
-  const int table_shift = 64 - std::countr_zero(edge_table_.size());
+  const auto mask_shift = cavity::prepare_edge_table(edge_table_, boundary_.size());
   const std::uint32_t on_boundary = outside;  // vertex mark: vertex of a new tet
   Index nt = kInvalidIndex;
-  for (const BoundaryFacet& f : boundary_) {
+  for (const cavity::Facet& f : boundary_) {
     nt = new_tet();
     cells_[nt].v = f.vertices;
     cells_[nt].n[f.i] = f.outside;
@@ -330,30 +281,8 @@ void RegularTriangulation::insert(Index v) {
       vertex_mark_[w] = on_boundary;
     }
     // Link the three faces through v with the neighbouring new tetrahedra,
-    // matched by their edge on the cavity boundary (open-addressing table).
-    for (int j = 0; j < 4; ++j) {
-      if (j == f.i) continue;
-      Index a = f.vertices[kEdgeOf[f.i][j][0]], b = f.vertices[kEdgeOf[f.i][j][1]];
-      if (a > b) std::swap(a, b);
-      const std::uint64_t edge_key = (std::uint64_t(a) << 32) | b;
-      std::uint64_t slot = (edge_key * 0x9E3779B97F4A7C15ULL) >> table_shift;
-      while (true) {
-        EdgeSlot& e = edge_table_[slot];
-        if (e.stamp != generation_) {  // empty: first of the two faces
-          e.key = edge_key;
-          e.stamp = generation_;
-          e.tet = nt;
-          e.face = j;
-          break;
-        }
-        if (e.key == edge_key) {  // second face: link both
-          cells_[nt].n[j] = e.tet;
-          cells_[e.tet].n[e.face] = nt;
-          break;
-        }
-        slot = (slot + 1) & table_mask;
-      }
-    }
+    // matched by their edge on the cavity boundary.
+    cavity::link_cone_faces(cells_, edge_table_, mask_shift, generation_, nt, f);
   }
 
   // Vertices of the old cavity that are not on its boundary are now hidden ----

@@ -45,6 +45,7 @@
 
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/triangulation/cavity.h"
 
 namespace skinmesh::geometry {
 
@@ -218,24 +219,12 @@ class RegularTriangulation {
   // the insertion order: work_points_[k] is the point, work_ids_[k] its index.
   std::vector<WeightedPoint> work_points_;
   std::vector<Index> work_ids_;
-  struct BoundaryFacet {
-    std::array<Index, 4> vertices;  // the new tetrahedron (old one, v_i -> new point)
-    Index outside;                  // tetrahedron across the facet (or kInvalidIndex)
-    std::uint8_t i;                 // local index of the new point
-    std::uint8_t outside_face;      // face of `outside` that is this facet
-  };
-  struct EdgeSlot {
-    std::uint64_t key = 0;
-    std::uint32_t stamp = 0;
-    Index tet = 0;
-    int face = 0;
-  };
   std::vector<Index> free_tets_;
   std::vector<std::uint32_t> tet_mark_;
   std::vector<std::uint32_t> vertex_mark_;
   std::vector<Index> stack_, conflict_, cavity_vertices_;
-  std::vector<BoundaryFacet> boundary_;
-  std::vector<EdgeSlot> edge_table_;
+  std::vector<cavity::Facet> boundary_;
+  std::vector<cavity::EdgeSlot> edge_table_;
   std::uint32_t generation_ = 0;
   Index last_tet_ = 0;
   std::uint64_t walk_rng_ = 0;

@@ -74,4 +74,25 @@ inline void check_partial_mesh(const FrontState& s, const skin::SkinSurface& ski
   CHECK(folded == 0);
 }
 
+/// Sweeps `s` (made with fx.opt's wings switched off: wing_angle_deg and
+/// forced_wing_angle_deg 0) until some free front vertex has a front angle
+/// below 85° that wing() would close at the paper's 90°; returns it (invalid
+/// after 400 departures without one). fx.opt is left with wings off.
+inline Vertex sweep_to_narrow_corner(Fixture& fx, FrontState& s) {
+  using namespace front::detail;
+  create_initial_front(s);
+  for (int step = 0; step < 400; ++step) {
+    REQUIRE(departure_step(s));
+    for (Vertex v : s.mesh.vertices())
+      if (!s.mesh.is_deleted(v) && s.mesh.is_boundary(v) && s.state[v] == VState::Front &&
+          corner(s, v).angle < 85 * kDegree) {
+        fx.opt.wing_angle_deg = 90;  // the state reads its options by reference
+        const bool takes = wing_refusal(s, v, false) == nullptr;
+        fx.opt.wing_angle_deg = 0;
+        if (takes) return v;
+      }
+  }
+  return Vertex();
+}
+
 }  // namespace skinmesh::test

@@ -33,19 +33,7 @@ TEST_CASE("wing closes a front angle below 90°") {
   fx.opt.wing_angle_deg = 0;
   fx.opt.forced_wing_angle_deg = 0;
   FrontState s(fx.skin, fx.ms, fx.opt);
-  create_initial_front(s);
-  Vertex target;
-  for (int step = 0; step < 400 && !target.is_valid(); ++step) {
-    REQUIRE(departure_step(s));
-    for (Vertex v : s.mesh.vertices())
-      if (!s.mesh.is_deleted(v) && s.mesh.is_boundary(v) && s.state[v] == VState::Front &&
-          corner(s, v).angle < 85 * kDegree) {
-        fx.opt.wing_angle_deg = 90;  // the sweep reads its options by reference
-        if (wing_refusal(s, v, false) == nullptr) target = v;
-        fx.opt.wing_angle_deg = 0;
-        if (target.is_valid()) break;
-      }
-  }
+  const Vertex target = sweep_to_narrow_corner(fx, s);
   REQUIRE(target.is_valid());
   fx.opt.wing_angle_deg = 90;
   const front::detail::Corner k = corner(s, target);
