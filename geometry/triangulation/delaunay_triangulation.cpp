@@ -2,6 +2,7 @@
 // delaunay_triangulation.h for the ideas and references, and
 // papers/geometry/triangulation/delaunay_triangulation.md for the deletion argument).
 #include "geometry/triangulation/delaunay_triangulation.h"
+#include "geometry/triangulation/walk.h"
 
 #include <algorithm>
 #include <bit>
@@ -29,14 +30,6 @@ std::string format_point(const Vec3& p) {
   return os.str();
 }
 
-// xorshift64* (Vigna 2016): the walk's face order. Fully specified, so every
-// walk is reproducible.
-std::uint64_t next_random(std::uint64_t& state) {
-  state ^= state >> 12;
-  state ^= state << 25;
-  state ^= state >> 27;
-  return state * 0x2545F4914F6CDD1DULL;
-}
 
 std::uint64_t walk_seed(Index start) {
   const std::uint64_t s = 0x9E3779B97F4A7C15ULL ^ (std::uint64_t(start) << 17);
@@ -154,33 +147,9 @@ Index DelaunayTriangulation::Mesh::scan(const Vec3& p) const {
 // strictly on this side of it).
 Index DelaunayTriangulation::Mesh::walk(const Vec3& p, Index start, std::uint64_t& rng,
                                         std::uint64_t* steps, std::uint64_t* fallbacks) const {
-  Index t = start, previous = kInvalidIndex;
-  const std::uint64_t limit = 1000 + 4 * std::uint64_t(cells.size());
-  for (std::uint64_t step = 0;; ++step) {
-    if (step > limit) {  // a cycle (not expected for Delaunay): scan
-      if (fallbacks) ++*fallbacks;
-      return scan(p);
-    }
-    if (steps) ++*steps;
-    const int first = static_cast<int>(next_random(rng) >> 62);
-    const std::array<Index, 4>& tv = cells[t].v;
-    bool moved = false;
-    for (int k = 0; k < 4; ++k) {
-      const int i = (first + k) & 3;
-      const Index u = cells[t].n[i];
-      if (u == previous && u != kInvalidIndex) continue;
-      const auto& f = kFaceVertices[i];
-      if (orient3d(points[tv[f[0]]].z, points[tv[f[1]]].z, points[tv[f[2]]].z, p) ==
-          Sign::Negative) {
-        if (u == kInvalidIndex) return kInvalidIndex;  // outside the bounding tetrahedron
-        previous = t;
-        t = u;
-        moved = true;
-        break;
-      }
-    }
-    if (!moved) return t;
-  }
+  // The remembering stochastic visibility walk (geometry/triangulation/walk.h);
+  // a cycle is not expected for Delaunay, but scan() decides if one occurs.
+  return walk::locate(cells, points, p, start, rng, steps, fallbacks, [&] { return scan(p); });
 }
 
 // Bowyer-Watson: `start` is a live cell whose closed hull contains the new

@@ -57,6 +57,7 @@
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/triangulation/cavity.h"
+#include "geometry/triangulation/walk.h"
 
 namespace skinmesh::geometry {
 
@@ -83,8 +84,7 @@ class DelaunayTriangulation {
  public:
   /// Local vertex indices of the face opposite local vertex i, ordered so that
   /// vertex i is on the positive side (as RegularTriangulation::kFaceVertices).
-  static constexpr std::array<std::array<int, 3>, 4> kFaceVertices = {
-      {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}}};
+  static constexpr std::array<std::array<int, 3>, 4> kFaceVertices = walk::kFaceVertices;
   /// Number of bounding points (ids 0..3).
   static constexpr Index kNumBounding = 4;
 

@@ -1,6 +1,7 @@
 // geometry/triangulation/regular_triangulation.cpp: incremental construction of the regular
 // triangulation (see regular_triangulation.h for the ideas and references).
 #include "geometry/triangulation/regular_triangulation.h"
+#include "geometry/triangulation/walk.h"
 
 #include <algorithm>
 #include <bit>
@@ -62,13 +63,6 @@ namespace {
   throw InputError("", 0, "regular triangulation: " + problem);
 }
 
-// xorshift64* (Vigna 2016): a small, fully specified generator for the walk.
-std::uint64_t next_random(std::uint64_t& state) {
-  state ^= state >> 12;
-  state ^= state << 25;
-  state ^= state >> 27;
-  return state * 0x2545F4914F6CDD1DULL;
-}
 
 // Minimum size of the first BRIO round.
 constexpr Index kBrioFirstRound = 64;
@@ -297,40 +291,11 @@ void RegularTriangulation::insert(Index v) {
   last_tet_ = nt;
 }
 
-// Remembering stochastic visibility walk: leave the current tetrahedron
-// through a face that separates it from p, testing the faces in a random
-// cyclic order and never testing the face just crossed.
+// The remembering stochastic visibility walk (geometry/triangulation/walk.h).
 Index RegularTriangulation::walk(std::span<const WeightedPoint> pts, const Vec3& p,
                                  Index start, std::uint64_t& rng, std::uint64_t* steps,
                                  std::uint64_t* fallbacks) const {
-  Index t = start, previous = kInvalidIndex;
-  // A walk longer than this is taken as a (theoretically possible, never
-  // observed) cycle; the exhaustive scan then decides.
-  const std::uint64_t limit = 1000 + 4 * std::uint64_t(cells_.size());
-  for (std::uint64_t step = 0;; ++step) {
-    if (step > limit) {
-      if (fallbacks) ++*fallbacks;
-      return locate_by_scan(pts, p);
-    }
-    if (steps) ++*steps;
-    const int first = static_cast<int>(next_random(rng) >> 62);
-    const std::array<Index, 4>& tv = cells_[t].v;
-    bool moved = false;
-    for (int k = 0; k < 4; ++k) {
-      const int i = (first + k) & 3;
-      const Index u = cells_[t].n[i];
-      if (u == previous && u != kInvalidIndex) continue;
-      const auto& f = kFaceVertices[i];
-      if (orient3d(pts[tv[f[0]]].z, pts[tv[f[1]]].z, pts[tv[f[2]]].z, p) == Sign::Negative) {
-        if (u == kInvalidIndex) return kInvalidIndex;  // outside the bounding tetrahedron
-        previous = t;
-        t = u;
-        moved = true;
-        break;
-      }
-    }
-    if (!moved) return t;
-  }
+  return walk::locate(cells_, pts, p, start, rng, steps, fallbacks, [&] { return locate_by_scan(pts, p); });
 }
 
 bool RegularTriangulation::contains(std::span<const WeightedPoint> pts, Index t,

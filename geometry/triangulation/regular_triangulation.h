@@ -46,6 +46,7 @@
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/triangulation/cavity.h"
+#include "geometry/triangulation/walk.h"
 
 namespace skinmesh::geometry {
 
@@ -100,8 +101,7 @@ class RegularTriangulation {
  public:
   /// Local vertex indices of the face opposite local vertex i, ordered so that
   /// vertex i is on the positive side (see the class comment).
-  static constexpr std::array<std::array<int, 3>, 4> kFaceVertices = {
-      {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}}};
+  static constexpr std::array<std::array<int, 3>, 4> kFaceVertices = walk::kFaceVertices;
 
   /// Default seed of the randomised parts (BRIO shuffle, stochastic walk).
   static constexpr std::uint64_t kDefaultSeed = 0x5EED5EED2004ULL;
