@@ -33,7 +33,7 @@ struct BatchItem {
   std::size_t atoms = 0, triangles = 0;
   double min_angle = 0, area = 0, volume = 0, seconds = 0;
   bool checked = false;
-  int exit_code = -1;      ///< as `skinmesh mesh` on this input alone; -1: not run
+  int exit_code = -1;  ///< as `skinmesh mesh` on this input alone; -1: not run
   std::string status = "not run", message;
 };
 
@@ -161,7 +161,8 @@ int run_batch(const MeshArgs& a) {
       const BatchItem& it = items[i];
       std::lock_guard<std::mutex> lock(print);
       std::fprintf(stderr, "[%zu/%zu] %s: %s", k, items.size(), it.input.c_str(), it.status.c_str());
-      if (it.exit_code == 0) std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
+      if (it.exit_code == 0)
+        std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
       if (!it.message.empty()) std::fprintf(stderr, ": %s", one_line(it.message).c_str());
       std::fprintf(stderr, "\n");
     }
@@ -176,8 +177,8 @@ int run_batch(const MeshArgs& a) {
   std::string table, csv = "input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
   json rows = json::array();
   char line[512];
-  std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle", "seconds",
-                "status");
+  std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle",
+                "seconds", "status");
   table += line;
   int exit_code = 0;
   double sum = 0;
@@ -190,11 +191,13 @@ int run_batch(const MeshArgs& a) {
     std::snprintf(num, sizeof num, ",%zu,%zu,%.6f,%.6f,%.6f,%.3f,", it.atoms, it.triangles, it.min_angle, it.area,
                   it.volume, it.seconds);
     const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
-    csv += csv_field(it.input) + "," + csv_field(written ? it.output : "") + num +
-           csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
-    json row = {{"input", it.input},       {"atoms", it.atoms},         {"triangles", it.triangles},
-                {"min_angle_deg", it.min_angle}, {"area_A2", it.area}, {"volume_A3", it.volume},
-                {"seconds", it.seconds},   {"status", it.status},       {"exit_code", it.exit_code}};
+    csv += csv_field(it.input) + "," + csv_field(written ? it.output : "") + num + csv_field(it.status) + "," +
+           csv_field(one_line(it.message)) + "\n";
+    json row = {{"input", it.input},         {"atoms", it.atoms},
+                {"triangles", it.triangles}, {"min_angle_deg", it.min_angle},
+                {"area_A2", it.area},        {"volume_A3", it.volume},
+                {"seconds", it.seconds},     {"status", it.status},
+                {"exit_code", it.exit_code}};
     if (written) row["output"] = it.output;
     if (!it.message.empty()) row["message"] = it.message;
     rows.push_back(std::move(row));
@@ -203,19 +206,20 @@ int run_batch(const MeshArgs& a) {
   }
   const std::size_t failed = static_cast<std::size_t>(
       std::count_if(items.begin(), items.end(), [](const BatchItem& it) { return it.exit_code != 0; }));
-  std::snprintf(line, sizeof line, "%zu inputs, %zu failed; wall %.2f s with %d jobs (sum of the inputs' times %.2f s)\n",
-                items.size(), failed, wall, jobs, sum);
+  std::snprintf(line, sizeof line,
+                "%zu inputs, %zu failed; wall %.2f s with %d jobs (sum of the inputs' times %.2f s)\n", items.size(),
+                failed, wall, jobs, sum);
   table += line;
   std::cout << table << std::flush;
   const std::string csv_path = (std::filesystem::path(a.out_dir) / "summary.csv").string();
   const std::string json_path = (std::filesystem::path(a.out_dir) / "summary.json").string();
   write_text_file(csv_path, csv);
-  write_text_file(json_path, json{{"inputs", std::move(rows)},
-                                       {"failed", failed},
-                                       {"jobs", jobs},
-                                       {"wall_seconds", wall},
-                                       {"sum_seconds", sum}}
-                                      .dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  write_text_file(
+      json_path,
+      json{
+          {"inputs", std::move(rows)}, {"failed", failed}, {"jobs", jobs}, {"wall_seconds", wall}, {"sum_seconds", sum}}
+              .dump(2, ' ', false, json::error_handler_t::replace) +
+          "\n");
   if (!a.mol.quiet) std::cerr << "wrote " << csv_path << " and " << json_path << "\n";
   return exit_code;
 }

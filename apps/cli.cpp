@@ -26,7 +26,8 @@ CLI::Validator number_at_least_zero(bool strictly) {
       [strictly](std::string& s) -> std::string {
         double v = 0;
         if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v)) return "expects a number, got '" + s + "'";
-        if (strictly ? !(v > 0) : !(v >= 0)) return std::string("must be ") + (strictly ? "> 0" : ">= 0") + ", got " + s;
+        if (strictly ? !(v > 0) : !(v >= 0))
+          return std::string("must be ") + (strictly ? "> 0" : ">= 0") + ", got " + s;
         return {};
       },
       strictly ? "POSITIVE" : "NONNEGATIVE");
@@ -55,10 +56,10 @@ skin::Molecule load_molecule(const MoleculeArgs& m) {
   ro.keep_water = m.keep_water;
   ro.keep_hydrogens = !m.no_hydrogens;
   const std::map<std::string, skin::ReadOptions::Format> formats = {{"pdb", skin::ReadOptions::Format::Pdb},
-                                                                     {"cif", skin::ReadOptions::Format::Mmcif},
-                                                                     {"mmcif", skin::ReadOptions::Format::Mmcif},
-                                                                     {"pqr", skin::ReadOptions::Format::Pqr},
-                                                                     {"xyzr", skin::ReadOptions::Format::Xyzr}};
+                                                                    {"cif", skin::ReadOptions::Format::Mmcif},
+                                                                    {"mmcif", skin::ReadOptions::Format::Mmcif},
+                                                                    {"pqr", skin::ReadOptions::Format::Pqr},
+                                                                    {"xyzr", skin::ReadOptions::Format::Xyzr}};
   if (!m.format.empty()) ro.format = formats.at(m.format);
   skin::Molecule mol = skin::read_molecule(m.input, ro);
   if (!m.quiet) {

@@ -103,8 +103,9 @@ int run_info(const InfoArgs& a) {
 Command add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "atoms, regular triangulation, mixed cells, critical points, the Morse–Smale complex and the skin's "
-              "expected topology");
+      "info",
+      "atoms, regular triangulation, mixed cells, critical points, the Morse–Smale complex and the skin's "
+      "expected topology");
   add_molecule_options(*cmd, args->mol);
   add_direction_option(*cmd, args->direction);
   cmd->add_flag("--json", args->json, "print a JSON object instead of text");

@@ -70,9 +70,10 @@ int main(int argc, char** argv) {
     std::cerr << app.help();
     return 2;
   }
-  if (const std::string first = argv[1]; first[0] != '-' && first != "info" && first != "mesh" && first != "check" &&
-      first != "trace") {
-    std::cerr << "skinmesh: unknown command '" << first << "' (commands: info, mesh, check, trace; see 'skinmesh --help')\n";
+  if (const std::string first = argv[1];
+      first[0] != '-' && first != "info" && first != "mesh" && first != "check" && first != "trace") {
+    std::cerr << "skinmesh: unknown command '" << first
+              << "' (commands: info, mesh, check, trace; see 'skinmesh --help')\n";
     return 2;
   }
   try {

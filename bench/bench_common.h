@@ -9,8 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "geometry/triangulation/regular_triangulation.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/triangulation/regular_triangulation.h"
 #include "skin/molecule.h"
 
 namespace skinmesh::bench {
@@ -28,8 +28,7 @@ skin::Molecule load_molecule(const std::string& file);
 
 /// Weighted points of a molecule: centre = atom centre, weight =
 /// skin::atom_weight(r, probe) = 2 (r + probe)² (Cheng & Shi §2.1).
-std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& molecule,
-                                                     double probe = kProbeRadius);
+std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& molecule, double probe = kProbeRadius);
 
 /// load_molecule() then weighted_points() with probe radius `probe` (Å).
 std::vector<geometry::WeightedPoint> molecule_points(const std::string& file, double probe = kProbeRadius);

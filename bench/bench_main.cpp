@@ -27,8 +27,7 @@ skin::Molecule load_molecule(const std::string& file) { return skin::read_molecu
 std::vector<geometry::WeightedPoint> weighted_points(const skin::Molecule& molecule, double probe) {
   std::vector<geometry::WeightedPoint> points;
   points.reserve(molecule.atoms.size());
-  for (const skin::Atom& a : molecule.atoms)
-    points.push_back({a.centre, skin::atom_weight(a.radius, probe)});
+  for (const skin::Atom& a : molecule.atoms) points.push_back({a.centre, skin::atom_weight(a.radius, probe)});
   return points;
 }
 
@@ -41,8 +40,7 @@ std::string check_triangulation(const geometry::RegularTriangulation& rt) {
   int outer_faces = 0;
   for (Index t = 0; t < rt.num_tets(); ++t) {
     const std::array<Index, 4>& v = rt.tet(t);
-    if (geometry::orient3d(rt.point(v[0]).z, rt.point(v[1]).z, rt.point(v[2]).z,
-                           rt.point(v[3]).z) != Sign::Positive)
+    if (geometry::orient3d(rt.point(v[0]).z, rt.point(v[1]).z, rt.point(v[2]).z, rt.point(v[3]).z) != Sign::Positive)
       return "tetrahedron " + std::to_string(t) + " is not positively oriented";
     for (int i = 0; i < 4; ++i) {
       const Index u = rt.neighbor(t, i);
@@ -53,16 +51,12 @@ std::string check_triangulation(const geometry::RegularTriangulation& rt) {
       int j = -1;
       for (int k = 0; k < 4; ++k)
         if (rt.neighbor(u, k) == t) j = k;
-      if (j < 0)
-        return "tetrahedra " + std::to_string(t) + " and " + std::to_string(u) +
-               " are not mutual neighbours";
+      if (j < 0) return "tetrahedra " + std::to_string(t) + " and " + std::to_string(u) + " are not mutual neighbours";
       const Index opposite = rt.tet(u)[j];
       if (rt.local_index(t, opposite) >= 0)
-        return "tetrahedra " + std::to_string(t) + " and " + std::to_string(u) +
-               " share all four vertices";
+        return "tetrahedra " + std::to_string(t) + " and " + std::to_string(u) + " share all four vertices";
       if (rt.conflict(t, opposite) != Sign::Negative)
-        return "face " + std::to_string(i) + " of tetrahedron " + std::to_string(t) +
-               " is not locally regular";
+        return "face " + std::to_string(i) + " of tetrahedron " + std::to_string(t) + " is not locally regular";
     }
   }
   if (outer_faces != 4) return std::to_string(outer_faces) + " outer faces instead of 4";
@@ -70,8 +64,8 @@ std::string check_triangulation(const geometry::RegularTriangulation& rt) {
 }
 
 void set_rate(benchmark::State& state, const std::string& name, double per_iteration) {
-  state.counters[name] = benchmark::Counter(per_iteration * static_cast<double>(state.iterations()),
-                                            benchmark::Counter::kIsRate);
+  state.counters[name] =
+      benchmark::Counter(per_iteration * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 }  // namespace skinmesh::bench

@@ -46,9 +46,9 @@ enum class Layer {
 
 /// Which inputs the predicate sees.
 enum class Input {
-  Random,         ///< independent uniform points: the filter almost always decides
-  NearDegenerate, ///< rounded coplanar (orient3d) or cospherical (power test) points
-  Cospherical,    ///< exactly cospherical integer points: the exact value is 0
+  Random,          ///< independent uniform points: the filter almost always decides
+  NearDegenerate,  ///< rounded coplanar (orient3d) or cospherical (power test) points
+  Cospherical,     ///< exactly cospherical integer points: the exact value is 0
 };
 
 std::mt19937_64 make_rng(std::uint64_t salt) { return std::mt19937_64(0x5EED2004ULL + salt); }
@@ -195,8 +195,8 @@ void BM_PowerTest(benchmark::State& state, Layer layer, Input input) {
       state.SkipWithError("power_test disagrees with power_test_exact");
       return;
     }
-    const Sign sos = geometry::power_test_sos(p[0], p[1], p[2], p[3], p[4], t.id[0], t.id[1],
-                                              t.id[2], t.id[3], t.id[4]);
+    const Sign sos =
+        geometry::power_test_sos(p[0], p[1], p[2], p[3], p[4], t.id[0], t.id[1], t.id[2], t.id[3], t.id[4]);
     if (sos == Sign::Zero || (exact != Sign::Zero && sos != exact)) {
       state.SkipWithError("power_test_sos is zero or disagrees with a non-zero exact sign");
       return;
@@ -219,8 +219,8 @@ void BM_PowerTest(benchmark::State& state, Layer layer, Input input) {
         benchmark::DoNotOptimize(geometry::power_test_exact(p[0], p[1], p[2], p[3], p[4]));
         break;
       case Layer::Sos:
-        benchmark::DoNotOptimize(geometry::power_test_sos(p[0], p[1], p[2], p[3], p[4], t.id[0],
-                                                          t.id[1], t.id[2], t.id[3], t.id[4]));
+        benchmark::DoNotOptimize(
+            geometry::power_test_sos(p[0], p[1], p[2], p[3], p[4], t.id[0], t.id[1], t.id[2], t.id[3], t.id[4]));
         break;
     }
   }
@@ -318,21 +318,16 @@ BENCHMARK_CAPTURE(BM_PowerTest, filtered_near_cospherical, Layer::Filtered, Inpu
 BENCHMARK_CAPTURE(BM_PowerTest, sos_near_cospherical, Layer::Sos, Input::NearDegenerate);
 BENCHMARK_CAPTURE(BM_PowerTest, sos_cospherical, Layer::Sos, Input::Cospherical);
 
-BENCHMARK_CAPTURE(BM_RegularTriangulation, random_10k, RandomAtoms{10'000})
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RegularTriangulation, random_100k, RandomAtoms{100'000})
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RegularTriangulation, lattice_20x20x20, EqualWeightLattice{20})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RegularTriangulation, random_10k, RandomAtoms{10'000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RegularTriangulation, random_100k, RandomAtoms{100'000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RegularTriangulation, lattice_20x20x20, EqualWeightLattice{20})->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RegularTriangulation, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RegularTriangulation, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RegularTriangulation, crambin_1crn, "crambin_1crn.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RegularTriangulation, crambin_1crn, "crambin_1crn.pdb")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RegularTriangulation, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RegularTriangulation, src_kinase_2src, "src_kinase_2src.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RegularTriangulation, src_kinase_2src, "src_kinase_2src.pdb")->Unit(benchmark::kMillisecond);
 
 }  // namespace skinmesh::bench

@@ -16,8 +16,8 @@
 #include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
-#include "skin/size_conditions.h"
 #include "skin/dual_complex.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::bench {
@@ -179,8 +179,7 @@ void BM_ProjectAlongLine(benchmark::State& state, const char* molecule_file) {
     const Vec3 t = a.normal.cross(Vec3(g(rng), g(rng), g(rng)));
     if (t.norm() < 1e-6) continue;
     const double r = kDiscFactor * a.rho;
-    jobs.push_back({a.x + r * t.normalized(), a.normal, a.rho - std::sqrt(a.rho * a.rho - r * r),
-                    a.cell});
+    jobs.push_back({a.x + r * t.normalized(), a.normal, a.rho - std::sqrt(a.rho * a.rho - r * r), a.cell});
   }
   if (jobs.empty()) {
     state.SkipWithError("no skin points");
@@ -198,8 +197,8 @@ void BM_ProjectAlongLine(benchmark::State& state, const char* molecule_file) {
       ++failures;
   }
   if (failures > 0) {
-    const std::string msg = std::to_string(failures) + " of " + std::to_string(jobs.size()) +
-                            " projections failed or missed the skin";
+    const std::string msg =
+        std::to_string(failures) + " of " + std::to_string(jobs.size()) + " projections failed or missed the skin";
     state.SkipWithError(msg.c_str());
     return;
   }
@@ -229,9 +228,8 @@ void BM_MorseSmale(benchmark::State& state, const char* molecule_file) {
     const morse::MorseCount all = morse::count_critical_points(msc.critical);
     const morse::MorseCount live = msc.live_count();
     if (all.euler() != expected || live.euler() != expected) {
-      const std::string msg = "Morse count " + std::to_string(all.euler()) + " (live " +
-                              std::to_string(live.euler()) + ") != chi(skin) " +
-                              std::to_string(expected);
+      const std::string msg = "Morse count " + std::to_string(all.euler()) + " (live " + std::to_string(live.euler()) +
+                              ") != chi(skin) " + std::to_string(expected);
       state.SkipWithError(msg.c_str());
       return;
     }
@@ -255,45 +253,31 @@ void BM_MorseSmale(benchmark::State& state, const char* molecule_file) {
 
 // Registrations ----------------------------------------------------------------
 
-BENCHMARK_CAPTURE(BM_SkinSurface, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinSurface, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SkinSurface, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SkinSurface, crambin_1crn, "crambin_1crn.pdb")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_SkinSurface, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_SkinSurface, src_kinase_2src, "src_kinase_2src.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinSurface, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SkinSurface, src_kinase_2src, "src_kinase_2src.pdb")->Unit(benchmark::kMillisecond);
 
-BENCHMARK_CAPTURE(BM_SkinSample, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_SkinSample, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SkinSample, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SkinSample, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_SkinSample, crambin_1crn, "crambin_1crn.pdb")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_SkinSample, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_SkinSample, src_kinase_2src, "src_kinase_2src.pdb")
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SkinSample, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SkinSample, src_kinase_2src, "src_kinase_2src.pdb")->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_ProjectAlongLine, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ProjectAlongLine, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_ProjectAlongLine, crambin_1crn, "crambin_1crn.pdb")
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_ProjectAlongLine, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_ProjectAlongLine, src_kinase_2src, "src_kinase_2src.pdb")
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ProjectAlongLine, crambin_1crn, "crambin_1crn.pdb")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ProjectAlongLine, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ProjectAlongLine, src_kinase_2src, "src_kinase_2src.pdb")->Unit(benchmark::kMicrosecond);
 
-BENCHMARK_CAPTURE(BM_MorseSmale, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MorseSmale, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MorseSmale, ligand_1hpv_amprenavir, "ligand_1hpv_amprenavir.pdb")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MorseSmale, gramicidinA_1grm_model1, "gramicidinA_1grm_model1.pdb")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_MorseSmale, crambin_1crn, "crambin_1crn.pdb")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MorseSmale, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MorseSmale, src_kinase_2src, "src_kinase_2src.pdb")
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MorseSmale, adna_3dna_fiber_30bp, "adna_3dna_fiber_30bp.pdb")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MorseSmale, src_kinase_2src, "src_kinase_2src.pdb")->Unit(benchmark::kMillisecond);
 
 }  // namespace skinmesh::bench

@@ -20,11 +20,11 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
+#include "geometry/kernel/weighted_point.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "mesher/pipeline.h"
-#include "geometry/kernel/weighted_point.h"
-#include "verify/skin_mesh_check.h"
 #include "skin/skin_surface.h"
+#include "verify/skin_mesh_check.h"
 
 namespace skinmesh::bench {
 
@@ -119,21 +119,40 @@ mesher::MeshResult sweep_mesher(const std::vector<geometry::WeightedPoint>& poin
 // Waals skin). The three inputs of the speed goals (gramicidin A at 1.4,
 // crambin at 0, maltoporin at 1.4) with 1 and 2 threads.
 BENCHMARK_CAPTURE(BM_SweepMesher, ligand_1hpv_amprenavir, sweep_mesher, "ligand_1hpv_amprenavir.pdb", 1.4)
-    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, gramicidinA_1grm_model1, sweep_mesher, "gramicidinA_1grm_model1.pdb", 1.4)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, adna_3dna_fiber_30bp, sweep_mesher, "adna_3dna_fiber_30bp.pdb", 1.4)
-    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, crambin_1crn, sweep_mesher, "crambin_1crn.pdb", 1.4)
-    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, hivprotease_xk263_1hvr, sweep_mesher, "hivprotease_xk263_1hvr.pdb", 1.4)
-    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, maltoporin_1af6, sweep_mesher, "maltoporin_1af6.pdb", 1.4)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, gramicidinA_1grm_model1_probe0, sweep_mesher, "gramicidinA_1grm_model1.pdb", 0.0)
-    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepMesher, crambin_1crn_probe0, sweep_mesher, "crambin_1crn.pdb", 0.0)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The check's share: the same inputs as the two rates issue #7 asks for.
 BENCHMARK_CAPTURE(BM_SkinMeshCheck, gramicidinA_1grm_model1_1thread, "gramicidinA_1grm_model1.pdb", 1.4, 1)

@@ -8,8 +8,7 @@
 #include <string>
 
 namespace skinmesh::detail {
-[[noreturn]] inline void assertion_failed(const char* expr, const char* file, int line,
-                                          const std::string& msg = {}) {
+[[noreturn]] inline void assertion_failed(const char* expr, const char* file, int line, const std::string& msg = {}) {
   std::ostringstream os;
   os << file << ":" << line << ": assertion failed: " << expr;
   if (!msg.empty()) os << " (" << msg << ")";
@@ -18,8 +17,7 @@ namespace skinmesh::detail {
 }  // namespace skinmesh::detail
 
 /// Cheap check, always on.
-#define SKINMESH_ASSERT(expr) \
-  ((expr) ? (void)0 : ::skinmesh::detail::assertion_failed(#expr, __FILE__, __LINE__))
+#define SKINMESH_ASSERT(expr) ((expr) ? (void)0 : ::skinmesh::detail::assertion_failed(#expr, __FILE__, __LINE__))
 /// Cheap check with a message (any expression convertible to std::string).
 #define SKINMESH_ASSERT_MSG(expr, msg) \
   ((expr) ? (void)0 : ::skinmesh::detail::assertion_failed(#expr, __FILE__, __LINE__, (msg)))

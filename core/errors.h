@@ -15,10 +15,7 @@ namespace skinmesh {
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, int line, const std::string& problem)
-      : std::runtime_error(format(file, line, problem)),
-        file_(std::move(file)),
-        line_(line),
-        problem_(problem) {}
+      : std::runtime_error(format(file, line, problem)), file_(std::move(file)), line_(line), problem_(problem) {}
   const std::string& file() const { return file_; }
   int line() const { return line_; }
   const std::string& problem() const { return problem_; }

@@ -31,9 +31,7 @@ inline constexpr Index kInvalidIndex = std::numeric_limits<Index>::max();
 enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
 
 /// Sign of a double (no tolerance).
-inline Sign sign_of(double x) {
-  return x > 0 ? Sign::Positive : (x < 0 ? Sign::Negative : Sign::Zero);
-}
+inline Sign sign_of(double x) { return x > 0 ? Sign::Positive : (x < 0 ? Sign::Negative : Sign::Zero); }
 /// Reverses a sign.
 inline Sign operator-(Sign s) { return static_cast<Sign>(-static_cast<int>(s)); }
 

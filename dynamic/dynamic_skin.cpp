@@ -18,7 +18,6 @@ namespace skinmesh::dynamic {
 
 namespace {
 
-
 /// Seeds the part of atom `atom`'s sphere {|x - z| = r} that lies in its
 /// vertex mixed cell (where that sphere is the level set F_c, r² = c + w/2):
 /// a Fibonacci lattice of spacing about `spacing` · r, turned by an angle

@@ -18,9 +18,9 @@
 
 #include "core/stage_clock.h"
 #include "dynamic/sample_triangulation.h"
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/kernel/predicates.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/mesh/indexed_mesh.h"
 #include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
@@ -60,14 +60,14 @@ struct DynamicOptions {
 /// What the baseline did.
 struct DynamicStats {
   SampleStats samples;
-  std::size_t steps = 0;         ///< growth steps (levels visited before the final one)
-  std::size_t births = 0;        ///< sphere patches seeded during growth (static: at the start)
-  std::size_t lost_samples = 0;  ///< samples deleted because the level set left them (a void closed)
-  double start_level = 0;        ///< first level c of the growth (Å²; weights shifted by 2c)
-  std::size_t peak_samples = 0;  ///< largest sample size seen
-  std::size_t peak_tets = 0;     ///< largest number of Delaunay tetrahedra seen
+  std::size_t steps = 0;                       ///< growth steps (levels visited before the final one)
+  std::size_t births = 0;                      ///< sphere patches seeded during growth (static: at the start)
+  std::size_t lost_samples = 0;                ///< samples deleted because the level set left them (a void closed)
+  double start_level = 0;                      ///< first level c of the growth (Å²; weights shifted by 2c)
+  std::size_t peak_samples = 0;                ///< largest sample size seen
+  std::size_t peak_tets = 0;                   ///< largest number of Delaunay tetrahedra seen
   std::uint64_t kinetic_moves = 0, moves = 0;  ///< sample moves, and those that kept Del(P)
-  bool converged = false;        ///< the final refinement met every condition it checks
+  bool converged = false;                      ///< the final refinement met every condition it checks
   /// Operation counts of the 3D Delaunay triangulation (where the time goes).
   geometry::DelaunayTriangulation::Stats delaunay;
   /// Predicate calls of the whole run on the calling thread, and how many

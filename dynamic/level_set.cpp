@@ -64,12 +64,11 @@ bool LevelSet::project(const Vec3& x0, Vec3& out, Index& cell, double& rho) cons
   return false;
 }
 
-bool LevelSet::crossing(const Vec3& p, const Vec3& q, double vp, double vq, Vec3& out, Index& cell,
-                        double& rho) const {
+bool LevelSet::crossing(const Vec3& p, const Vec3& q, double vp, double vq, Vec3& out, Index& cell, double& rho) const {
   const Vec3 d = q - p;
   const double len = d.norm();
   constexpr double kBracketTolerance = 1e-12;  // [derived] times L: a few ulps
-  constexpr int kBracketSteps = 200;            // [derived] bisection halves the bracket at least every third step
+  constexpr int kBracketSteps = 200;           // [derived] bisection halves the bracket at least every third step
   const double tol = kBracketTolerance * length_scale();
   double a = 0, b = 1, fa = vp, fb = vq;
   int side = 0;

@@ -52,8 +52,7 @@ class LevelSet {
   /// value(q) of opposite signs: Illinois regula falsi with a bisection every
   /// third step, to 1e-12 L along the segment, then project(). `cell` is a
   /// hint on entry. Returns false if the projection fails.
-  bool crossing(const Vec3& p, const Vec3& q, double vp, double vq, Vec3& out, Index& cell,
-                double& rho) const;
+  bool crossing(const Vec3& p, const Vec3& q, double vp, double vq, Vec3& out, Index& cell, double& rho) const;
 
  private:
   const skin::SkinSurface* skin_;

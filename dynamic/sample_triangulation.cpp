@@ -20,8 +20,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-SampleTriangulation::SampleTriangulation(const skin::SkinSurface& skin, double c,
-                                         const skin::SizeConstants& size)
+SampleTriangulation::SampleTriangulation(const skin::SkinSurface& skin, double c, const skin::SizeConstants& size)
     : skin_(&skin), level_(skin, c), size_(size), dt_(level_.hull_lo(), level_.hull_hi()) {
   ensure_capacity();
   dt_.for_each_tet([&](Index t) { classify(t); });

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "dynamic/level_set.h"
-#include "geometry/triangulation/delaunay_triangulation.h"
 #include "geometry/mesh/indexed_mesh.h"
+#include "geometry/triangulation/delaunay_triangulation.h"
 #include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 

@@ -67,7 +67,8 @@ bool try_bridge(FrontState& fs, Index c) {
       const Vertex cc = fs.mesh.from_vertex(h1), d = fs.mesh.to_vertex(h1);
       if (a == cc || a == d || b == cc || b == d) continue;
       const double dist =
-          (0.5 * (fs.mesh.position(a) + fs.mesh.position(b)) - 0.5 * (fs.mesh.position(cc) + fs.mesh.position(d))).norm();
+          (0.5 * (fs.mesh.position(a) + fs.mesh.position(b)) - 0.5 * (fs.mesh.position(cc) + fs.mesh.position(d)))
+              .norm();
       // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
       // enter the hole wedges at a, b, c, d (papers/front/open_questions.md Q6.2).
       if (!quad_fits(fs, a, b, cc, d, cp.position, cp.sigma * fs.e)) continue;
@@ -80,8 +81,8 @@ bool try_bridge(FrontState& fs, Index c) {
       candidates.push_back({dist, h0, h1});
     }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-    return x.dist < y.dist || (x.dist == y.dist && (x.h0.idx() < y.h0.idx() ||
-                                                    (x.h0.idx() == y.h0.idx() && x.h1.idx() < y.h1.idx())));
+    return x.dist < y.dist ||
+           (x.dist == y.dist && (x.h0.idx() < y.h0.idx() || (x.h0.idx() == y.h0.idx() && x.h1.idx() < y.h1.idx())));
   });
   // Rows about one tangent-disc radius of the saddle apart; the closest pair
   // whose ladder, pulled back onto the skin, still fits at its four corners.

@@ -51,7 +51,7 @@ bool try_contact(FrontState& fs, Vertex v, const Corner& k) {
     const double ax = ccw_angle(kx.dw, tangent_dir(px, fs.normal[x], pv), fs.normal[x]);
     if (fs.tracing)
       fs.tracef("contact candidate v%u for v%u: a %.1f of %.1f, ax %.1f of %.1f\n", x.idx(), v.idx(), a / kDegree,
-             k.angle / kDegree, ax / kDegree, kx.angle / kDegree);
+                k.angle / kDegree, ax / kDegree, kx.angle / kDegree);
     if (!(ax > margin && ax < kx.angle - margin)) return;
     // The nearest candidate, ties to the lower index: the verdict does not
     // depend on the order in which the grid visits its points.
@@ -89,7 +89,8 @@ bool contact_with(FrontState& fs, Vertex v, const Corner& k, Vertex best) {
     if (qual > best_q) best_q = qual, pick = o;
   }
   if (pick < 0) return false;
-  if (fs.tracing) fs.tracef("contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (fs.mesh.position(best) - pv).norm());
+  if (fs.tracing)
+    fs.tracef("contact v%u with v%u (dist %.3f)\n", v.idx(), best.idx(), (fs.mesh.position(best) - pv).norm());
   bridge(fs, cand[pick][0], cand[pick][1], kInvalidIndex, Rails{});
   ++fs.stats.contacts;
   return true;
@@ -109,14 +110,15 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
     const Vec3 q = pv + r * rotate(k.dw, n, i * k.angle / m);
     double hit_d = std::numeric_limits<double>::infinity();
     fs.vertex_grid->for_each_near(q, fs.opt.collision_radius * r, fs.mesh.positions().vector(),
-                                [&](Index xi, const Vec3& px) {
-      const Vertex x(xi);
-      if (x == v || x == k.u || x == k.w || fs.mesh.is_deleted(x)) return;
-      if (fs.mesh.is_isolated(x) || fs.normal[x].dot(n) <= fs.opt.min_normal_cosine) return;
-      // a front vertex, or an interior one: the fan would cover meshed surface
-      const double d = (px - q).squaredNorm();
-      if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
-    });
+                                  [&](Index xi, const Vec3& px) {
+                                    const Vertex x(xi);
+                                    if (x == v || x == k.u || x == k.w || fs.mesh.is_deleted(x)) return;
+                                    if (fs.mesh.is_isolated(x) || fs.normal[x].dot(n) <= fs.opt.min_normal_cosine)
+                                      return;
+                                    // a front vertex, or an interior one: the fan would cover meshed surface
+                                    const double d = (px - q).squaredNorm();
+                                    if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
+                                  });
   }
   if (!hit.is_valid()) return false;
   ++fs.stats.collisions;

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <sstream>
 
-#include "front/operations.h"
 #include "core/errors.h"
+#include "front/operations.h"
 
 namespace skinmesh::front::detail {
 
@@ -88,7 +88,7 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
     test_fan(m, bad_w, bad_u);
     if (fs.tracing)
       fs.tracef("creep v%u theta %.1f m %d w v%u u v%u w2 v%u u2 v%u bad_w %d bad_u %d state_u %d\n", v.idx(),
-             k.angle / kDegree, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(fs.state[k.u]));
+                k.angle / kDegree, m, k.w.idx(), k.u.idx(), w2.idx(), u2.idx(), bad_w, bad_u, int(fs.state[k.u]));
     if (bad_w && wing(fs, k.w, true)) continue;
     if (bad_u && wing(fs, k.u, true)) continue;
     // The neighbour's own neighbour may close a narrow spike first.
@@ -97,8 +97,8 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
     // A fan that would fold over a held neighbour: v joins the hold (it is at
     // the rim of the hold region; the bridge or seal will take care of it).
     const Index holder = bad_w && fs.holder_of(k.w) != kInvalidIndex ? fs.holder_of(k.w)
-                         : bad_u                                  ? fs.holder_of(k.u)
-                                                                  : kInvalidIndex;
+                         : bad_u                                     ? fs.holder_of(k.u)
+                                                                     : kInvalidIndex;
     if (holder != kInvalidIndex) {
       hold(fs, v, holder);
       return decided(CreepVerdict::Hold);

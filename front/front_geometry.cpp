@@ -7,9 +7,9 @@
 // Notes: papers/front/creep.md (hole wedges), papers/front/open_questions.md Q4.1, Q6.2
 #include <sstream>
 
-#include "front/operations.h"
 #include "core/assert.h"
 #include "core/errors.h"
+#include "front/operations.h"
 #include "geometry/io/mesh_io.h"
 #include "geometry/kernel/predicates.h"
 
@@ -36,7 +36,7 @@ bool clearly_not_below(const FrontState& fs, Vertex v, double bound) {
   // (90° + 1e-9, 270°), a sine below -1e-9 in (180° + 1e-9, 360°), both clear
   // of the rounding of atan2 and of a bound at 90° or 180° (a few ulps off).
   // Most wing candidates after a creep have an obtuse hole angle and stop here.
-  constexpr double kUlps = 1e-12;         // [derived] a few ulps of an angle in [0, 2 pi]
+  constexpr double kUlps = 1e-12;            // [derived] a few ulps of an angle in [0, 2 pi]
   constexpr double kClearOfRounding = 1e-9;  // [derived] far above atan2's rounding, far below any decision
   if (bound > kPi + kUlps) return false;
   const Halfedge out = fs.mesh.halfedge(v);
@@ -83,8 +83,8 @@ bool fits_at(const FrontState& fs, Vertex x, const Vec3& from, const Vec3& to, V
   const double a = y_from == w ? 0.0 : ccw_angle(dw, df, n);
   const double b = y_to == u ? angle : ccw_angle(dw, dt, n);
   if (fs.tracing)
-    fs.tracef("fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDegree, b / kDegree,
-           angle / kDegree, y_from.idx(), y_to.idx(), w.idx(), u.idx());
+    fs.tracef("fits_at v%u: a %.1f b %.1f hole %.1f (from v%u to v%u; w v%u u v%u)\n", x.idx(), a / kDegree,
+              b / kDegree, angle / kDegree, y_from.idx(), y_to.idx(), w.idx(), u.idx());
   return a < b - tol && b <= angle + tol && angle > tol;
 }
 
@@ -137,8 +137,8 @@ void paranoid_check(FrontState& fs, std::size_t first_face, const char* op) {
       if (std::abs(ex) > fs.opt.fold_tolerance_deg * kDegree) {
         std::ostringstream os;
         os << "paranoid: after " << op << " (faces " << first_face << ".." << fs.mesh.faces_size()
-           << ") the mesh folds at vertex " << v.idx() << " (" << fs.mesh.position(v).transpose()
-           << "): excess " << ex / kDegree << "°";
+           << ") the mesh folds at vertex " << v.idx() << " (" << fs.mesh.position(v).transpose() << "): excess "
+           << ex / kDegree << "°";
         if (!fs.opt.dump_path.empty()) geometry::write_mesh(fs.opt.dump_path, fs.mesh.to_indexed_mesh());
         throw TopologyError(os.str());
       }

@@ -62,7 +62,7 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // quarter of the points per cell ([measured] papers/bench/profile.md,
   // "After": the grids' cell sizes).
   vertex_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, kMinGridCell),
-                                                               /*erasable=*/false);
+                                                              /*erasable=*/false);
   front_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, kMinGridCell));
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
@@ -130,7 +130,8 @@ Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index*
   Vec3 out;
   Index cell = fs.cell[v];
   for (int attempt = 0; attempt < kProjectionAttempts; ++attempt, delta *= 2) {
-    if (fs.skin.project_along_line(q, n, delta * (1 + kBracketRelativeSlack) + kBracketAbsoluteSlack * fs.skin.length_scale(), out, cell)) {
+    if (fs.skin.project_along_line(
+            q, n, delta * (1 + kBracketRelativeSlack) + kBracketAbsoluteSlack * fs.skin.length_scale(), out, cell)) {
       if (cell_out) *cell_out = cell;
       return out;
     }

@@ -23,16 +23,16 @@
 
 namespace skinmesh::front::detail {
 
-using geometry::Face;
-using geometry::Halfedge;
-using geometry::SurfaceMesh;
-using geometry::Vertex;
 using geometry::ccw_angle;
 using geometry::coarse_ccw_angle;
+using geometry::Face;
+using geometry::Halfedge;
 using geometry::pseudo_angle;
 using geometry::pseudo_exceeds;
 using geometry::rotate;
+using geometry::SurfaceMesh;
 using geometry::tangent_dir;
+using geometry::Vertex;
 
 /// Angular tolerance (radians) of the hole-wedge tests: spans that agree to
 /// this are taken as equal ([derived] tangent angles are accurate to ~1e-12 rad).
@@ -122,11 +122,11 @@ struct FrontState {
 
   // The partial mesh and its per-vertex data.
   SurfaceMesh mesh;
-  geometry::VertexProperty<Vec3> normal;    ///< unit outward skin normal
-  geometry::VertexProperty<double> rho;     ///< local length scale (Å)
-  geometry::VertexProperty<Index> cell;     ///< mixed cell
+  geometry::VertexProperty<Vec3> normal;  ///< unit outward skin normal
+  geometry::VertexProperty<double> rho;   ///< local length scale (Å)
+  geometry::VertexProperty<Index> cell;   ///< mixed cell
   geometry::VertexProperty<VState> state;
-  geometry::VertexProperty<Index> held_by;  ///< the critical point holding a Held vertex
+  geometry::VertexProperty<Index> held_by;            ///< the critical point holding a Held vertex
   geometry::VertexProperty<std::uint32_t> stamp;      ///< queue stamp (lazy deletion)
   geometry::VertexProperty<std::uint8_t> deferrals;   ///< creeps postponed at the vertex
   geometry::VertexProperty<std::uint8_t> reopenings;  ///< re-opened regions whose rim held the vertex
@@ -142,21 +142,21 @@ struct FrontState {
   std::vector<std::vector<Vertex>> held;  ///< vertices held per critical point
 
   // Grids that keep the queries local.
-  std::unique_ptr<geometry::PointGrid> hold_grid;              ///< live saddles and maxima
-  std::unique_ptr<geometry::ErasablePointGrid> vertex_grid;    ///< every vertex: the fan-collision net
+  std::unique_ptr<geometry::PointGrid> hold_grid;            ///< live saddles and maxima
+  std::unique_ptr<geometry::ErasablePointGrid> vertex_grid;  ///< every vertex: the fan-collision net
   /// The vertices whose state is not Interior (the front, free or held): the
   /// contact search reads only these (set_state keeps it).
   std::unique_ptr<geometry::ErasablePointGrid> front_grid;
   double max_hold_radius = 0;
 
   // Counters, limits and progress.
-  long steps = 0;                  ///< departures so far (for max_steps)
-  double h_min = 0, h_max = 0;     ///< height range of the critical points (progress)
-  double next_progress = 0;        ///< next fraction to report
+  long steps = 0;               ///< departures so far (for max_steps)
+  double h_min = 0, h_max = 0;  ///< height range of the critical points (progress)
+  double next_progress = 0;     ///< next fraction to report
   const bool tracing = static_cast<bool>(opt.trace);
-  std::size_t vertex_budget = 0;     ///< runaway guard (new_vertex)
-  double base_vertex_budget = 0;     ///< the budget at the atoms' scale
-  double rho_max = 0;                ///< largest sphere radius sqrt(w/2) (Å)
+  std::size_t vertex_budget = 0;                                  ///< runaway guard (new_vertex)
+  double base_vertex_budget = 0;                                  ///< the budget at the atoms' scale
+  double rho_max = 0;                                             ///< largest sphere radius sqrt(w/2) (Å)
   double rho_min_seen = std::numeric_limits<double>::infinity();  ///< smallest rho of a vertex so far (Å)
   SweepStats stats;
 

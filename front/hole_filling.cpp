@@ -57,7 +57,8 @@ bool fill_hole_dp(FrontState& fs, const std::vector<Vertex>& poly) {
   auto tri_quality = [&](std::size_t i, std::size_t m, std::size_t j) {
     const Vec3 &a = fs.mesh.position(poly[i]), &b = fs.mesh.position(poly[m]), &c = fs.mesh.position(poly[j]);
     const Vec3 nt = (b - a).cross(c - a);
-    if (nt.dot(fs.normal[poly[i]]) <= 0 || nt.dot(fs.normal[poly[m]]) <= 0 || nt.dot(fs.normal[poly[j]]) <= 0) return kNone;
+    if (nt.dot(fs.normal[poly[i]]) <= 0 || nt.dot(fs.normal[poly[m]]) <= 0 || nt.dot(fs.normal[poly[j]]) <= 0)
+      return kNone;
     // Each corner's span must lie in that vertex's hole wedge (no overlap
     // with the triangles already there).
     if (!fits_at(fs, poly[i], poly[m], poly[j]) || !fits_at(fs, poly[m], poly[j], poly[i]) ||
@@ -169,8 +170,10 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
       bool prev = false, first = false;
       for (Halfedge h : fs.mesh.halfedges(x)) {
         const bool o = open(h);
-        if (slots == 0) first = o;
-        else if (o && !prev) ++runs;
+        if (slots == 0)
+          first = o;
+        else if (o && !prev)
+          ++runs;
         prev = o, ++slots, open_slots += o;
       }
       if (first && !prev) ++runs;  // the circular wrap closes a run that starts the fan
@@ -190,7 +193,8 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
     fs.set_state(x, VState::Front);
     push(fs, x);
   }
-  if (fs.tracing) fs.tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
+  if (fs.tracing)
+    fs.tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
   return true;
 }
 

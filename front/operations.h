@@ -202,8 +202,7 @@ bool clearly_not_below(const FrontState& fs, Vertex v, double bound);
 /// row) is convex and counter-clockwise in the plane through `origin` with
 /// normal `normal`, and its triangles fit the hole wedges at its four corners
 /// (papers/front/open_questions.md Q6.2 (bridge quads)).
-bool quad_fits(const FrontState& fs, Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin,
-               const Vec3& normal);
+bool quad_fits(const FrontState& fs, Vertex a, Vertex b, Vertex c, Vertex d, const Vec3& origin, const Vec3& normal);
 /// True if a new triangle at front vertex x spanning counter-clockwise (in
 /// T_x) from the direction of y_from to that of y_to lies inside x's hole
 /// wedge, so that it cannot fold over the triangles already at x.

@@ -9,8 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "front/operations.h"
 #include "core/errors.h"
+#include "front/operations.h"
 #include "geometry/check/mesh_checks.h"
 #include "geometry/kernel/predicates.h"
 

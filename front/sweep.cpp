@@ -10,8 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "front/operations.h"
 #include "core/errors.h"
+#include "front/operations.h"
 #include "geometry/io/mesh_io.h"
 
 namespace skinmesh::front {
@@ -39,9 +39,9 @@ void create_initial_front(FrontState& fs) {
     const double r = fs.opt.disc_factor * cp.rho;
     bool overlaps = false;
     fs.vertex_grid->for_each_near(cp.position, r + fs.opt.disc_factor * fs.rho_max, fs.mesh.positions().vector(),
-                                [&](Index xi, const Vec3& q) {
-      if ((q - cp.position).norm() < r + fs.disc_radius(Vertex(xi))) overlaps = true;
-    });
+                                  [&](Index xi, const Vec3& q) {
+                                    if ((q - cp.position).norm() < r + fs.disc_radius(Vertex(xi))) overlaps = true;
+                                  });
     if (!overlaps) {
       const std::size_t f0 = fs.mesh.faces_size();
       creation(fs, c);
@@ -136,13 +136,20 @@ SweepResult run_sweep(FrontState& fs) {
 
 const char* operation_name(SweepOperation op) {
   switch (op) {
-    case SweepOperation::Creation: return "creation";
-    case SweepOperation::Creep: return "creep";
-    case SweepOperation::Wings: return "wings";
-    case SweepOperation::Hold: return "hold";
-    case SweepOperation::Bridge: return "bridge";
-    case SweepOperation::SmallHole: return "small hole";
-    case SweepOperation::Seal: return "seal";
+    case SweepOperation::Creation:
+      return "creation";
+    case SweepOperation::Creep:
+      return "creep";
+    case SweepOperation::Wings:
+      return "wings";
+    case SweepOperation::Hold:
+      return "hold";
+    case SweepOperation::Bridge:
+      return "bridge";
+    case SweepOperation::SmallHole:
+      return "small hole";
+    case SweepOperation::Seal:
+      return "seal";
   }
   return "?";
 }

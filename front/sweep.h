@@ -178,17 +178,18 @@ struct SweepOptions {
 /// Counters of the sweep (Algorithm 1's operations and the safety net).
 struct SweepStats {
   std::size_t creations = 0, creeps = 0, wings = 0, bridges = 0;
-  std::size_t seals = 0;          ///< holes closed: at the seal and small holes during the sweep
-  std::size_t held = 0;           ///< vertices held: in a protecting sphere, or next to a held vertex they would fold over or touch
-  std::size_t deferred = 0;       ///< creeps postponed because the fan would fold (Figure 7)
-  std::size_t bridge_rows = 0;    ///< ladder rows added by bridges
-  std::size_t contacts = 0;       ///< front parts joined by the safety net (not in the paper)
-  std::size_t stuck = 0;          ///< departure vertices left for the seal (no fan fits, Figure 7)
+  std::size_t seals = 0;  ///< holes closed: at the seal and small holes during the sweep
+  std::size_t held =
+      0;  ///< vertices held: in a protecting sphere, or next to a held vertex they would fold over or touch
+  std::size_t deferred = 0;        ///< creeps postponed because the fan would fold (Figure 7)
+  std::size_t bridge_rows = 0;     ///< ladder rows added by bridges
+  std::size_t contacts = 0;        ///< front parts joined by the safety net (not in the paper)
+  std::size_t stuck = 0;           ///< departure vertices left for the seal (no fan fits, Figure 7)
   std::size_t enlarged_holes = 0;  ///< tangled holes at the seal enlarged by deleting the faces around them
   std::size_t reopened_holes = 0;  ///< tangled small holes during the sweep whose region went back to the front
-  std::size_t collisions = 0;     ///< fans that would have come within collision_radius · r of another vertex
-  std::size_t released = 0;       ///< saddles whose holds were released unbridged
-  std::size_t merged_minima = 0;  ///< minima left without a bowl: it would have overlapped a neighbouring bowl
+  std::size_t collisions = 0;      ///< fans that would have come within collision_radius · r of another vertex
+  std::size_t released = 0;        ///< saddles whose holds were released unbridged
+  std::size_t merged_minima = 0;   ///< minima left without a bowl: it would have overlapped a neighbouring bowl
 };
 
 /// The closed mesh produced by the sweep, before the local refinement.
@@ -210,7 +211,6 @@ struct SweepResult {
 /// outside opt.size's tangent-disc window, TopologyError when the front
 /// cannot be closed consistently (a fold, a hole without an ear), GeometryError
 /// when a projection fails.
-SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                       const SweepOptions& opt = {});
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt = {});
 
 }  // namespace skinmesh::front

@@ -9,16 +9,16 @@
 #include <cstdio>
 #include <future>
 #include <memory>
-#include <string>
 #include <stdexcept>
+#include <string>
 
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "core/stage_clock.h"
 #include "geometry/kernel/predicates.h"
 #include "morse/critical_points.h"
-#include "skin/singular_skin.h"
 #include "skin/molecule_io.h"
+#include "skin/singular_skin.h"
 #include "skin/skin_surface.h"
 #include "skin/vertex_data.h"
 
@@ -210,9 +210,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
 
 }  // namespace
 
-const char* algorithm_name(Algorithm algorithm) {
-  return algorithm == Algorithm::Dynamic ? "dynamic" : "sweep";
-}
+const char* algorithm_name(Algorithm algorithm) { return algorithm == Algorithm::Dynamic ? "dynamic" : "sweep"; }
 
 Algorithm algorithm_named(const std::string& name) {
   if (name == "sweep") return Algorithm::Sweep;

@@ -29,16 +29,16 @@
 
 #include "dynamic/dynamic_skin.h"
 #include "front/sweep.h"
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/mesh/indexed_mesh.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "refine/angle_improvement.h"
 #include "refine/local_refinement.h"
-#include "skin/size_conditions.h"
-#include "verify/skin_mesh_check.h"
 #include "skin/dual_complex.h"
 #include "skin/molecule.h"
+#include "skin/size_conditions.h"
+#include "verify/skin_mesh_check.h"
 
 namespace skinmesh::mesher {
 

@@ -151,10 +151,9 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
     j["checks_passed"] = res.check.ok();
     j["problems"] = res.check.problems;
   }
-  j["critical_points"] = {{"minima", res.critical.minima}, {"saddles", res.critical.saddles},
-                          {"maxima", res.critical.maxima}};
-  j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles},
-                               {"maxima", res.live.maxima}};
+  j["critical_points"] = {
+      {"minima", res.critical.minima}, {"saddles", res.critical.saddles}, {"maxima", res.critical.maxima}};
+  j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles}, {"maxima", res.live.maxima}};
   j["algorithm"] = algorithm_name(res.algorithm);
   j["threads"] = thread_count(options.threads);
   if (res.algorithm == Algorithm::Dynamic)

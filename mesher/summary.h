@@ -41,7 +41,6 @@ struct SummaryContext {
 /// threads, the operation counts of the algorithm that ran, "seconds" per
 /// stage (the exact integration's as "analytic") and the peak memory. Keys
 /// keep this order.
-nlohmann::ordered_json run_summary(const MeshResult& result, const MeshOptions& options,
-                                   const SummaryContext& context);
+nlohmann::ordered_json run_summary(const MeshResult& result, const MeshOptions& options, const SummaryContext& context);
 
 }  // namespace skinmesh::mesher

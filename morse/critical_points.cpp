@@ -65,8 +65,7 @@ std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const 
     }
   }
   // Merge duplicates found in two cells sharing a face.
-  std::sort(out.begin(), out.end(),
-            [](const CriticalPoint& a, const CriticalPoint& b) { return a.height < b.height; });
+  std::sort(out.begin(), out.end(), [](const CriticalPoint& a, const CriticalPoint& b) { return a.height < b.height; });
   std::vector<CriticalPoint> merged;
   for (const CriticalPoint& cp : out) {
     bool dup = false;

@@ -25,9 +25,9 @@ Vec3 default_height_direction();
 struct CriticalPoint {
   Vec3 position = Vec3::Zero();  ///< on the skin (Å)
   CriticalKind kind = CriticalKind::Minimum;
-  Index cell = kInvalidIndex;    ///< mixed cell whose patch holds it
-  double height = 0;             ///< e·position (Å)
-  double rho = 0;                ///< local length scale (Å)
+  Index cell = kInvalidIndex;  ///< mixed cell whose patch holds it
+  double height = 0;           ///< e·position (Å)
+  double rho = 0;              ///< local length scale (Å)
   /// Outward normal is sigma·e (sigma = ±1).
   int sigma = 1;
   /// Principal curvatures at the point (1/Å), papers/skin/skin_math.md §4.1.

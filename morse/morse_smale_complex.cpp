@@ -30,9 +30,8 @@ Vec3 surface_ascent(const Vec3& n, const Vec3& e) {
 
 }  // namespace
 
-IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
-                                 const std::vector<CriticalPoint>& cps, Index s,
-                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
+IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, const std::vector<CriticalPoint>& cps,
+                                 Index s, const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
                                  const geometry::PointGrid* extrema) {
   IntegralLine line;
   line.saddle = s;
@@ -134,8 +133,8 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // largest rho.
   double max_rho = 0;
   for (const CriticalPoint& c : ms.critical) max_rho = std::max(max_rho, c.rho);
-  geometry::PointGrid extrema(std::max(opt.arrival_steps * opt.step_factor * max_rho,
-                                       std::numeric_limits<double>::min()));
+  geometry::PointGrid extrema(
+      std::max(opt.arrival_steps * opt.step_factor * max_rho, std::numeric_limits<double>::min()));
   for (Index i = 0; i < n; ++i)
     if (ms.critical[i].kind != CriticalKind::Saddle) extrema.insert(i, ms.critical[i].position);
   // Four integral lines per saddle: ±ascent (ascending), ±descent (descending),
@@ -159,8 +158,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // Arc contraction: noisy (saddle, extremum) pairs joined by exactly one arc,
   // closest first; repeat until none is left.
   auto spheres_meet = [&](Index a, Index b) {
-    return (ms.critical[a].position - ms.critical[b].position).norm() <
-           ms.protect_radius[a] + ms.protect_radius[b];
+    return (ms.critical[a].position - ms.critical[b].position).norm() < ms.protect_radius[a] + ms.protect_radius[b];
   };
   auto noisy = [&](Index a, Index b) {
     return (ms.critical[a].position - ms.critical[b].position).norm() <
@@ -219,7 +217,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
         changed = true;
         continue;
       }
-      if (e0 == e1) continue;           // double arc: cancelling would change the topology
+      if (e0 == e1) continue;                  // double arc: cancelling would change the topology
       if (e0 != cd.x && e1 != cd.x) continue;  // stale after an earlier contraction
       ms.live[cd.s] = ms.live[cd.x] = 0;
       ms.replaced_by[cd.x] = e0 == cd.x ? e1 : e0;

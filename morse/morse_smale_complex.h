@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangulation/point_grid.h"
 #include "core/types.h"
+#include "geometry/triangulation/point_grid.h"
 #include "morse/critical_points.h"
 #include "skin/skin_surface.h"
 
@@ -104,9 +104,8 @@ struct MorseSmaleComplex {
 /// indices of the extrema of `cps` (build_morse_smale_complex passes one so
 /// that the arrival test looks at nearby extrema only, not at all of them at
 /// every step); without it the arrival test scans `cps`.
-IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e,
-                                 const std::vector<CriticalPoint>& cps, Index s,
-                                 const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
+IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, const std::vector<CriticalPoint>& cps,
+                                 Index s, const Vec3& dir, int sgn, const MorseSmaleOptions& opt,
                                  const geometry::PointGrid* extrema = nullptr);
 
 /// Builds the Morse–Smale complex of h(x) = e·x on the skin: critical points,

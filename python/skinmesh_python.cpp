@@ -20,14 +20,14 @@
 #include <string>
 #include <vector>
 
-#include "mesher/pipeline.h"
-#include "mesher/summary.h"
 #include "core/errors.h"
 #include "geometry/io/mesh_io.h"
-#include "verify/skin_mesh_check.h"
+#include "mesher/pipeline.h"
+#include "mesher/summary.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_measures.h"
 #include "skin/skin_surface.h"
+#include "verify/skin_mesh_check.h"
 
 namespace py = pybind11;
 using namespace skinmesh;
@@ -62,11 +62,13 @@ skin::Molecule molecule_of(const py::object& source) {
     atom.radius = v(i, 3);
     if (!atom.centre.allFinite() || std::abs(atom.centre.x()) > geometry::kMaxCoordinate ||
         std::abs(atom.centre.y()) > geometry::kMaxCoordinate || std::abs(atom.centre.z()) > geometry::kMaxCoordinate)
-      throw InputError("", 0, "atom " + std::to_string(i) + ": coordinates must be finite and within ±" +
-                                  std::to_string(geometry::kMaxCoordinate) + " Å");
+      throw InputError("", 0,
+                       "atom " + std::to_string(i) + ": coordinates must be finite and within ±" +
+                           std::to_string(geometry::kMaxCoordinate) + " Å");
     if (!(atom.radius > 0 && atom.radius <= skin::kMaxRadius))
-      throw InputError("", 0, "atom " + std::to_string(i) + ": the radius must lie in (0, " +
-                                  std::to_string(skin::kMaxRadius) + "] Å");
+      throw InputError(
+          "", 0,
+          "atom " + std::to_string(i) + ": the radius must lie in (0, " + std::to_string(skin::kMaxRadius) + "] Å");
     mol.atoms.push_back(atom);
   }
   return mol;
@@ -185,23 +187,35 @@ PYBIND11_MODULE(skinmesh, m) {
                      "counter-clockwise seen from outside, unit outward normals (n, 3), atom (n,) int32 (0-based "
                      "index of the atom whose skin patch holds the vertex, -1 if unknown), rho (n,) local length "
                      "scale in Å; stats: a dict of what the run measured; ok: False if the mesh failed its check.")
-      .def_property_readonly("vertices", [](const PyMesh& s) {
-        return array_of<double>(s.mesh.positions.size(), 3, [&](std::size_t i, std::size_t k) { return s.mesh.positions[i][k]; });
-      })
-      .def_property_readonly("triangles", [](const PyMesh& s) {
-        return array_of<std::int32_t>(s.mesh.triangles.size(), 3, [&](std::size_t i, std::size_t k) {
-          return static_cast<std::int32_t>(s.mesh.triangles[i][k]);
-        });
-      })
-      .def_property_readonly("normals", [](const PyMesh& s) {
-        return array_of<double>(s.mesh.normals.size(), 3, [&](std::size_t i, std::size_t k) { return s.mesh.normals[i][k]; });
-      })
-      .def_property_readonly("atom", [](const PyMesh& s) {
-        return array_of<std::int32_t>(s.mesh.atom.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.atom[i]; });
-      })
-      .def_property_readonly("rho", [](const PyMesh& s) {
-        return array_of<double>(s.mesh.rho.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.rho[i]; });
-      })
+      .def_property_readonly("vertices",
+                             [](const PyMesh& s) {
+                               return array_of<double>(s.mesh.positions.size(), 3, [&](std::size_t i, std::size_t k) {
+                                 return s.mesh.positions[i][k];
+                               });
+                             })
+      .def_property_readonly("triangles",
+                             [](const PyMesh& s) {
+                               return array_of<std::int32_t>(s.mesh.triangles.size(), 3,
+                                                             [&](std::size_t i, std::size_t k) {
+                                                               return static_cast<std::int32_t>(s.mesh.triangles[i][k]);
+                                                             });
+                             })
+      .def_property_readonly("normals",
+                             [](const PyMesh& s) {
+                               return array_of<double>(s.mesh.normals.size(), 3, [&](std::size_t i, std::size_t k) {
+                                 return s.mesh.normals[i][k];
+                               });
+                             })
+      .def_property_readonly("atom",
+                             [](const PyMesh& s) {
+                               return array_of<std::int32_t>(
+                                   s.mesh.atom.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.atom[i]; });
+                             })
+      .def_property_readonly("rho",
+                             [](const PyMesh& s) {
+                               return array_of<double>(s.mesh.rho.size(), 1,
+                                                       [&](std::size_t i, std::size_t) { return s.mesh.rho[i]; });
+                             })
       .def_readonly("stats", &PyMesh::stats)
       .def_readonly("ok", &PyMesh::ok)
       .def(

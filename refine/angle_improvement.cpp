@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "geometry/check/mesh_checks.h"
-#include "geometry/triangulation/point_grid.h"
 #include "geometry/kernel/triangle_intersection.h"
+#include "geometry/triangulation/point_grid.h"
 #include "skin/restricted_delaunay.h"
 #include "skin/vertex_data.h"
 
@@ -23,9 +23,9 @@ namespace skinmesh::refine {
 
 using geometry::Face;
 using geometry::Halfedge;
+using geometry::min_angle;
 using geometry::SurfaceMesh;
 using geometry::Vertex;
-using geometry::min_angle;
 using Vec2 = Eigen::Vector2d;
 
 namespace {
@@ -70,9 +70,9 @@ struct FaceGeometry {
 
 /// One position tried by the ascent.
 struct Trial {
-  Vec2 x = Vec2::Zero();  ///< tangent-plane offset from the start (Å)
-  Vec3 p = Vec3::Zero();  ///< its projection onto the skin (Å)
-  skin::SkinSample s;     ///< the skin at p (normal, rho, cell)
+  Vec2 x = Vec2::Zero();                                ///< tangent-plane offset from the start (Å)
+  Vec3 p = Vec3::Zero();                                ///< its projection onto the skin (Å)
+  skin::SkinSample s;                                   ///< the skin at p (normal, rho, cell)
   double q = -std::numeric_limits<double>::infinity();  ///< star minimum angle at p (radians)
 };
 
@@ -160,7 +160,7 @@ class AngleImprover {
   std::optional<geometry::FlatPointGrid> grid_;
   std::optional<geometry::PointGrid> moved_grid_;
   std::vector<std::uint8_t> moved_;  ///< per vertex: 1 once it has moved
-  std::vector<Face> touched_;  ///< the stars of the moved vertices
+  std::vector<Face> touched_;        ///< the stars of the moved vertices
   /// Per-attempt marks (attempt number) of the neighbourhood's vertices and
   /// of the triangles listed, instead of sorting.
   std::vector<std::uint32_t> vertex_mark_, face_mark_;
@@ -337,7 +337,8 @@ bool AngleImprover::in_ball(FaceGeometry& g, const Vec3& x) const {
       g.ball = FaceGeometry::Ball::None;
     }
   }
-  if (g.ball == FaceGeometry::Ball::None) return true;  // already a violation for the verifier: leave its surroundings alone
+  if (g.ball == FaceGeometry::Ball::None)
+    return true;  // already a violation for the verifier: leave its surroundings alone
   return (x - g.m).norm() < g.r * (1 + opt_.ball_margin);
 }
 
@@ -580,9 +581,15 @@ bool AngleImprover::try_improve(Vertex v) {
       return true;
     }
     switch (why) {
-      case Refusal::Orientation: ++stats_.refused_orientation; break;
-      case Refusal::Rdt: ++stats_.refused_rdt; break;
-      default: ++stats_.refused_intersection; break;
+      case Refusal::Orientation:
+        ++stats_.refused_orientation;
+        break;
+      case Refusal::Rdt:
+        ++stats_.refused_rdt;
+        break;
+      default:
+        ++stats_.refused_intersection;
+        break;
     }
   }
   ++stats_.refused;

@@ -18,9 +18,9 @@ namespace skinmesh::refine {
 using geometry::Edge;
 using geometry::Face;
 using geometry::Halfedge;
+using geometry::min_angle;
 using geometry::SurfaceMesh;
 using geometry::Vertex;
-using geometry::min_angle;
 
 namespace {
 
@@ -128,7 +128,8 @@ bool Refiner::inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const {
   if (skin::outside_every_surface_ball(pos(a), pos(b), pos(c), pos(d), skin_.length_scale())) return false;
   Vec3 m;
   Index cell = cell_[a];
-  if (!skin::surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell)) m = skin::circumcentre(pos(a), pos(b), pos(c));
+  if (!skin::surface_delaunay_centre(skin_, pos(a), pos(b), pos(c), m, cell))
+    m = skin::circumcentre(pos(a), pos(b), pos(c));
   constexpr double kStrictlyInside = 1e-9;  // [derived] relative: d on the ball's sphere is not inside
   return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - kStrictlyInside);
 }
@@ -241,9 +242,8 @@ bool Refiner::insert(Face f) {
   // Separation from the vertices inserted before ("Termination").
   {
     bool crowded = false;
-    inserted_grid_->for_each_near(m, opt_.min_inserted_separation * radius, [&](Index id, const Vec3&) {
-      crowded = crowded || !mesh_.is_deleted(Vertex(id));
-    });
+    inserted_grid_->for_each_near(m, opt_.min_inserted_separation * radius,
+                                  [&](Index id, const Vec3&) { crowded = crowded || !mesh_.is_deleted(Vertex(id)); });
     if (crowded) {
       ++stats_.refused_insertions;
       ++stats_.crowded_insertions;
@@ -257,7 +257,7 @@ bool Refiner::insert(Face f) {
   std::array<Halfedge, 3> hs{};  // hs[i]: the half-edge opposite corner i
   std::array<Vertex, 3> x{};
   bool found = false;
-  Face came_from;  // the face the walk just left
+  Face came_from;                    // the face the walk just left
   constexpr int kMaxWalkSteps = 64;  // [measured] the limit of the walk over the surface triangles
   for (int step = 0; step < kMaxWalkSteps && !found; ++step) {
     int i = 0;
@@ -390,7 +390,7 @@ RefineStats Refiner::run() {
     for (Face f : mesh_.faces()) {
       const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0), h2 = mesh_.next(h1);
       const skin::SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)), pos(mesh_.to_vertex(h1)),
-                                   skin_.length_scale());
+                                         skin_.length_scale());
       for (Halfedge h : {h0, h1, h2}) {
         const Halfedge o = mesh_.opposite(h);
         if (!mesh_.is_boundary(o) && !ball.outside(pos(mesh_.to_vertex(mesh_.next(o)))))
@@ -427,9 +427,12 @@ RefineStats Refiner::run() {
 
 const char* operation_name(RefineOperation op) {
   switch (op) {
-    case RefineOperation::Flip: return "flip";
-    case RefineOperation::Contraction: return "contraction";
-    case RefineOperation::Insertion: return "insertion";
+    case RefineOperation::Flip:
+      return "flip";
+    case RefineOperation::Contraction:
+      return "contraction";
+    case RefineOperation::Insertion:
+      return "insertion";
   }
   return "?";
 }

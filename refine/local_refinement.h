@@ -97,7 +97,6 @@ struct RefineStats {
 /// moves, and a vertex inserted here is never deleted; the number of
 /// operations is finite (papers/refine/local_refinement.md, "Termination").
 /// Elements are deleted, not compacted: call garbage_collection() afterwards.
-RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
-                        const RefineOptions& opt = {});
+RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, const RefineOptions& opt = {});
 
 }  // namespace skinmesh::refine

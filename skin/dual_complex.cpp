@@ -82,8 +82,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc) {
 
   for (Index c = 0; c < n; ++c)
     if (in_k0_fn(c)) ++topo.k0_simplices[mc.cell(c).dim];
-  topo.euler_k0 = topo.k0_simplices[0] - topo.k0_simplices[1] + topo.k0_simplices[2] -
-                  topo.k0_simplices[3];
+  topo.euler_k0 = topo.k0_simplices[0] - topo.k0_simplices[1] + topo.k0_simplices[2] - topo.k0_simplices[3];
 
   // betti0: K0 vertices joined by K0 edges.
   DisjointSets comp(n);

@@ -63,7 +63,8 @@ double distance_to_tetrahedron(const Vec3& x, const std::array<Vec3, 4>& v) {
   }
   if (inside) return 0.0;
   double d = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i) d = std::min(d, distance_to_triangle(x, v[kFacet[i][0]], v[kFacet[i][1]], v[kFacet[i][2]]));
+  for (int i = 0; i < 4; ++i)
+    d = std::min(d, distance_to_triangle(x, v[kFacet[i][0]], v[kFacet[i][1]], v[kFacet[i][2]]));
   return d;
 }
 
@@ -101,8 +102,8 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
       out_s = std::max(out_s, sigma * (s - sT));
     }
     const Vec3 x = X.focus + 2.0 * (y - n.dot(y) * n);
-    const double out_t = distance_to_triangle(x, rt.point(X.vertices[0]).z, rt.point(X.vertices[1]).z,
-                                              rt.point(X.vertices[2]).z);
+    const double out_t =
+        distance_to_triangle(x, rt.point(X.vertices[0]).z, rt.point(X.vertices[1]).z, rt.point(X.vertices[2]).z);
     return 0.5 * std::hypot(out_s, out_t);
   }
   return std::max(mc.violation(c, p), 0.0);

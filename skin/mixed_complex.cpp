@@ -12,8 +12,8 @@
 
 #include "core/assert.h"
 #include "core/errors.h"
-#include "geometry/triangulation/key_index.h"
 #include "geometry/kernel/predicates.h"
+#include "geometry/triangulation/key_index.h"
 
 namespace skinmesh::skin {
 
@@ -134,8 +134,8 @@ void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
   // below, passes; the exact normal test then decides).
   struct Flat {
     Index t;
-    Vec3 n;                   // reference normal: the outward normal at facet 0
-    std::array<Vec3, 4> m;    // outward facet normals
+    Vec3 n;                 // reference normal: the outward normal at facet 0
+    std::array<Vec3, 4> m;  // outward facet normals
   };
   std::vector<Flat> flat;
   for (Index t = 0; t < rt.num_tets(); ++t) {
@@ -167,8 +167,10 @@ void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
         if (nb == kInvalidIndex) continue;
         const double c = F.m[i].dot(F.n);
         const double bound = F.m[i].dot(cells_[tet_cell[nb]].focus - T.focus) / c;
-        if (c > 0) hi = std::min(hi, bound);
-        else lo = std::max(lo, bound);
+        if (c > 0)
+          hi = std::min(hi, bound);
+        else
+          lo = std::max(lo, bound);
       }
       const double delta = lo <= hi ? std::clamp(0.0, lo, hi) : 0.5 * (lo + hi);
       if (delta == 0.0 || !std::isfinite(delta)) continue;
@@ -370,8 +372,8 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
     // Start from the vertex cell of the tet's vertex nearest in power distance.
     const Index t = rt_->locate(x);
     if (t == kInvalidIndex)
-      throw GeometryError("mixed complex: point (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) +
-                          ", " + std::to_string(x.z()) + ") lies outside the bounding tetrahedron");
+      throw GeometryError("mixed complex: point (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) + ", " +
+                          std::to_string(x.z()) + ") lies outside the bounding tetrahedron");
     Index best = kInvalidIndex;
     double best_pow = std::numeric_limits<double>::infinity();
     for (Index v : rt_->tet(t)) {

@@ -12,9 +12,9 @@
 #include <span>
 #include <vector>
 
-#include "geometry/triangulation/regular_triangulation.h"
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/triangulation/regular_triangulation.h"
 
 namespace skinmesh::skin {
 

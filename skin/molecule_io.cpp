@@ -37,9 +37,7 @@ using skinmesh::trim;
 namespace {
 
 /// "path:line" (or "path" when the line is unknown), the prefix of every note.
-std::string where(const std::string& path, int line) {
-  return line > 0 ? path + ":" + std::to_string(line) : path;
-}
+std::string where(const std::string& path, int line) { return line > 0 ? path + ":" + std::to_string(line) : path; }
 
 // Number Parsing
 
@@ -110,8 +108,7 @@ std::string read_text(const std::string& path) {
   const bool failed = std::ferror(f) != 0;
   const int saved_errno = errno;
   std::fclose(f);
-  if (failed)
-    throw InputError(path, 0, std::string("cannot read file (") + std::strerror(saved_errno) + ")");
+  if (failed) throw InputError(path, 0, std::string("cannot read file (") + std::strerror(saved_errno) + ")");
   return text;
 }
 
@@ -141,14 +138,12 @@ int leading_int(std::string_view s) {
 // Atom Classification
 
 bool is_water_residue(std::string_view residue) {
-  static const std::set<std::string, std::less<>> kWater = {
-      "HOH", "DOD", "WAT", "H2O", "HHO", "OHH", "SOL", "TIP", "TIP3", "TIP4", "TIP5",
-      "T3P", "T4P", "T5P", "SPC", "SPCE"};
+  static const std::set<std::string, std::less<>> kWater = {"HOH",  "DOD",  "WAT",  "H2O", "HHO", "OHH", "SOL", "TIP",
+                                                            "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P", "SPC", "SPCE"};
   return kWater.count(uppercase(trim(residue))) != 0;
 }
 
-std::string describe(std::string_view name, std::string_view residue, std::string_view chain,
-                     int residue_number) {
+std::string describe(std::string_view name, std::string_view residue, std::string_view chain, int residue_number) {
   std::string s = "atom " + std::string(name);
   if (!residue.empty() || !chain.empty()) {
     s += " of";
@@ -183,8 +178,7 @@ std::vector<std::string> NoteList::sorted() {
 Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& notes) {
   if (atoms.empty()) {
     std::string problem = "no atoms found";
-    if (notes.size() > 0)
-      problem += " (" + std::to_string(notes.size()) + " skipped, first: " + notes.first() + ")";
+    if (notes.size() > 0) problem += " (" + std::to_string(notes.size()) + " skipped, first: " + notes.first() + ")";
     throw InputError(path, 0, problem);
   }
   // The admissible range of the predicates (geometry/kernel/weighted_point.h): an
@@ -210,11 +204,9 @@ Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& note
       throw InputError(path, a.line, os.str());
     }
   }
-  const bool all_lines_known =
-      std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.line > 0; });
+  const bool all_lines_known = std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.line > 0; });
   if (all_lines_known)
-    std::stable_sort(atoms.begin(), atoms.end(),
-                     [](const Atom& a, const Atom& b) { return a.line < b.line; });
+    std::stable_sort(atoms.begin(), atoms.end(), [](const Atom& a, const Atom& b) { return a.line < b.line; });
   Molecule m;
   m.source = path;
   m.atoms = std::move(atoms);
@@ -255,8 +247,7 @@ Molecule read_molecule(const std::string& path, const ReadOptions& opt) {
 }
 
 Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt) {
-  const ReadOptions::Format format =
-      opt.format == ReadOptions::Format::Auto ? format_from_extension(name) : opt.format;
+  const ReadOptions::Format format = opt.format == ReadOptions::Format::Auto ? format_from_extension(name) : opt.format;
   switch (format) {
     case ReadOptions::Format::Pdb:
       return read_pdb(name, text, opt);

@@ -142,8 +142,9 @@ PdbScan scan_pdb(const std::string& path, std::string_view text) {
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const int line_no = static_cast<int>(k + 1);
     std::string line(lines[k].substr(0, kGemmiLineLength));
-    std::replace_if(line.begin(), line.end(), [](char c) { return c == '\0' || c == '\r'; }, ' ');
-    const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                      // gemmi starts model 2
+    std::replace_if(
+        line.begin(), line.end(), [](char c) { return c == '\0' || c == '\r'; }, ' ');
+    const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                           // gemmi starts model 2
                       (record_is(line, "END") && (line.size() == 3 || is_blank(line[3])));  // gemmi stops
     const bool atom = record_is(line, "ATOM") || record_is(line, "HETA");
     if (!atom && !record_is(line, "MODE") && !record_is(line, "END") && !record_is(line, "TER") &&
@@ -272,8 +273,8 @@ void keep_atom_site_only(gemmi::cif::Block& block) {
     if (!item.has_prefix("_atom_site.")) item.erase();
   // The table gemmi reads atoms from: the item of _atom_site.id (a tag appears
   // once per block: gemmi's parser rejects duplicates).
-  gemmi::cif::Table table = block.find(
-      "_atom_site.", {"id", "?label_seq_id", "?auth_seq_id", "?pdbx_formal_charge", "?pdbx_tls_group_id"});
+  gemmi::cif::Table table =
+      block.find("_atom_site.", {"id", "?label_seq_id", "?auth_seq_id", "?pdbx_formal_charge", "?pdbx_tls_group_id"});
   if (!table.ok()) return;
   for (std::size_t r = 0; r < table.length(); ++r) {
     gemmi::cif::Table::Row row = table[static_cast<int>(r)];
@@ -288,9 +289,8 @@ void keep_atom_site_only(gemmi::cif::Block& block) {
 SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::cif::Block& block) {
   SourceIndex index;
   enum { kX, kY, kZ, kAuthAtom, kLabelAtom, kAlt, kModel };
-  gemmi::cif::Table table = block.find(
-      "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?auth_atom_id", "?label_atom_id",
-                      "?label_alt_id", "?pdbx_PDB_model_num"});
+  gemmi::cif::Table table = block.find("_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?auth_atom_id",
+                                                       "?label_atom_id", "?label_alt_id", "?pdbx_PDB_model_num"});
   if (!table.ok() || table.length() == 0) return index;
   std::vector<int> value_lines;
   if (table.loop_item != nullptr) {
@@ -391,8 +391,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         }
         if (a.altloc != '\0') {
           position_first.emplace(position, a.altloc);
-          auto [it, inserted] =
-              atom_first.emplace(AtomSlot{chain.name, resnum, res.seqid.icode, a.name}, a.altloc);
+          auto [it, inserted] = atom_first.emplace(AtomSlot{chain.name, resnum, res.seqid.icode, a.name}, a.altloc);
           if (!inserted && it->second != a.altloc) {
             notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who +
                                     " skipped (location " + std::string(1, it->second) + " kept)");
@@ -400,8 +399,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
           }
         }
         if (water && !opt.keep_water) {
-          notes.add(src.line, "water " + res.name + " " + std::to_string(resnum) +
-                                  " skipped (use --keep-water)");
+          notes.add(src.line, "water " + res.name + " " + std::to_string(resnum) + " skipped (use --keep-water)");
           continue;
         }
         if (a.element == gemmi::El::X) {
@@ -420,8 +418,8 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         const VanDerWaalsRadius r = van_der_waals_radius(atom.element);
         atom.radius = r.radius;
         if (!r.from_bondi)
-          notes.add(src.line, "no Bondi radius for element " + atom.element + " (" + who + "); using " +
-                                  fallback_text + " A");
+          notes.add(src.line,
+                    "no Bondi radius for element " + atom.element + " (" + who + "); using " + fallback_text + " A");
         atom.name = a.name;
         atom.residue = res.name;
         atom.chain = chain.name;
@@ -434,8 +432,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
     }
   }
   if (guessed_elements > 0)
-    notes.add(0, std::to_string(guessed_elements) +
-                     " atoms have no element column; elements guessed from atom names");
+    notes.add(0, std::to_string(guessed_elements) + " atoms have no element column; elements guessed from atom names");
   return finish(path, std::move(atoms), notes);
 }
 

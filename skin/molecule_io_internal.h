@@ -48,8 +48,7 @@ int leading_int(std::string_view s);
 bool is_water_residue(std::string_view residue);
 
 /// "atom CA of SER A 45" (chain and residue left out when empty).
-std::string describe(std::string_view name, std::string_view residue, std::string_view chain,
-                     int residue_number);
+std::string describe(std::string_view name, std::string_view residue, std::string_view chain, int residue_number);
 
 /// Collects notes with their line so they can be listed in file order.
 class NoteList {

@@ -73,8 +73,8 @@ Molecule read_pqr(const std::string& path, const std::string& text, const ReadOp
     const std::string who = describe(atom.name, atom.residue, atom.chain, atom.residue_number);
     const bool hydrogen = atom.element == "H" || atom.element == "D";
     if (is_water_residue(atom.residue) && !opt.keep_water) {
-      notes.add(line_no, "water " + atom.residue + " " + std::to_string(atom.residue_number) +
-                             " skipped (use --keep-water)");
+      notes.add(line_no,
+                "water " + atom.residue + " " + std::to_string(atom.residue_number) + " skipped (use --keep-water)");
       continue;
     }
     if (hydrogen && radius == 0.0) {
@@ -82,8 +82,7 @@ Molecule read_pqr(const std::string& path, const std::string& text, const ReadOp
       continue;
     }
     if (radius <= 0.0)
-      throw InputError(path, line_no,
-                       "non-positive radius '" + std::string(f[n - 1]) + "' for " + who);
+      throw InputError(path, line_no, "non-positive radius '" + std::string(f[n - 1]) + "' for " + who);
     if (hydrogen && !opt.keep_hydrogens) {
       notes.add(line_no, "hydrogen " + who + " skipped (hydrogens not kept)");
       continue;

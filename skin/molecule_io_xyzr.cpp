@@ -25,12 +25,11 @@ Molecule read_xyzr(const std::string& path, const std::string& text) {
     if (f.size() < 4)
       throw InputError(path, line_no, "expected 'x y z r', found " + std::to_string(f.size()) + " fields");
     Atom atom;
-    atom.centre = Vec3(parse_number(path, line_no, f[0], "x coordinate"),
-                       parse_number(path, line_no, f[1], "y coordinate"),
-                       parse_number(path, line_no, f[2], "z coordinate"));
+    atom.centre =
+        Vec3(parse_number(path, line_no, f[0], "x coordinate"), parse_number(path, line_no, f[1], "y coordinate"),
+             parse_number(path, line_no, f[2], "z coordinate"));
     atom.radius = parse_number(path, line_no, f[3], "radius");
-    if (atom.radius <= 0.0)
-      throw InputError(path, line_no, "non-positive radius '" + std::string(f[3]) + "'");
+    if (atom.radius <= 0.0) throw InputError(path, line_no, "non-positive radius '" + std::string(f[3]) + "'");
     atom.serial = static_cast<int>(atoms.size()) + 1;
     atom.line = line_no;
     atoms.push_back(std::move(atom));

@@ -13,8 +13,8 @@ Vec3 circumcentre(const Vec3& a, const Vec3& b, const Vec3& c) {
   return a + (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) / (2.0 * n.squaredNorm());
 }
 
-bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const Vec3& b,
-                             const Vec3& c, Vec3& m, Index& cell) {
+bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& m,
+                             Index& cell) {
   const Vec3 n = (b - a).cross(c - a);
   const double len = n.norm();
   if (len == 0.0) return false;

@@ -22,8 +22,8 @@ Vec3 circumcentre(const Vec3& a, const Vec3& b, const Vec3& c);
 /// circumradius); its radius is |m - a|. `cell` is a mixed-cell hint on entry
 /// and m's cell on exit. Returns false if the line does not meet the skin
 /// there (a triangle far from restricted Delaunay).
-bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const Vec3& b,
-                             const Vec3& c, Vec3& m, Index& cell);
+bool surface_delaunay_centre(const skin::SkinSurface& skin, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& m,
+                             Index& cell);
 
 /// Exact-answer filter for the surface Delaunay ball test: true if point d
 /// lies outside (or on) every ball through a, b, c whose centre is

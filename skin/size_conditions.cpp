@@ -6,9 +6,7 @@
 
 namespace skinmesh::skin {
 
-double SizeConstants::min_angle_bound_deg() const {
-  return std::asin(1.0 / (Q * Q)) * 180.0 / std::numbers::pi;
-}
+double SizeConstants::min_angle_bound_deg() const { return std::asin(1.0 / (Q * Q)) * 180.0 / std::numbers::pi; }
 
 double circumradius(const Vec3& a, const Vec3& b, const Vec3& c) {
   // R = |ab| |bc| |ca| / (4 area) = |ab||bc||ca| / (2 |(b - a) x (c - a)|).

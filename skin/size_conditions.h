@@ -34,8 +34,7 @@ struct SizeConstants {
 
 /// [L] (Cheng & Shi §2.2): R_ab = |ab| / 2 > (C/Q) max(rho_a, rho_b).
 /// Positions in Å, rho in Å. Returns true if the edge satisfies [L].
-inline bool satisfies_L(const Vec3& a, const Vec3& b, double rho_a, double rho_b,
-                        const SizeConstants& k) {
+inline bool satisfies_L(const Vec3& a, const Vec3& b, double rho_a, double rho_b, const SizeConstants& k) {
   return 0.5 * (b - a).norm() > (k.C / k.Q) * std::max(rho_a, rho_b);
 }
 
@@ -44,8 +43,8 @@ double circumradius(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// [U] (Cheng & Shi §2.2): R_abc < C Q min(rho_a, rho_b, rho_c).
 /// Returns true if the triangle satisfies [U].
-inline bool satisfies_U(const Vec3& a, const Vec3& b, const Vec3& c, double rho_a, double rho_b,
-                        double rho_c, const SizeConstants& k) {
+inline bool satisfies_U(const Vec3& a, const Vec3& b, const Vec3& c, double rho_a, double rho_b, double rho_c,
+                        const SizeConstants& k) {
   return circumradius(a, b, c) < k.C * k.Q * std::min({rho_a, rho_b, rho_c});
 }
 

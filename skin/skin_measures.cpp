@@ -130,10 +130,14 @@ IntervalSet meridian_set(const Frame& f, const std::vector<FramePlane>& planes, 
       for (int j = 0; j + 1 < nc; ++j) {
         const double a = cuts[j], b = cuts[j + 1];
         double mid;
-        if (std::isinf(a) && std::isinf(b)) mid = 0.0;
-        else if (std::isinf(a)) mid = b - scale;
-        else if (std::isinf(b)) mid = a + scale;
-        else mid = 0.5 * (a + b);
+        if (std::isinf(a) && std::isinf(b))
+          mid = 0.0;
+        else if (std::isinf(a))
+          mid = b - scale;
+        else if (std::isinf(b))
+          mid = a + scale;
+        else
+          mid = 0.5 * (a + b);
         if (p.alpha * mid + beta * profile_r(f, mid) - p.gamma <= 0) next.add(a, b);
       }
     }
@@ -146,8 +150,10 @@ IntervalSet meridian_set(const Frame& f, const std::vector<FramePlane>& planes, 
 double hyperbolic_root_integral(double k, double c, double t) {
   const double s = std::sqrt(std::max(0.0, k * k * t * t + c));
   double log_term = 0;
-  if (c > 0) log_term = std::asinh(k * t / std::sqrt(c));
-  else if (c < 0) log_term = std::copysign(std::acosh(std::max(1.0, k * std::abs(t) / std::sqrt(-c))), t);
+  if (c > 0)
+    log_term = std::asinh(k * t / std::sqrt(c));
+  else if (c < 0)
+    log_term = std::copysign(std::acosh(std::max(1.0, k * std::abs(t) / std::sqrt(-c))), t);
   return 0.5 * t * s + c / (2.0 * k) * log_term;
 }
 
@@ -227,8 +233,8 @@ struct Piece {
 /// The densities integrated over θ in [t0, t0 + h], substituting
 /// θ = t0 + h (1 - cos πs) / 2 for s in [s0, s1] (it smooths the square-root
 /// behaviour of the densities at the panel's ends, where a plane turns).
-Piece gauss_kronrod(const Frame& f, const std::vector<FramePlane>& planes, double t0, double h, double s0,
-                    double s1, double scale, Index cell) {
+Piece gauss_kronrod(const Frame& f, const std::vector<FramePlane>& planes, double t0, double h, double s0, double s1,
+                    double scale, Index cell) {
   const double half = 0.5 * (s1 - s0), mid = 0.5 * (s0 + s1);
   double ka = 0, kv = 0, ga = 0, gv = 0, ma = 0, mv = 0;
   for (int j = 0; j < 8; ++j)
@@ -260,8 +266,8 @@ Piece gauss_kronrod(const Frame& f, const std::vector<FramePlane>& planes, doubl
 /// error (relative to its share of the tolerance) is halved until the summed
 /// errors meet the tolerance (relative 1e-10, with absolute floors per radian)
 /// or the panel has 64 pieces.
-PanelSum integrate_panel(const Frame& f, const std::vector<FramePlane>& planes, double t0, double h,
-                         double scale, const Tolerance& quad, Index cell) {
+PanelSum integrate_panel(const Frame& f, const std::vector<FramePlane>& planes, double t0, double h, double scale,
+                         const Tolerance& quad, Index cell) {
   std::vector<Piece> pieces{gauss_kronrod(f, planes, t0, h, 0.0, 1.0, scale, cell)};
   for (;;) {
     PanelSum sum;
@@ -374,9 +380,9 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
   std::vector<CellPlane> raw;
   for (const CellPlane& p : mc.planes(c)) {
     const double gamma = p.offset - p.normal.dot(f.z);  // the focus' distance inside the plane
-    if (f.sigma < 0) {  // a sphere of radius sqrt(c) about the focus
+    if (f.sigma < 0) {                                  // a sphere of radius sqrt(c) about the focus
       const double R = std::sqrt(f.c);
-      if (gamma <= -R) return out;        // wholly outside the plane
+      if (gamma <= -R) return out;            // wholly outside the plane
       if (gamma >= R * (1 + 1e-9)) continue;  // wholly inside: the plane cuts nothing
     }
     raw.push_back(p);
@@ -433,8 +439,10 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
         const double disc = qb * qb - qa * qc;
         if (disc < 0) continue;
         const double q = -(qb + std::copysign(std::sqrt(disc), qb));
-        if (q != 0) ss[ns++] = q / qa, ss[ns++] = qc / q;
-        else ss[ns++] = 0;
+        if (q != 0)
+          ss[ns++] = q / qa, ss[ns++] = qc / q;
+        else
+          ss[ns++] = 0;
       }
       for (int k = 0; k < ns; ++k) {
         const Vec3 y = p0 + ss[k] * d;

@@ -15,8 +15,7 @@ namespace skinmesh::skin {
 SkinSurface::SkinSurface(std::vector<geometry::WeightedPoint> points) : points_(std::move(points)) {
   if (points_.empty()) throw InputError("", 0, "no weighted points (no atoms)");
   for (const auto& p : points_)
-    if (!p.z.allFinite() || !std::isfinite(p.w))
-      throw InputError("", 0, "non-finite weighted point");
+    if (!p.z.allFinite() || !std::isfinite(p.w)) throw InputError("", 0, "non-finite weighted point");
   rt_ = std::make_unique<geometry::RegularTriangulation>(points_);
   mc_ = std::make_unique<MixedComplex>(*rt_);
 }
@@ -30,9 +29,7 @@ SkinSample SkinSurface::sample(const Vec3& x, Index hint) const {
   return s;
 }
 
-Vec3 SkinSurface::normal(const Vec3& x, Index hint) const {
-  return sample(x, hint).gradient.normalized();
-}
+Vec3 SkinSurface::normal(const Vec3& x, Index hint) const { return sample(x, hint).gradient.normalized(); }
 
 PrincipalCurvatures SkinSurface::curvatures(Index c, const Vec3& x) const {
   const MixedCell& m = mc_->cell(c);
@@ -104,8 +101,7 @@ int quadratic_roots(double a, double b, double c, double lo, double hi, double r
 
 }  // namespace
 
-bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out,
-                                     Index& cell) const {
+bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out, Index& cell) const {
   const MixedComplex& mc = *mc_;
   const double eta = 1e-12 * mc.length_scale();
   // Parametric interval [lo, hi] of the line q + t n inside cell c.
@@ -131,8 +127,7 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
     const Vec3 y = q - mc.cell(c).focus;
     const Mat3 A = mc.quadric_matrix(c);
     const Vec3 An = A * n;
-    return quadratic_roots(n.dot(An), y.dot(An), mc.f(c, q), std::max(lo, -delta) - eta,
-                           std::min(hi, delta) + eta, r);
+    return quadratic_roots(n.dot(An), y.dot(An), mc.f(c, q), std::max(lo, -delta) - eta, std::min(hi, delta) + eta, r);
   };
 
   const Index c0 = mc.locate(q, cell);
@@ -194,8 +189,8 @@ Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result, 
     if (at_result) *at_result = s;
     return x;
   }
-  throw GeometryError("pull_back did not converge near (" + std::to_string(x0.x()) + ", " +
-                      std::to_string(x0.y()) + ", " + std::to_string(x0.z()) + ")");
+  throw GeometryError("pull_back did not converge near (" + std::to_string(x0.x()) + ", " + std::to_string(x0.y()) +
+                      ", " + std::to_string(x0.z()) + ")");
 }
 
 }  // namespace skinmesh::skin

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/triangulation/regular_triangulation.h"
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
+#include "geometry/triangulation/regular_triangulation.h"
 #include "skin/mixed_complex.h"
 #include "skin/molecule.h"
 
@@ -24,9 +24,7 @@ namespace skinmesh::skin {
 /// of radius r + p. Cheng & Shi §2.1 as read by papers/skin/skin_math.md §1.3
 /// (the paper's "weight is sqrt 2 times the sum" is dimensionally a radius).
 /// Pre: r + p > 0.
-inline double atom_weight(double radius, double probe) {
-  return 2.0 * (radius + probe) * (radius + probe);
-}
+inline double atom_weight(double radius, double probe) { return 2.0 * (radius + probe) * (radius + probe); }
 
 /// The weighted points of a molecule: centre = atom centre (Å), weight =
 /// atom_weight(radius, probe) (Å²), in atom order. Pre: probe >= 0.
@@ -65,10 +63,10 @@ inline std::vector<geometry::WeightedPoint> translated(std::vector<geometry::Wei
 
 /// Value of the skin function and its derivatives at a point.
 struct SkinSample {
-  double f = 0;               ///< f(x) (Å²); < 0 inside the body
+  double f = 0;                  ///< f(x) (Å²); < 0 inside the body
   Vec3 gradient = Vec3::Zero();  ///< grad f(x) (Å); |grad f| = 2 rho on the skin
-  double rho = 0;             ///< local length scale |x - z_X| (Å)
-  Index cell = kInvalidIndex;  ///< mixed cell containing x
+  double rho = 0;                ///< local length scale |x - z_X| (Å)
+  Index cell = kInvalidIndex;    ///< mixed cell containing x
 };
 
 /// Principal curvatures (1/Å) with the sign convention of
@@ -112,8 +110,7 @@ class SkinSurface {
   /// and delta = rho(a) - sqrt(rho(a)² - r²). Returns false if f does not change
   /// sign on the segment. `cell` is the hint on entry and the cell of the
   /// result on exit.
-  bool project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out,
-                          Index& cell) const;
+  bool project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out, Index& cell) const;
   /// Gradient–Newton pull-back x <- x - f grad f / |grad f|² until
   /// |f| / |grad f| <= tolerance · L (papers/skin/skin_math.md §7.3; the
   /// default 1e-14 is the surface to rounding, a looser one serves callers that
@@ -122,8 +119,7 @@ class SkinSurface {
   /// `at_result` is given, it receives the sample at the returned point (the one
   /// the convergence test read: the same as sample(result, cell)), so that
   /// callers need not sample it again.
-  Vec3 pull_back(const Vec3& x, Index& cell, SkinSample* at_result = nullptr,
-                 double tolerance = 1e-14) const;
+  Vec3 pull_back(const Vec3& x, Index& cell, SkinSample* at_result = nullptr, double tolerance = 1e-14) const;
   /// Distance estimate |f(x)| / |grad f(x)| (Å): first-order distance to the skin.
   double distance_estimate(const Vec3& x, Index hint = kInvalidIndex) const;
 

@@ -37,7 +37,9 @@ using geometry::Vertex;
 /// decimal, so that JSON prints it short.
 double round_to(double x, double scale) { return std::round(x * scale) / scale; }
 
-json point_json(const Vec3& p) { return json::array({round_to(p.x(), 1e4), round_to(p.y(), 1e4), round_to(p.z(), 1e4)}); }
+json point_json(const Vec3& p) {
+  return json::array({round_to(p.x(), 1e4), round_to(p.y(), 1e4), round_to(p.z(), 1e4)});
+}
 
 /// Per-triangle quality of trace/FORMAT.md: smallest angle (degrees), the
 /// [L] ratio min over edges of (|ab|/2) / ((C/Q) max(rho_a, rho_b)) and the
@@ -229,14 +231,14 @@ class History {
 
   std::vector<double> vertex_xyz_;
   std::vector<int> vertex_step_;
-  std::vector<Index> vertex_id_;     ///< record -> vertex id
-  std::vector<int> vertex_record_;   ///< vertex id -> record (-1: none)
-  std::vector<Vec3> position_;       ///< vertex id -> position last recorded
+  std::vector<Index> vertex_id_;    ///< record -> vertex id
+  std::vector<int> vertex_record_;  ///< vertex id -> record (-1: none)
+  std::vector<Vec3> position_;      ///< vertex id -> position last recorded
   std::vector<Move> moves_;
   std::vector<int> faces_, face_born_, face_died_;
   std::vector<unsigned> seen_;
   std::vector<double> quality_;
-  std::vector<int> face_record_;     ///< face index -> open record (-1: none)
+  std::vector<int> face_record_;  ///< face index -> open record (-1: none)
   std::unordered_map<std::uint64_t, int> face_by_key_;
   unsigned generation_ = 0;
   std::size_t alive_ = 0;
@@ -395,12 +397,15 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     steps.push_back(pending.take(stage, std::move(counters)));
   };
   auto sweep_counters = [](const front::SweepStats& s) {
-    return json{{"creations", s.creations}, {"creeps", s.creeps},     {"contacts", s.contacts}, {"wings", s.wings},
-                {"held", s.held},           {"bridges", s.bridges},   {"seals", s.seals},       {"deferred", s.deferred},
-                {"collisions", s.collisions}, {"stuck", s.stuck}};
+    return json{{"creations", s.creations}, {"creeps", s.creeps},     {"contacts", s.contacts},
+                {"wings", s.wings},         {"held", s.held},         {"bridges", s.bridges},
+                {"seals", s.seals},         {"deferred", s.deferred}, {"collisions", s.collisions},
+                {"stuck", s.stuck}};
   };
   json last_sweep_counters = json::object();
-  auto refine_counters = [&] { return json{{"flips", flips}, {"contractions", contractions}, {"insertions", insertions}}; };
+  auto refine_counters = [&] {
+    return json{{"flips", flips}, {"contractions", contractions}, {"insertions", insertions}};
+  };
 
   run.observers.morse = [&](const skin::SkinSurface&, const morse::MorseSmaleComplex& ms) {
     record_morse(doc, ms);
@@ -408,13 +413,13 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     const morse::MorseCount all = morse::count_critical_points(ms.critical), live = ms.live_count();
     pending.add("morse-smale complex",
                 std::to_string(ms.critical.size()) + " critical points (" + std::to_string(all.minima) + " minima, " +
-                    std::to_string(all.saddles) + " saddles, " + std::to_string(all.maxima) +
-                    " maxima), " + std::to_string(ms.lines.size()) + " integral lines; after simplification " +
+                    std::to_string(all.saddles) + " saddles, " + std::to_string(all.maxima) + " maxima), " +
+                    std::to_string(ms.lines.size()) + " integral lines; after simplification " +
                     std::to_string(live.minima) + " minima, " + std::to_string(live.saddles) + " saddles, " +
                     std::to_string(live.maxima) + " maxima",
                 std::nullopt, kInvalidIndex);
-    steps.push_back(pending.take("morse", json{{"minima", live.minima}, {"saddles", live.saddles},
-                                               {"maxima", live.maxima}, {"triangles", 0}}));
+    steps.push_back(pending.take(
+        "morse", json{{"minima", live.minima}, {"saddles", live.saddles}, {"maxima", live.maxima}, {"triangles", 0}}));
   };
   run.sweep.observer = [&](const front::SweepEvent& ev) {
     ++operations;
@@ -430,19 +435,29 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
       focus = critical_position[ev.critical];
     const std::string tris = std::to_string(added) + (added == 1 ? " triangle" : " triangles");
     switch (ev.op) {
-      case front::SweepOperation::Creation: text = "creation: a bowl of " + tris + " at minimum" + cp; break;
+      case front::SweepOperation::Creation:
+        text = "creation: a bowl of " + tris + " at minimum" + cp;
+        break;
       case front::SweepOperation::Creep:
         text = name == "contact" ? "creep that joins two parts of the front (contact), " + tris
                                  : "creep: a fan of " + tris + " at the lowest front vertex";
         if (added == 0) text = "creep deferred: the fan would fold; the vertex waits higher up";
         break;
-      case front::SweepOperation::Wings: text = "wings: " + tris + " close sharp front angles"; break;
+      case front::SweepOperation::Wings:
+        text = "wings: " + tris + " close sharp front angles";
+        break;
       case front::SweepOperation::Hold:
         text = "hold: a front vertex stops in the protecting sphere of saddle" + cp;
         break;
-      case front::SweepOperation::Bridge: text = "bridge at saddle" + cp + ": " + tris + " join two front parts"; break;
-      case front::SweepOperation::SmallHole: text = "small hole closed during the sweep: " + tris; break;
-      case front::SweepOperation::Seal: text = "seal: a hole closed with " + tris; break;
+      case front::SweepOperation::Bridge:
+        text = "bridge at saddle" + cp + ": " + tris + " join two front parts";
+        break;
+      case front::SweepOperation::SmallHole:
+        text = "small hole closed during the sweep: " + tris;
+        break;
+      case front::SweepOperation::Seal:
+        text = "seal: a hole closed with " + tris;
+        break;
     }
     pending.add(name, text, focus, ev.critical);
     const bool key = ev.op == front::SweepOperation::Creation || ev.op == front::SweepOperation::Bridge ||
@@ -492,10 +507,11 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
   if (options.progress) run.progress = options.progress;
   const mesher::MeshResult res = mesher::mesh_skin(points, run);
 
-  finish(res, json{{"vertices", res.mesh.positions.size()},
-                   {"flips", flips},
-                   {"contractions", contractions},
-                   {"insertions", insertions}},
+  finish(res,
+         json{{"vertices", res.mesh.positions.size()},
+              {"flips", flips},
+              {"contractions", contractions},
+              {"insertions", insertions}},
          json{{"sweep", every_sweep}, {"refine", every_refine}}, operations, history, steps, doc, summary);
   return doc;
 }
@@ -519,7 +535,8 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
       counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
     mesher::mesh_skin(points, counting);
     // Every recorded growth step moves every sample: about 45 bytes each.
-    const double affordable = double(options.growth_budget_bytes) / (45.0 * double(std::max<std::size_t>(counts.max_samples, 1)));
+    const double affordable =
+        double(options.growth_budget_bytes) / (45.0 * double(std::max<std::size_t>(counts.max_samples, 1)));
     every = stride(counts.growth, std::min(0.9 * double(options.max_steps), affordable));
   }
   json doc;
@@ -527,7 +544,8 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
   std::vector<json> steps;
   Pending pending;
   std::size_t growth = 0;
-  pending.add("atoms", std::to_string(points.size()) + " weighted points; the skin grows from small spheres around them",
+  pending.add("atoms",
+              std::to_string(points.size()) + " weighted points; the skin grows from small spheres around them",
               std::nullopt, kInvalidIndex);
   steps.push_back(pending.take("start", json{{"triangles", 0}}));
   doc["critical"] = json::array();
@@ -540,14 +558,16 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
     const geometry::IndexedMesh m = st.extract(&ids);
     const int step = static_cast<int>(steps.size());
     const std::size_t moved = history.snapshot(m, ids, step);
-    const std::string what = final_stage ? "final refinement: [L], [U] and the restricted Delaunay triangulation on the final skin"
-                                         : "growth step " + std::to_string(growth) + ": the skin grows, the samples move with it";
+    const std::string what =
+        final_stage ? "final refinement: [L], [U] and the restricted Delaunay triangulation on the final skin"
+                    : "growth step " + std::to_string(growth) + ": the skin grows, the samples move with it";
     pending.add(final_stage ? "refinement" : "growth step",
                 what + " (" + std::to_string(ids.size()) + " samples, " + std::to_string(m.triangles.size()) +
                     " restricted triangles, " + std::to_string(moved) + " samples moved)",
                 std::nullopt, kInvalidIndex);
-    steps.push_back(pending.take(final_stage ? "refine" : "growth",
-                                 json{{"samples", ids.size()}, {"growth_steps", growth}, {"triangles", history.alive_faces()}}));
+    steps.push_back(
+        pending.take(final_stage ? "refine" : "growth",
+                     json{{"samples", ids.size()}, {"growth_steps", growth}, {"triangles", history.alive_faces()}}));
     if (final_stage) history.set_quality([&st](Index id) { return st.rho(id); }, size);
   };
   if (options.progress) run.progress = options.progress;
@@ -595,7 +615,9 @@ std::string fill_viewer_template(const std::string& viewer_template, const json&
   }
   std::string page;
   page.reserve(viewer_template.size() + escaped.size());
-  page.append(viewer_template, 0, at).append(escaped).append(viewer_template, at + placeholder.size(), std::string::npos);
+  page.append(viewer_template, 0, at)
+      .append(escaped)
+      .append(viewer_template, at + placeholder.size(), std::string::npos);
   return page;
 }
 

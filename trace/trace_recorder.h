@@ -18,8 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesher/pipeline.h"
 #include "geometry/kernel/weighted_point.h"
+#include "mesher/pipeline.h"
 
 namespace skinmesh::trace {
 

@@ -101,8 +101,8 @@ std::string SkinCheckReport::to_json() const {
   j["angle_histogram_10deg"] = mesh.angle_histogram;
   j["num_L_violations"] = num_L_violations;
   j["num_U_violations"] = num_U_violations;
-  j["num_rdt_violations"] = restricted_delaunay_checked ? nlohmann::ordered_json(num_rdt_violations)
-                                                        : nlohmann::ordered_json(nullptr);
+  j["num_rdt_violations"] =
+      restricted_delaunay_checked ? nlohmann::ordered_json(num_rdt_violations) : nlohmann::ordered_json(nullptr);
   j["problems"] = problems;
   j["mesh"] = nlohmann::ordered_json::parse(mesh.to_json());
   return j.dump(2) + "\n";
@@ -178,8 +178,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   release(order_hint);
   if (rep.num_far_vertices)
     skin_problems.push_back(std::to_string(rep.num_far_vertices) + " vertices farther than " +
-                           number_text(rep.vertex_distance_tolerance) + " Å from the skin (max " +
-                           number_text(rep.max_vertex_distance) + " Å)");
+                            number_text(rep.vertex_distance_tolerance) + " Å from the skin (max " +
+                            number_text(rep.max_vertex_distance) + " Å)");
 
   // Triangles: orientation against the skin normal, [U]; edges: [L].
   auto valid = [&](const std::array<Index, 3>& t) {
@@ -201,11 +201,9 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   release(normal);
   if (rep.num_inward_triangles)
     skin_problems.push_back(std::to_string(rep.num_inward_triangles) +
-                           " triangles face inwards (against the skin normal)");
-  if (rep.num_L_violations)
-    skin_problems.push_back(std::to_string(rep.num_L_violations) + " edges violate [L]");
-  if (rep.num_U_violations)
-    skin_problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
+                            " triangles face inwards (against the skin normal)");
+  if (rep.num_L_violations) skin_problems.push_back(std::to_string(rep.num_L_violations) + " edges violate [L]");
+  if (rep.num_U_violations) skin_problems.push_back(std::to_string(rep.num_U_violations) + " triangles violate [U]");
   const std::size_t min_angle_slot = skin_problems.size();  // the angle message goes here
 
   // Restricted Delaunay: the surface Delaunay ball of every triangle is empty.
@@ -234,7 +232,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     }
     if (rep.num_rdt_violations)
       skin_problems.push_back(std::to_string(rep.num_rdt_violations) +
-                             " triangles are not restricted Delaunay (non-empty surface Delaunay ball)");
+                              " triangles are not restricted Delaunay (non-empty surface Delaunay ball)");
   }
 
   // Join the mesh-only checks; problems in the order of the single-thread report.
@@ -262,12 +260,11 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   const std::int64_t total = std::accumulate(rep.component_euler.begin(), rep.component_euler.end(), std::int64_t{0});
   rep.topology_matches = static_cast<int>(rep.component_euler.size()) == rep.expected.components() &&
                          total == rep.expected.euler_skin() &&
-                         (rep.expected_component_euler.empty() ||
-                          rep.expected_component_euler == rep.component_euler);
+                         (rep.expected_component_euler.empty() || rep.expected_component_euler == rep.component_euler);
   if (!rep.topology_matches) {
     rep.problems.push_back("topology: components' Euler characteristics " + list_text(rep.component_euler) +
-                           ", expected " + std::to_string(rep.expected.components()) +
-                           " components with total " + std::to_string(rep.expected.euler_skin()) +
+                           ", expected " + std::to_string(rep.expected.components()) + " components with total " +
+                           std::to_string(rep.expected.euler_skin()) +
                            (rep.expected_component_euler.empty() ? "" : " " + list_text(rep.expected_component_euler)));
   }
   return rep;

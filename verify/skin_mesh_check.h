@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/check/mesh_checks.h"
-#include "skin/size_conditions.h"
+#include "geometry/mesh/indexed_mesh.h"
 #include "skin/dual_complex.h"
+#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::verify {
@@ -57,13 +57,13 @@ struct SkinCheckReport {
   std::vector<std::int64_t> component_euler;           ///< measured, sorted
   std::vector<std::int64_t> expected_component_euler;  ///< sorted; empty if unknown
   bool topology_matches = false;
-  double max_vertex_distance = 0;    ///< max |f| / |grad f| over vertices (Å)
+  double max_vertex_distance = 0;  ///< max |f| / |grad f| over vertices (Å)
   Index worst_vertex = kInvalidIndex;
-  std::size_t num_far_vertices = 0;  ///< above vertex_distance_tolerance
+  std::size_t num_far_vertices = 0;      ///< above vertex_distance_tolerance
   double vertex_distance_tolerance = 0;  ///< the tolerance applied (Å), see SkinCheckOptions
   std::size_t num_inward_triangles = 0;  ///< normal disagrees with the skin normal
-  std::size_t num_L_violations = 0;  ///< edges violating [L]
-  std::size_t num_U_violations = 0;  ///< triangles violating [U]
+  std::size_t num_L_violations = 0;      ///< edges violating [L]
+  std::size_t num_U_violations = 0;      ///< triangles violating [U]
   bool restricted_delaunay_checked = false;
   /// Triangles whose surface Delaunay ball holds another vertex strictly inside
   /// (relative tolerance 1e-9), or whose dual line misses the skin.

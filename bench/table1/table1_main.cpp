@@ -26,9 +26,9 @@
 
 #include "dynamic/dynamic_skin.h"
 #include "mesher/pipeline.h"
-#include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
+#include "verify/skin_mesh_check.h"
 
 namespace {
 
@@ -36,10 +36,10 @@ using namespace skinmesh;
 
 /// A row of the table: an input and, for the paper's molecules, its row.
 struct Case {
-  const char* name;      ///< row label
-  const char* path;      ///< file under SKINMESH_DATA or SKINMESH_TEST_DATA
-  bool test_data;        ///< true: SKINMESH_TEST_DATA
-  const char* paper;     ///< the paper's molecule ("" if none)
+  const char* name;   ///< row label
+  const char* path;   ///< file under SKINMESH_DATA or SKINMESH_TEST_DATA
+  bool test_data;     ///< true: SKINMESH_TEST_DATA
+  const char* paper;  ///< the paper's molecule ("" if none)
   double paper_triangles, paper_angle, paper_sweep_s, paper_dynamic_s;
 };
 
@@ -175,13 +175,15 @@ std::string cell(const Result& r, bool with_seconds = true) {
 }
 
 void print_table() {
-  std::printf("\n## Table 1 reproduced (seconds: one thread, whole pipeline from weighted points to the mesh, "
-              "check excluded; every mesh verified by skinmesh check)\n\n");
+  std::printf(
+      "\n## Table 1 reproduced (seconds: one thread, whole pipeline from weighted points to the mesh, "
+      "check excluded; every mesh verified by skinmesh check)\n\n");
   for (const Convention& v : kConventions) {
     std::printf("### w = 2 (r + %.1f)², Bondi radii, hydrogens as in the file (%s: %s)\n\n", v.probe, v.name, v.why);
-    std::printf("| molecule | atoms | sweep: triangles | min angle | s | dynamic: triangles | min angle | s | "
-                "static: triangles | min angle | s | dynamic / sweep | static / sweep | paper: molecule | "
-                "triangles | min angle | sweep | dynamic skin | ratio |\n");
+    std::printf(
+        "| molecule | atoms | sweep: triangles | min angle | s | dynamic: triangles | min angle | s | "
+        "static: triangles | min angle | s | dynamic / sweep | static / sweep | paper: molecule | "
+        "triangles | min angle | sweep | dynamic skin | ratio |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Case& c : kCases) {
       const Result& s = g_results[key(c, v, Algorithm::Sweep)];
@@ -191,7 +193,8 @@ void print_table() {
       char ratio_d[32] = "—", ratio_s[32] = "—", paper_ratio[32] = "";
       if (s.ran && d.ran && s.seconds > 0) std::snprintf(ratio_d, sizeof ratio_d, "%.0f×", d.seconds / s.seconds);
       if (s.ran && t.ran && s.seconds > 0) std::snprintf(ratio_s, sizeof ratio_s, "%.1f×", t.seconds / s.seconds);
-      if (c.paper_sweep_s > 0) std::snprintf(paper_ratio, sizeof paper_ratio, "%.0f×", c.paper_dynamic_s / c.paper_sweep_s);
+      if (c.paper_sweep_s > 0)
+        std::snprintf(paper_ratio, sizeof paper_ratio, "%.0f×", c.paper_dynamic_s / c.paper_sweep_s);
       const std::size_t atoms = s.ran ? s.atoms : d.ran ? d.atoms : t.atoms;
       std::printf("| %s | %s | %s %s %s %s | %s | %s |", c.name, thousands(atoms).c_str(), cell(s).c_str(),
                   cell(d).c_str(), cell(t).c_str(), ratio_d, ratio_s, *c.paper ? c.paper : "—");
@@ -241,8 +244,10 @@ int main(int argc, char** argv) {
         if (a == Algorithm::Static && atoms > static_max_atoms) continue;
         auto* b = benchmark::RegisterBenchmark(key(c, v, a).c_str(), bm_case, &c, &v, a);
         b->Unit(benchmark::kSecond)->UseRealTime();
-        if (a != Algorithm::Sweep || quick) b->Iterations(1);
-        else b->MinTime(2.0);
+        if (a != Algorithm::Sweep || quick)
+          b->Iterations(1);
+        else
+          b->MinTime(2.0);
       }
     }
   }

@@ -96,8 +96,7 @@ MeshCheckReport check_mesh(const IndexedMesh& mesh, const MeshCheckOptions& opti
   r.small_angle_threshold_deg = options.small_angle_threshold_deg;
   const TriangleClasses classes = classify_triangles(mesh, options.max_examples, r);
   const mesh_checks_detail::VertexIncidence incidence = mesh_checks_detail::build_incidence(mesh, classes);
-  std::vector<Index> component =
-      mesh_checks_detail::check_topology(mesh, classes, incidence, options.max_examples, r);
+  std::vector<Index> component = mesh_checks_detail::check_topology(mesh, classes, incidence, options.max_examples, r);
   mesh_checks_detail::measure_components(mesh, classes, component, r);
   std::vector<Index>().swap(component);  // freed before the self-intersection search, the peak
   mesh_checks_detail::measure_angles(mesh, classes, options.small_angle_threshold_deg, r);
@@ -108,9 +107,9 @@ MeshCheckReport check_mesh(const IndexedMesh& mesh, const MeshCheckOptions& opti
 }
 
 bool MeshCheckReport::ok() const {
-  return num_out_of_range_triangles == 0 && num_nonfinite_vertices == 0 &&
-         num_degenerate_triangles == 0 && num_duplicate_triangles == 0 && closed &&
-         edge_manifold && vertex_manifold && oriented && num_self_intersections == 0;
+  return num_out_of_range_triangles == 0 && num_nonfinite_vertices == 0 && num_degenerate_triangles == 0 &&
+         num_duplicate_triangles == 0 && closed && edge_manifold && vertex_manifold && oriented &&
+         num_self_intersections == 0;
 }
 
 }  // namespace skinmesh::geometry

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "geometry/kernel/angles.h"
 #include "geometry/mesh/indexed_mesh.h"
-#include "core/types.h"
 
 namespace skinmesh::geometry {
 
@@ -50,7 +50,7 @@ struct MeshComponent {
   /// form a single fan (so two spheres touching at a vertex are two manifold
   /// components, while the shared vertex is non-manifold for the mesh).
   bool manifold = false;
-  bool oriented = false;     ///< every edge with two triangles is used once in each direction
+  bool oriented = false;  ///< every edge with two triangles is used once in each direction
   /// (2 - euler) / 2 if closed, manifold and oriented; empty otherwise.
   std::optional<std::int64_t> genus;
   /// Signed enclosed volume (Å³), sum of signed tetrahedron volumes: positive for
@@ -71,8 +71,8 @@ struct MeshComponent {
 /// non-finite vertex count in topology only.
 struct MeshCheckReport {
   // Counts
-  std::size_t num_vertices = 0;   ///< positions.size()
-  std::size_t num_triangles = 0;  ///< triangles.size()
+  std::size_t num_vertices = 0;               ///< positions.size()
+  std::size_t num_triangles = 0;              ///< triangles.size()
   std::size_t num_unreferenced_vertices = 0;  ///< used by no triangle
   std::size_t num_nonfinite_vertices = 0;     ///< a NaN or infinite coordinate
   std::size_t num_edges = 0;                  ///< distinct undirected edges
@@ -86,9 +86,9 @@ struct MeshCheckReport {
   std::vector<Index> degenerate_triangle_examples;
 
   // Topology
-  std::size_t num_boundary_edges = 0;      ///< edges with exactly one triangle
-  std::size_t num_nonmanifold_edges = 0;   ///< edges with more than two triangles
-  std::size_t num_misoriented_edges = 0;   ///< two triangles using the edge in the same direction
+  std::size_t num_boundary_edges = 0;     ///< edges with exactly one triangle
+  std::size_t num_nonmanifold_edges = 0;  ///< edges with more than two triangles
+  std::size_t num_misoriented_edges = 0;  ///< two triangles using the edge in the same direction
   /// Vertices whose triangles do not form a single fan (a path or a cycle of
   /// triangles through shared edges), e.g. two cones touching at their tips
   /// (several components meet there). A vertex of a non-manifold edge is also
@@ -116,7 +116,7 @@ struct MeshCheckReport {
   /// same side). Duplicates are counted in num_duplicate_triangles instead. Exact.
   std::size_t num_self_intersections = 0;
   std::vector<std::array<Index, 2>> self_intersection_examples;  ///< triangle pairs (i < j)
-  std::size_t num_pairs_tested = 0;  ///< candidate pairs given to the exact test
+  std::size_t num_pairs_tested = 0;                              ///< candidate pairs given to the exact test
 
   // Angles (degrees), over triangles with three distinct in-range finite vertices
   double min_angle_deg = 0.0;  ///< 0 when there is no such triangle

@@ -24,11 +24,12 @@ constexpr double kDegPerRad = 180.0 / kPi;
 double approx_angle_deg(double y, double x) {
   auto atan01 = [](double z) {  // z in [-1, 1]
     const double z2 = z * z;
-    return z * (0.9999993329 +
-                z2 * (-0.3332985605 +
-                      z2 * (0.1994653599 + z2 * (-0.1390853351 + z2 * (0.0964200441 +
-                                                                      z2 * (-0.0559098861 +
-                                                                            z2 * (0.0218612288 - z2 * 0.0040540580)))))));
+    return z *
+           (0.9999993329 +
+            z2 * (-0.3332985605 +
+                  z2 * (0.1994653599 +
+                        z2 * (-0.1390853351 +
+                              z2 * (0.0964200441 + z2 * (-0.0559098861 + z2 * (0.0218612288 - z2 * 0.0040540580)))))));
   };
   double rad;
   if (x > 0 && y <= x)
@@ -44,8 +45,8 @@ double approx_angle_deg(double y, double x) {
 
 }  // namespace
 
-void measure_components(const IndexedMesh& mesh, const TriangleClasses& classes,
-                        const std::vector<Index>& component, MeshCheckReport& r) {
+void measure_components(const IndexedMesh& mesh, const TriangleClasses& classes, const std::vector<Index>& component,
+                        MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nv = P.size(), nt = T.size();
@@ -70,8 +71,7 @@ void measure_components(const IndexedMesh& mesh, const TriangleClasses& classes,
   }
 }
 
-void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, double threshold_deg,
-                    MeshCheckReport& r) {
+void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, double threshold_deg, MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nt = T.size();

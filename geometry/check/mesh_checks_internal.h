@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/check/mesh_checks.h"
+#include "geometry/mesh/indexed_mesh.h"
 
 namespace skinmesh::geometry::mesh_checks_detail {
 
@@ -78,14 +78,13 @@ std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses
 /// check_topology(), `component` = its triangle -> component map), over the
 /// triangles with finite vertices, relative to the centre of the bounding box of
 /// the referenced finite vertices (to limit cancellation). Double precision.
-void measure_components(const IndexedMesh& mesh, const TriangleClasses& classes,
-                        const std::vector<Index>& component, MeshCheckReport& r);
+void measure_components(const IndexedMesh& mesh, const TriangleClasses& classes, const std::vector<Index>& component,
+                        MeshCheckReport& r);
 
 /// Angle statistics of `r` (min_angle_deg, max_angle_deg, worst_triangle,
 /// angle_histogram, num_small_angle_triangles below `threshold_deg`) over the
 /// good and zero-area triangles. Double precision (corner_angle()).
-void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, double threshold_deg,
-                    MeshCheckReport& r);
+void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, double threshold_deg, MeshCheckReport& r);
 
 /// The exact self-intersection test over the good triangles: sets
 /// self_intersections_checked, num_self_intersections, num_pairs_tested and the
@@ -93,8 +92,8 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
 /// then mesh_triangles_intersect() (geometry/kernel/triangle_intersection.h) on each
 /// candidate pair that is not the same triangle twice and not settled by
 /// simple_fan_vertices() (`incidence` from build_incidence()).
-void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
-                             const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r);
+void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
+                             std::size_t max_examples, MeshCheckReport& r);
 
 /// Per vertex, 1 if the good triangles around it form a simple fan: one closed
 /// cycle of consistently oriented triangles that a coordinate projection maps

@@ -206,8 +206,8 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
         for (std::uint32_t b = a + 1; b < end; ++b) {
           const FloatBoxItem<Tri>& q = item[entry[b]];
           if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
-          const bool overlap = (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) &
-                               (q.lo[1] <= p.hi[1]);
+          const bool overlap =
+              (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]);
           const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
           test(p.tri, q.tri, overlap & first);
         }
@@ -228,8 +228,8 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
 // edge (consecutive), and the projection, injective on each triangle, carries
 // this back to R^3: no two of these triangles meet beyond their shared vertex
 // or edge. Exact (index comparisons, coordinate comparisons, orient2d).
-bool simple_fan(const std::vector<Vec3>& P, const std::vector<std::array<Index, 3>>& T, Index s,
-                const Index* fan, std::size_t k) {
+bool simple_fan(const std::vector<Vec3>& P, const std::vector<std::array<Index, 3>>& T, Index s, const Index* fan,
+                std::size_t k) {
   constexpr std::size_t kMaxFan = 32;
   if (k < 3 || k > kMaxFan) return false;
   Index a[kMaxFan], b[kMaxFan];
@@ -342,8 +342,8 @@ bool exact_boxes_overlap(const std::vector<Vec3>& P, const std::array<Index, 3>&
 
 }  // namespace
 
-void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
-                             const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
+void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
+                             std::size_t max_examples, MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nt = T.size();
@@ -384,8 +384,8 @@ void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& cla
     const bool counted = hit & (ns != 3);  // a duplicate is counted separately
     tested += counted;
     // One or two shared vertices, one of them a simple fan: settled.
-    const bool settled = (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) |
-                         (m[2] & (fan_ok[ti.v[2]] != 0));
+    const bool settled =
+        (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) | (m[2] & (fan_ok[ti.v[2]] != 0));
     if (!(counted & !settled)) return;
     const Tri& lo = ti.id < tj.id ? ti : tj;
     const Tri& hi = ti.id < tj.id ? tj : ti;

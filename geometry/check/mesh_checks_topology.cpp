@@ -19,9 +19,7 @@ namespace {
 // Union-find with path halving and union by size.
 class UnionFind {
  public:
-  explicit UnionFind(std::size_t n) : parent_(n), size_(n, 1) {
-    std::iota(parent_.begin(), parent_.end(), Index(0));
-  }
+  explicit UnionFind(std::size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), Index(0)); }
   Index find(Index x) {
     while (parent_[x] != x) {
       parent_[x] = parent_[parent_[x]];
@@ -90,9 +88,7 @@ std::vector<EdgeRecord> scan_edges(const IndexedMesh& mesh, const VertexIncidenc
   struct Use {
     Index other, triangle;
     int dir;  // +1: the triangle goes lower -> higher vertex
-    bool operator<(const Use& o) const {
-      return other != o.other ? other < o.other : triangle < o.triangle;
-    }
+    bool operator<(const Use& o) const { return other != o.other ? other < o.other : triangle < o.triangle; }
   };
   std::vector<Use> uses;
   for (std::size_t v = 0; v < nv; ++v) {

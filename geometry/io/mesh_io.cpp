@@ -96,8 +96,8 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
     for (Index v : m.triangles[i])
       if (v >= n)
         throw InputError(path, i < lines.size() ? lines[i] : 0,
-                         "face " + std::to_string(i) + ": vertex index " + std::to_string(v) +
-                             " out of range (" + std::to_string(n) + " vertices)");
+                         "face " + std::to_string(i) + ": vertex index " + std::to_string(v) + " out of range (" +
+                             std::to_string(n) + " vertices)");
 }
 
 }  // namespace mesh_io_detail
@@ -108,10 +108,10 @@ using mesh_io_detail::msms_text;
 using mesh_io_detail::obj_text;
 using mesh_io_detail::off_text;
 using mesh_io_detail::ply_bytes;
-using mesh_io_detail::read_obj;
-using mesh_io_detail::read_off;
 using mesh_io_detail::read_msms;
 using mesh_io_detail::read_msms_concatenated;
+using mesh_io_detail::read_obj;
+using mesh_io_detail::read_off;
 using mesh_io_detail::read_ply;
 using mesh_io_detail::read_stl;
 using mesh_io_detail::read_vtk;
@@ -152,13 +152,11 @@ std::string write_temporary(const std::string& path, const std::string& bytes, c
   std::string tmp;
   std::FILE* f = nullptr;
   for (int attempt = 0; attempt < 100 && f == nullptr; ++attempt) {
-    tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid())) + "." +
-          std::to_string(counter.fetch_add(1));
+    tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid())) + "." + std::to_string(counter.fetch_add(1));
     f = std::fopen(tmp.c_str(), "wbx");  // "x": fail rather than reuse an existing file
     if (f == nullptr && errno != EEXIST) break;
   }
-  if (f == nullptr)
-    throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(errno) + ")");
+  if (f == nullptr) throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(errno) + ")");
   int error = 0;  // errno of the first failing step (EIO if the step left none)
   const auto failure = [] { return errno != 0 ? errno : EIO; };
   errno = 0;

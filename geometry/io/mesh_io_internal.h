@@ -22,8 +22,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/io/mesh_io.h"
+#include "geometry/mesh/indexed_mesh.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 

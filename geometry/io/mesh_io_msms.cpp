@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/text_split.h"
 #include "geometry/io/mesh_io_internal.h"
 #include "geometry/mesh/mesh_measures.h"
-#include "core/text_split.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -36,9 +36,12 @@ namespace {
 int msms_type(const IndexedMesh& m, std::size_t v) {
   if (m.patch.empty()) return 0;
   switch (m.patch[v]) {
-    case 0: return 3;
-    case 3: return 2;
-    default: return 1;
+    case 0:
+      return 3;
+    case 3:
+      return 2;
+    default:
+      return 1;
   }
 }
 
@@ -46,10 +49,13 @@ int msms_type(const IndexedMesh& m, std::size_t v) {
 /// returns the count on the third line; the records follow.
 std::size_t msms_header(const std::string& path, const std::vector<std::string_view>& lines, std::size_t first,
                         const char* what) {
-  if (lines.size() < first + 3) throw InputError(path, static_cast<int>(lines.size()), std::string("unexpected end of the MSMS ") + what + " header");
+  if (lines.size() < first + 3)
+    throw InputError(path, static_cast<int>(lines.size()),
+                     std::string("unexpected end of the MSMS ") + what + " header");
   for (std::size_t k = first; k < first + 2; ++k)
     if (!trim(lines[k]).starts_with("#"))
-      throw InputError(path, static_cast<int>(k + 1), std::string("not an MSMS ") + what + " file (header lines begin with '#')");
+      throw InputError(path, static_cast<int>(k + 1),
+                       std::string("not an MSMS ") + what + " file (header lines begin with '#')");
   const std::vector<std::string_view> counts = split_blanks(lines[first + 2]);
   const int line = static_cast<int>(first + 3);
   if (counts.empty()) throw InputError(path, line, std::string("MSMS ") + what + " header without a count");
@@ -105,7 +111,8 @@ IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, con
   for (std::size_t i = 0; i < nv; ++i) {
     const int line = static_cast<int>(i + 4);
     const std::vector<std::string_view> f = split_blanks(vl[i + 3]);
-    if (f.size() < 6) throw InputError(vert_path, line, "vertex " + std::to_string(i + 1) + " needs at least 6 numbers");
+    if (f.size() < 6)
+      throw InputError(vert_path, line, "vertex " + std::to_string(i + 1) + " needs at least 6 numbers");
     double x[6];
     for (int k = 0; k < 6; ++k) x[k] = number_or_throw(vert_path, line, f[k], k < 3 ? "vertex coordinate" : "normal");
     mesh.positions.emplace_back(x[0], x[1], x[2]);
@@ -130,8 +137,9 @@ IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, con
     for (int k = 0; k < 3; ++k) {
       const std::int64_t v = int_or_throw(face_path, line, f[k], "vertex index");
       if (v < 1 || static_cast<std::uint64_t>(v) > nv)
-        throw InputError(face_path, line, "face " + std::to_string(i + 1) + ": vertex index " + std::to_string(v) +
-                                              " out of range (1.." + std::to_string(nv) + ")");
+        throw InputError(face_path, line,
+                         "face " + std::to_string(i + 1) + ": vertex index " + std::to_string(v) +
+                             " out of range (1.." + std::to_string(nv) + ")");
       t[k] = static_cast<Index>(v - 1);
     }
     mesh.triangles.push_back(t);
@@ -144,7 +152,8 @@ IndexedMesh read_msms_concatenated(const std::string& name, const std::string& d
   const std::vector<std::string_view> lines = split_lines(data);
   const std::size_t nv = msms_header(name, lines, 0, "vertex");
   const std::size_t face_line = 3 + nv;
-  if (face_line >= lines.size()) throw InputError(name, static_cast<int>(lines.size()), "no .face part after the vertices");
+  if (face_line >= lines.size())
+    throw InputError(name, static_cast<int>(lines.size()), "no .face part after the vertices");
   const std::size_t offset = static_cast<std::size_t>(lines[face_line].data() - data.data());
   return read_msms(name, data.substr(0, offset), name, data.substr(offset));
 }

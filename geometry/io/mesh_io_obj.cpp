@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "geometry/io/mesh_io_internal.h"
 #include "core/text_split.h"
+#include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -55,8 +55,9 @@ IndexedMesh read_obj(const std::string& path, const std::string& data) {
     const std::int64_t n = static_cast<std::int64_t>(count);
     const std::int64_t r = i > 0 ? i - 1 : n + i;
     if (i == 0 || r < 0 || r >= n)
-      throw InputError(path, line, std::string(what) + " " + std::string(token) + " out of range (" +
-                                       std::to_string(n) + " defined so far)");
+      throw InputError(
+          path, line,
+          std::string(what) + " " + std::string(token) + " out of range (" + std::to_string(n) + " defined so far)");
     return r;
   };
   for (std::size_t k = 0; k < lines.size(); ++k) {
@@ -70,8 +71,9 @@ IndexedMesh read_obj(const std::string& path, const std::string& data) {
       (f[0] == "v" ? mesh.positions : vn).push_back(p);
     } else if (f[0] == "f") {
       if (f.size() != 4)
-        throw InputError(path, line, "face " + std::to_string(mesh.triangles.size()) + " has " +
-                                         std::to_string(f.size() - 1) + " vertices; only triangles are accepted");
+        throw InputError(path, line,
+                         "face " + std::to_string(mesh.triangles.size()) + " has " + std::to_string(f.size() - 1) +
+                             " vertices; only triangles are accepted");
       std::array<Index, 3> t{};
       std::array<std::int64_t, 3> nrm{-1, -1, -1};
       for (std::size_t c = 0; c < 3; ++c) {
@@ -110,8 +112,7 @@ IndexedMesh read_obj(const std::string& path, const std::string& data) {
         normals[v] = value;
         set[v] = true;
       }
-    if (consistent && std::all_of(set.begin(), set.end(), [](bool b) { return b; }))
-      mesh.normals = std::move(normals);
+    if (consistent && std::all_of(set.begin(), set.end(), [](bool b) { return b; })) mesh.normals = std::move(normals);
   }
   check_indices(path, mesh, face_lines);
   return mesh;

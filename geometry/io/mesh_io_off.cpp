@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "geometry/io/mesh_io_internal.h"
 #include "core/text_split.h"
+#include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -50,11 +50,17 @@ IndexedMesh read_off(const std::string& path, const std::string& data) {
   std::string_view key = head.fields[0];
   bool normals = false, colours = false;
   if (key.starts_with("ST")) key.remove_prefix(2);
-  if (key.starts_with("C")) { colours = true; key.remove_prefix(1); }
-  if (key.starts_with("N")) { normals = true; key.remove_prefix(1); }
+  if (key.starts_with("C")) {
+    colours = true;
+    key.remove_prefix(1);
+  }
+  if (key.starts_with("N")) {
+    normals = true;
+    key.remove_prefix(1);
+  }
   if (key != "OFF")
-    throw InputError(path, head.line, "not an OFF file (header '" + std::string(head.fields[0]) +
-                                          "'; expected OFF, NOFF, COFF, STOFF)");
+    throw InputError(path, head.line,
+                     "not an OFF file (header '" + std::string(head.fields[0]) + "'; expected OFF, NOFF, COFF, STOFF)");
   (void)colours;  // colours follow the coordinates and are ignored
   std::size_t r = 1;
   std::vector<std::string_view> counts(head.fields.begin() + 1, head.fields.end());
@@ -72,9 +78,9 @@ IndexedMesh read_off(const std::string& path, const std::string& data) {
   if (nv < 0 || nf < 0) throw InputError(path, counts_line, "negative OFF count");
   const std::size_t left = records.size() - r;  // nv + nf could overflow: compare one at a time
   if (static_cast<std::uint64_t>(nv) > left || static_cast<std::uint64_t>(nf) > left - static_cast<std::size_t>(nv))
-    throw InputError(path, records.back().line,
-                     "unexpected end of file: expected " + std::to_string(nv) + " vertices and " +
-                         std::to_string(nf) + " faces");
+    throw InputError(
+        path, records.back().line,
+        "unexpected end of file: expected " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
 
   IndexedMesh mesh;
   mesh.positions.reserve(static_cast<std::size_t>(nv));
@@ -94,15 +100,18 @@ IndexedMesh read_off(const std::string& path, const std::string& data) {
     const Record& rec = records[r];
     const std::int64_t n = int_or_throw(path, rec.line, rec.fields[0], "face vertex count");
     if (n != 3)
-      throw InputError(path, rec.line, "face " + std::to_string(i) + " has " + std::to_string(n) +
-                                           " vertices; only triangles are accepted");
-    if (rec.fields.size() < 4) throw InputError(path, rec.line, "face " + std::to_string(i) + " lists fewer than 3 indices");
+      throw InputError(
+          path, rec.line,
+          "face " + std::to_string(i) + " has " + std::to_string(n) + " vertices; only triangles are accepted");
+    if (rec.fields.size() < 4)
+      throw InputError(path, rec.line, "face " + std::to_string(i) + " lists fewer than 3 indices");
     std::array<Index, 3> t{};
     for (std::size_t k = 0; k < 3; ++k) {
       const std::int64_t v = int_or_throw(path, rec.line, rec.fields[k + 1], "vertex index");
       if (v < 0 || v >= nv)
-        throw InputError(path, rec.line, "face " + std::to_string(i) + ": vertex index " + std::to_string(v) +
-                                             " out of range (" + std::to_string(nv) + " vertices)");
+        throw InputError(path, rec.line,
+                         "face " + std::to_string(i) + ": vertex index " + std::to_string(v) + " out of range (" +
+                             std::to_string(nv) + " vertices)");
       t[k] = static_cast<Index>(v);
     }
     mesh.triangles.push_back(t);

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "geometry/io/mesh_io_internal.h"
 #include "core/text_split.h"
+#include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -59,13 +59,17 @@ std::optional<PlyType> ply_type(std::string_view s) {
 std::size_t ply_type_size(PlyType t) {
   switch (t) {
     case PlyType::Int8:
-    case PlyType::Uint8: return 1;
+    case PlyType::Uint8:
+      return 1;
     case PlyType::Int16:
-    case PlyType::Uint16: return 2;
+    case PlyType::Uint16:
+      return 2;
     case PlyType::Int32:
     case PlyType::Uint32:
-    case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
+    case PlyType::Float32:
+      return 4;
+    case PlyType::Float64:
+      return 8;
   }
   return 1;
 }
@@ -76,7 +80,7 @@ bool is_integer(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float
 /// One `property` line of the header: a scalar or a list.
 struct PlyProperty {
   std::string name;
-  PlyType type = PlyType::Float32;   // the value type (list items for a list)
+  PlyType type = PlyType::Float32;  // the value type (list items for a list)
   bool is_list = false;
   PlyType count_type = PlyType::Uint8;  // lists only
 };
@@ -134,14 +138,22 @@ class PlyBinaryReader {
       : path_(path), body_(body), swap_(big_endian != (std::endian::native == std::endian::big)) {}
   double next(PlyType type, const std::string& context) {
     switch (type) {
-      case PlyType::Int8: return get<std::int8_t>(context);
-      case PlyType::Uint8: return get<std::uint8_t>(context);
-      case PlyType::Int16: return get<std::int16_t>(context);
-      case PlyType::Uint16: return get<std::uint16_t>(context);
-      case PlyType::Int32: return get<std::int32_t>(context);
-      case PlyType::Uint32: return get<std::uint32_t>(context);
-      case PlyType::Float32: return get<float>(context);
-      case PlyType::Float64: return get<double>(context);
+      case PlyType::Int8:
+        return get<std::int8_t>(context);
+      case PlyType::Uint8:
+        return get<std::uint8_t>(context);
+      case PlyType::Int16:
+        return get<std::int16_t>(context);
+      case PlyType::Uint16:
+        return get<std::uint16_t>(context);
+      case PlyType::Int32:
+        return get<std::int32_t>(context);
+      case PlyType::Uint32:
+        return get<std::uint32_t>(context);
+      case PlyType::Float32:
+        return get<float>(context);
+      case PlyType::Float64:
+        return get<double>(context);
     }
     return 0.0;
   }
@@ -150,8 +162,7 @@ class PlyBinaryReader {
  private:
   template <class T>
   double get(const std::string& context) {
-    if (body_.size() - pos_ < sizeof(T))
-      throw InputError(path_, 0, "unexpected end of binary data in " + context);
+    if (body_.size() - pos_ < sizeof(T)) throw InputError(path_, 0, "unexpected end of binary data in " + context);
     std::array<char, sizeof(T)> b;
     std::memcpy(b.data(), body_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
@@ -175,8 +186,8 @@ class PlyBinaryReader {
 /// or normal, an atom id out of int32 range, a face that is not a triangle, a
 /// negative index and truncated data.
 template <class Reader>
-void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyElement>& elements,
-                   IndexedMesh& mesh, std::vector<int>& face_lines) {
+void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyElement>& elements, IndexedMesh& mesh,
+                   std::vector<int>& face_lines) {
   bool have_vertices = false;
   for (const PlyElement& el : elements) {
     const auto find = [&](std::string_view name) -> int {
@@ -191,8 +202,7 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
       if (have_vertices) throw InputError(path, el.header_line, "second PLY vertex element");
       have_vertices = true;
       const int x = find("x"), y = find("y"), z = find("z");
-      if (x < 0 || y < 0 || z < 0)
-        throw InputError(path, el.header_line, "PLY vertex element lacks scalar x, y or z");
+      if (x < 0 || y < 0 || z < 0) throw InputError(path, el.header_line, "PLY vertex element lacks scalar x, y or z");
       role[static_cast<std::size_t>(x)] = 0;
       role[static_cast<std::size_t>(y)] = 1;
       role[static_cast<std::size_t>(z)] = 2;
@@ -221,8 +231,7 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
           list = static_cast<int>(k);
           break;
         }
-      if (list < 0)
-        throw InputError(path, el.header_line, "PLY face element lacks a list property vertex_indices");
+      if (list < 0) throw InputError(path, el.header_line, "PLY face element lacks a list property vertex_indices");
       if (!is_integer(el.properties[static_cast<std::size_t>(list)].type))
         throw InputError(path, el.header_line, "PLY vertex_indices must have an integer type");
       role[static_cast<std::size_t>(list)] = 7;
@@ -243,14 +252,23 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
           if (role[k] >= 0 && role[k] <= 5 && !std::isfinite(v))
             throw InputError(path, in.line(), "non-finite " + p.name + " in " + context);
           switch (role[k]) {
-            case 0: case 1: case 2: mesh.positions[i][role[k]] = v; break;
-            case 3: case 4: case 5: mesh.normals[i][role[k] - 3] = v; break;
+            case 0:
+            case 1:
+            case 2:
+              mesh.positions[i][role[k]] = v;
+              break;
+            case 3:
+            case 4:
+            case 5:
+              mesh.normals[i][role[k] - 3] = v;
+              break;
             case 6:
               if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
                 throw InputError(path, in.line(), "atom id out of range in " + context);
               mesh.atom[i] = static_cast<std::int32_t>(v);
               break;
-            default: break;
+            default:
+              break;
           }
           continue;
         }
@@ -258,8 +276,9 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
         if (count < 0) throw InputError(path, in.line(), "negative list length in " + context);
         const auto n = static_cast<std::size_t>(count);
         if (role[k] == 7 && n != 3)
-          throw InputError(path, in.line(), "face " + std::to_string(i) + " has " + std::to_string(n) +
-                                                " vertices; only triangles are accepted");
+          throw InputError(
+              path, in.line(),
+              "face " + std::to_string(i) + " has " + std::to_string(n) + " vertices; only triangles are accepted");
         for (std::size_t j = 0; j < n; ++j) {
           const double v = in.next(p.type, context);
           if (role[k] == 7) {
@@ -340,10 +359,14 @@ IndexedMesh read_ply(const std::string& path, const std::string& data) {
     if (f.empty() || f[0] == "comment" || f[0] == "obj_info") continue;
     if (f[0] == "format") {
       if (f.size() != 3 || f[2] != "1.0") throw InputError(path, line, "unsupported PLY format line");
-      if (f[1] == "ascii") encoding = Encoding::Ascii;
-      else if (f[1] == "binary_little_endian") encoding = Encoding::BinaryLittle;
-      else if (f[1] == "binary_big_endian") encoding = Encoding::BinaryBig;
-      else throw InputError(path, line, "unknown PLY format '" + std::string(f[1]) + "'");
+      if (f[1] == "ascii")
+        encoding = Encoding::Ascii;
+      else if (f[1] == "binary_little_endian")
+        encoding = Encoding::BinaryLittle;
+      else if (f[1] == "binary_big_endian")
+        encoding = Encoding::BinaryBig;
+      else
+        throw InputError(path, line, "unknown PLY format '" + std::string(f[1]) + "'");
     } else if (f[0] == "element") {
       if (f.size() != 3) throw InputError(path, line, "malformed PLY element line");
       const std::int64_t count = int_or_throw(path, line, f[2], "element count");
@@ -389,7 +412,8 @@ IndexedMesh read_ply(const std::string& path, const std::string& data) {
       if (el.count > budget / min_record)
         throw InputError(path, el.header_line,
                          "PLY element '" + el.name + "' claims " + std::to_string(el.count) +
-                             " records, more than the " + std::to_string(body_size) + " bytes after the header can hold");
+                             " records, more than the " + std::to_string(body_size) +
+                             " bytes after the header can hold");
       budget -= el.count * min_record;
     }
   }

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "geometry/io/mesh_io_internal.h"
 #include "core/text_split.h"
+#include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -83,8 +83,7 @@ IndexedMesh read_stl_binary(const std::string& path, const std::string& data) {
     for (int k = 0; k < 3; ++k) {
       const char* c = rec + 12 + 12 * k;
       const Vec3 p(get_f32(c), get_f32(c + 4), get_f32(c + 8));
-      if (!p.allFinite())
-        throw InputError(path, 0, "triangle " + std::to_string(i) + ": non-finite corner coordinate");
+      if (!p.allFinite()) throw InputError(path, 0, "triangle " + std::to_string(i) + ": non-finite corner coordinate");
       t[k] = merge.add(p);
     }
     mesh.triangles.push_back(t);
@@ -123,12 +122,15 @@ IndexedMesh read_stl_ascii(const std::string& path, const std::string& data) {
       for (int c = 0; c < 3; ++c) p[c] = number_or_throw(path, line, f[c + 1], "vertex coordinate");
       t[corners++] = merge.add(p);
     } else if (f[0] == "endfacet") {
-      if (corners != 3) throw InputError(path, line, "a facet with " + std::to_string(std::max(corners, 0)) +
-                                                          " vertices; only triangles are accepted");
+      if (corners != 3)
+        throw InputError(
+            path, line,
+            "a facet with " + std::to_string(std::max(corners, 0)) + " vertices; only triangles are accepted");
       mesh.triangles.push_back(t);
       corners = -1;
     } else if (f[0] == "endsolid") {
-      if (corners != -1) throw InputError(path, line, "'endsolid' inside the facet of line " + std::to_string(facet_line));
+      if (corners != -1)
+        throw InputError(path, line, "'endsolid' inside the facet of line " + std::to_string(facet_line));
       in_solid = false;
     } else {
       throw InputError(path, line, "unknown ascii STL keyword '" + std::string(f[0]) + "'");
@@ -168,9 +170,10 @@ IndexedMesh read_stl(const std::string& path, const std::string& data) {
   }
   if (std::string_view(data).substr(0, 5) == "solid") return read_stl_ascii(path, data);
   if (data.size() < 84) throw InputError(path, 0, "not an STL file (shorter than a binary STL header)");
-  throw InputError(path, 0, "binary STL of " + std::to_string(data.size()) + " bytes, but its header announces " +
-                                std::to_string(get_u32(data.data() + 80)) + " triangles (" +
-                                std::to_string(84 + 50 * std::uint64_t(get_u32(data.data() + 80))) + " bytes)");
+  throw InputError(path, 0,
+                   "binary STL of " + std::to_string(data.size()) + " bytes, but its header announces " +
+                       std::to_string(get_u32(data.data() + 80)) + " triangles (" +
+                       std::to_string(84 + 50 * std::uint64_t(get_u32(data.data() + 80))) + " bytes)");
 }
 
 }  // namespace skinmesh::geometry::mesh_io_detail

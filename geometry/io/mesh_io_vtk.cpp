@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "geometry/kernel/angles.h"
-#include "geometry/io/mesh_io_internal.h"
 #include "core/text_split.h"
+#include "geometry/io/mesh_io_internal.h"
+#include "geometry/kernel/angles.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
@@ -132,7 +132,8 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
   if (lines.size() < 3) throw InputError(path, static_cast<int>(lines.size()), "unexpected end of the VTK header");
   const std::string format = upper(trim(lines[2]));
   if (format == "BINARY") throw InputError(path, 3, "binary VTK is not supported (write it as ASCII)");
-  if (format != "ASCII") throw InputError(path, 3, "expected ASCII or BINARY, found '" + std::string(trim(lines[2])) + "'");
+  if (format != "ASCII")
+    throw InputError(path, 3, "expected ASCII or BINARY, found '" + std::string(trim(lines[2])) + "'");
   Tokens tok(path, lines, 3);
   if (upper(tok.next("DATASET")) != "DATASET") throw InputError(path, tok.last_line(), "expected DATASET");
   const std::string kind = upper(tok.next("the dataset type"));
@@ -164,15 +165,17 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
         const int cl = tok.line();
         const std::int64_t size = tok.integer("cell size");
         if (key == "POLYGONS" && size != 3)
-          throw InputError(path, cl, "polygon " + std::to_string(i) + " has " + std::to_string(size) +
-                                         " vertices; only triangles are accepted");
+          throw InputError(path, cl,
+                           "polygon " + std::to_string(i) + " has " + std::to_string(size) +
+                               " vertices; only triangles are accepted");
         if (size < 0 || static_cast<std::uint64_t>(size) > 1u << 20) throw InputError(path, cl, "bad cell size");
         std::array<Index, 3> t{};
         for (std::int64_t k = 0; k < size; ++k) {
           const std::int64_t v = tok.integer("vertex index");
           if (!have_points || v < 0 || static_cast<std::uint64_t>(v) >= n_points)
-            throw InputError(path, cl, "cell " + std::to_string(i) + ": vertex index " + std::to_string(v) +
-                                           " out of range (" + std::to_string(n_points) + " points)");
+            throw InputError(path, cl,
+                             "cell " + std::to_string(i) + ": vertex index " + std::to_string(v) + " out of range (" +
+                                 std::to_string(n_points) + " points)");
           if (key == "POLYGONS") t[k] = static_cast<Index>(v);
         }
         if (key == "POLYGONS") mesh.triangles.push_back(t);
@@ -181,7 +184,8 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
       data_kind = key == "POINT_DATA" ? Data::Point : Data::Cell;
       data_count = tok.count("data count");
       if (data_kind == Data::Point && data_count != n_points)
-        throw InputError(path, line, "POINT_DATA " + std::to_string(data_count) + " for " + std::to_string(n_points) + " points");
+        throw InputError(path, line,
+                         "POINT_DATA " + std::to_string(data_count) + " for " + std::to_string(n_points) + " points");
     } else if (key == "NORMALS" || key == "SCALARS") {
       if (data_kind == Data::None) throw InputError(path, line, key + " outside POINT_DATA or CELL_DATA");
       const std::string name(tok.next("the attribute name"));
@@ -190,13 +194,15 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
       if (key == "SCALARS") {
         components = 1;
         if (upper(tok.peek()) != "LOOKUP_TABLE") components = tok.integer("number of components");
-        if (components < 1 || components > 4) throw InputError(path, line, "SCALARS with " + std::to_string(components) + " components");
+        if (components < 1 || components > 4)
+          throw InputError(path, line, "SCALARS with " + std::to_string(components) + " components");
         if (upper(tok.next("LOOKUP_TABLE")) != "LOOKUP_TABLE")
           throw InputError(path, tok.last_line(), "expected LOOKUP_TABLE");
         tok.next("the lookup table name");
       }
       const bool point = data_kind == Data::Point;
-      const bool normals = point && key == "NORMALS", atom = point && key == "SCALARS" && name == "atom" && components == 1,
+      const bool normals = point && key == "NORMALS",
+                 atom = point && key == "SCALARS" && name == "atom" && components == 1,
                  rho = point && key == "SCALARS" && name == "rho" && components == 1;
       if (normals) mesh.normals.resize(data_count);
       if (atom) mesh.atom.resize(data_count);
@@ -208,8 +214,7 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
           if (normals) mesh.normals[i][k] = v;
           if (rho) mesh.rho[i] = v;
           if (atom) {
-            if (v != std::floor(v) || std::fabs(v) > 2147483647.0)
-              throw InputError(path, vl, "non-integer atom index");
+            if (v != std::floor(v) || std::fabs(v) > 2147483647.0) throw InputError(path, vl, "non-integer atom index");
             mesh.atom[i] = static_cast<std::int32_t>(v);
           }
         }
@@ -224,8 +229,9 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
   // Attributes given before POINTS (sized by their own count) must match it.
   const auto sized = [&](std::size_t n, const char* what) {
     if (n != 0 && n != n_points)
-      throw InputError(path, 0, std::string(what) + " for " + std::to_string(n) + " points, but POINTS has " +
-                                    std::to_string(n_points));
+      throw InputError(
+          path, 0,
+          std::string(what) + " for " + std::to_string(n) + " points, but POINTS has " + std::to_string(n_points));
   };
   sized(mesh.normals.size(), "NORMALS");
   sized(mesh.atom.size(), "SCALARS atom");

@@ -29,8 +29,7 @@ namespace {
 // Merge of e and (sign * f) by increasing magnitude followed by a single two-sum
 // pass. The first addition may use fast_two_sum because the second merged
 // component is at least as large as the first.
-int merge_sum(int elen, const double* e, int flen, const double* f, double fsign,
-              double* h) {
+int merge_sum(int elen, const double* e, int flen, const double* f, double fsign, double* h) {
   if (elen == 0 && flen == 0) return 0;
   int i = 0, j = 0;
   auto next = [&]() -> double {
@@ -86,8 +85,7 @@ int scale_expansion(int elen, const double* e, double b, double* h) {
   return k;
 }
 
-int expansion_product(int elen, const double* e, int flen, const double* f, double* h,
-                      double* scratch) {
+int expansion_product(int elen, const double* e, int flen, const double* f, double* h, double* scratch) {
   if (elen == 0 || flen == 0) return 0;
   // Layout of scratch: [term: 2*elen][acc: 2*elen*flen]. The running sum
   // ping-pongs between acc and h so that it ends in h.

@@ -86,8 +86,7 @@ inline void two_product(double a, double b, double& x, double& y) {
 }
 
 /// Same as two_product() with b already split into (bhi, blo).
-inline void two_product_presplit(double a, double b, double bhi, double blo, double& x,
-                                 double& y) {
+inline void two_product_presplit(double a, double b, double bhi, double blo, double& x, double& y) {
   x = a * b;
   double ahi, alo;
   split(a, ahi, alo);
@@ -135,8 +134,7 @@ int scale_expansion(int elen, const double* e, double b, double* h);
 /// h = e * f. Needs `scratch` of capacity 4 * elen * flen (two work buffers of
 /// 2 * elen * flen) plus h of capacity 2 * elen * flen. Cost O(elen^2 * flen):
 /// use it on compressed (short) expansions. No aliasing among e, f, h, scratch.
-int expansion_product(int elen, const double* e, int flen, const double* f, double* h,
-                      double* scratch);
+int expansion_product(int elen, const double* e, int flen, const double* f, double* h, double* scratch);
 
 /// h = e with the fewest components: a nonadjacent expansion whose largest
 /// component approximates the value to within one ulp (Shewchuk's COMPRESS).

@@ -62,9 +62,7 @@ struct FNum {
   }
   friend FNum operator*(const FNum& a, const FNum& b) {
     const double v = a.v * b.v;
-    const double e = (((std::abs(a.v) * b.e + std::abs(b.v) * a.e) + a.e * b.e) +
-                      2.0 * kU * std::abs(v)) +
-                     kTiny;
+    const double e = (((std::abs(a.v) * b.e + std::abs(b.v) * a.e) + a.e * b.e) + 2.0 * kU * std::abs(v)) + kTiny;
     return {v, e * kInflate};
   }
   // The certified sign, or Zero if the filter cannot decide.
@@ -122,8 +120,7 @@ struct ENum {
     const std::size_t cap = 2 * e.c.size() * f.c.size();
     std::vector<double> scratch(2 * cap);
     r.c.resize(cap);
-    r.c.resize(expansion_product(e.n(), e.c.data(), f.n(), f.c.data(), r.c.data(),
-                                 scratch.data()));
+    r.c.resize(expansion_product(e.n(), e.c.data(), f.n(), f.c.data(), r.c.data(), scratch.data()));
     r.compress();
     return r;
   }

@@ -106,8 +106,7 @@ Sign orient3d_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
   const double p2 = vz * wx, q2 = vx * wz;
   const double p3 = vx * wy, q3 = vy * wx;
   const double det = (ux * (p1 - q1) + uy * (p2 - q2)) + uz * (p3 - q3);
-  const double perm = (std::abs(ux) * (std::abs(p1) + std::abs(q1)) +
-                       std::abs(uy) * (std::abs(p2) + std::abs(q2))) +
+  const double perm = (std::abs(ux) * (std::abs(p1) + std::abs(q1)) + std::abs(uy) * (std::abs(p2) + std::abs(q2))) +
                       std::abs(uz) * (std::abs(p3) + std::abs(q3));
   const double bound = kOrient3dBound * perm;
   if (det > bound) return Sign::Positive;
@@ -117,8 +116,7 @@ Sign orient3d_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 
 // Power test filter: returns Sign of D (Positive = conflict for positively
 // oriented abcd), Zero if uncertain. `value` receives fl(D).
-Sign power_test_filter(const WeightedPoint& a, const WeightedPoint& b,
-                       const WeightedPoint& c, const WeightedPoint& d,
+Sign power_test_filter(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
                        const WeightedPoint& e, double* value = nullptr) {
   const Vec3& ez = e.z;
   const double ax = a.z.x() - ez.x(), ay = a.z.y() - ez.y(), az = a.z.z() - ez.z();
@@ -154,8 +152,7 @@ Sign power_test_filter(const WeightedPoint& a, const WeightedPoint& b,
   const double acd = (az * mcd - cz * mad) + dz * mac;
   const double abd = (az * mbd - bz * mad) + dz * mab;
   const double abc = (az * mbc - bz * mac) + cz * mab;
-  const double aaz = std::abs(az), abz = std::abs(bz), acz = std::abs(cz),
-               adz = std::abs(dz);
+  const double aaz = std::abs(az), abz = std::abs(bz), acz = std::abs(cz), adz = std::abs(dz);
   const double pbcd = (abz * pcd + acz * pbd) + adz * pbc;
   const double pacd = (aaz * pcd + acz * pad) + adz * pac;
   const double pabd = (aaz * pbd + abz * pad) + adz * pab;
@@ -221,8 +218,8 @@ class ExactMinors {
     const int n1 = scale(triple_id(i0, i2, i3), p_[i1]->z(), s1);  // qz N(pst)
     const int n2 = scale(triple_id(i0, i1, i3), p_[i2]->z(), s2);  // sz N(pqt)
     const int n3 = scale(triple_id(i0, i1, i2), p_[i3]->z(), s3);  // tz N(pqs)
-    const int nu = expansion_diff(n1, s1, n0, s0, u);               // qz N(pst) - pz N(qst)
-    const int nv = expansion_diff(n3, s3, n2, s2, v);               // tz N(pqs) - sz N(pqt)
+    const int nu = expansion_diff(n1, s1, n0, s0, u);              // qz N(pst) - pz N(qst)
+    const int nv = expansion_diff(n3, s3, n2, s2, v);              // tz N(pqs) - sz N(pqt)
     return expansion_sum(nu, u, nv, v, out);
   }
 
@@ -234,17 +231,13 @@ class ExactMinors {
 
  private:
   // Combinatorial number system: a bijection from {i < j < k} within 0..4 to 0..9.
-  static int triple_id(int i, int j, int k) {
-    return k * (k - 1) * (k - 2) / 6 + j * (j - 1) / 2 + i;
-  }
-  int scale(int id, double z, double* h) const {
-    return scale_expansion(nlen_[id], nm_[id], z, h);
-  }
+  static int triple_id(int i, int j, int k) { return k * (k - 1) * (k - 2) / 6 + j * (j - 1) / 2 + i; }
+  int scale(int id, double z, double* h) const { return scale_expansion(nlen_[id], nm_[id], z, h); }
 
   const Vec3* const* p_;
-  double m_[5][5][4];    // M_ij, i < j
+  double m_[5][5][4];  // M_ij, i < j
   int mlen_[5][5] = {};
-  double nm_[10][12];    // N(i,j,k) by triple_id
+  double nm_[10][12];  // N(i,j,k) by triple_id
   int nlen_[10] = {};
 };
 
@@ -253,8 +246,7 @@ class ExactMinors {
 // allocated once per thread, not on the stack.
 struct PowerScratch {
   std::vector<double> product, work, acc0, acc1;
-  PowerScratch()
-      : product(2 * 7 * 96), work(4 * 7 * 96), acc0(5 * 2 * 7 * 96), acc1(5 * 2 * 7 * 96) {}
+  PowerScratch() : product(2 * 7 * 96), work(4 * 7 * 96), acc0(5 * 2 * 7 * 96), acc1(5 * 2 * 7 * 96) {}
 };
 
 // Exact lift h = x^2 + y^2 + z^2 - w (<= 7 components), compressed.
@@ -308,8 +300,8 @@ int exact_lift(const WeightedPoint& p, double* h) {
 // = -orient3d(a, b, c, d) < 0, i.e. Negative: raising w_a lowers the
 // hyperplane near e, so e leaves the conflict. Both as expected.
 struct ExactPower {
-  Sign d_sign;             // sign of D (exact)
-  std::array<Sign, 5> o;   // signs of O_r (exact)
+  Sign d_sign;            // sign of D (exact)
+  std::array<Sign, 5> o;  // signs of O_r (exact)
 };
 
 ExactPower exact_power(const WeightedPoint* const* pts) {
@@ -331,11 +323,8 @@ ExactPower exact_power(const WeightedPoint* const* pts) {
     double h[7];
     const int hl = exact_lift(*pts[r], h);
     // Term t_r = (-1)^(r+1) h_r O_r (so that D = sum_r t_r).
-    const int pl = (hl <= ol)
-                       ? expansion_product(ol, o, hl, h, scratch.product.data(),
-                                           scratch.work.data())
-                       : expansion_product(hl, h, ol, o, scratch.product.data(),
-                                           scratch.work.data());
+    const int pl = (hl <= ol) ? expansion_product(ol, o, hl, h, scratch.product.data(), scratch.work.data())
+                              : expansion_product(hl, h, ol, o, scratch.product.data(), scratch.work.data());
     if (r % 2 == 1) {
       acc_len = expansion_sum(acc_len, acc, pl, scratch.product.data(), next);
     } else {
@@ -395,15 +384,14 @@ double orient3d_fast(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 
 // Power Test Definitions ------------------------------------------------------
 
-Sign power_test_exact(const WeightedPoint& a, const WeightedPoint& b,
-                      const WeightedPoint& c, const WeightedPoint& d,
+Sign power_test_exact(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
                       const WeightedPoint& e) {
   const WeightedPoint* p[5] = {&a, &b, &c, &d, &e};
   return exact_power(p).d_sign;
 }
 
-Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c,
-                const WeightedPoint& d, const WeightedPoint& e) {
+Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
+                const WeightedPoint& e) {
   ++tl_stats.power_test.calls;
   const Sign s = power_test_filter(a, b, c, d, e);
   if (s != Sign::Zero) return s;
@@ -411,18 +399,15 @@ Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPo
   return power_test_exact(a, b, c, d, e);
 }
 
-double power_test_fast(const WeightedPoint& a, const WeightedPoint& b,
-                       const WeightedPoint& c, const WeightedPoint& d,
+double power_test_fast(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
                        const WeightedPoint& e) {
   double value = 0.0;
   power_test_filter(a, b, c, d, e, &value);
   return value;
 }
 
-Sign power_test_sos(const WeightedPoint& a, const WeightedPoint& b,
-                    const WeightedPoint& c, const WeightedPoint& d,
-                    const WeightedPoint& e, Index ia, Index ib, Index ic, Index id,
-                    Index ie) {
+Sign power_test_sos(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
+                    const WeightedPoint& e, Index ia, Index ib, Index ic, Index id, Index ie) {
   ++tl_stats.power_test.calls;
   const Sign s = power_test_filter(a, b, c, d, e);
   if (s != Sign::Zero) return s;
@@ -434,8 +419,8 @@ Sign power_test_sos(const WeightedPoint& a, const WeightedPoint& b,
   // SoS cascade (derivation above): rows by decreasing index; the first row r
   // with O_r != 0 decides, with sign (-1)^r.
   ++tl_stats.power_test.sos;
-  SKINMESH_DEBUG_ASSERT(ia != ib && ia != ic && ia != id && ia != ie && ib != ic &&
-                        ib != id && ib != ie && ic != id && ic != ie && id != ie);
+  SKINMESH_DEBUG_ASSERT(ia != ib && ia != ic && ia != id && ia != ie && ib != ic && ib != id && ib != ie && ic != id &&
+                        ic != ie && id != ie);
   std::array<int, 5> rows = {0, 1, 2, 3, 4};
   const Index idx[5] = {ia, ib, ic, id, ie};
   std::sort(rows.begin(), rows.end(), [&](int r, int q) { return idx[r] > idx[q]; });

@@ -100,18 +100,16 @@ double orient3d_fast(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 /// Exact. The determinant: D = -det[[x_i, y_i, z_i, |z_i|² - w_i, 1]] (rows i =
 /// a, b, c, d, e) = (w_T - pi_e(z_T)) * orient3d(a, b, c, d); see predicates.cpp.
 /// papers/skin/skin_math.md §2.1 (tetrahedron test). Throws nothing.
-Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c,
-                const WeightedPoint& d, const WeightedPoint& e);
+Sign power_test(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
+                const WeightedPoint& e);
 
 /// power_test() without the filter (exact expansion evaluation). For tests.
-Sign power_test_exact(const WeightedPoint& a, const WeightedPoint& b,
-                      const WeightedPoint& c, const WeightedPoint& d,
+Sign power_test_exact(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
                       const WeightedPoint& e);
 
 /// Plain double evaluation of the power-test determinant D (see power_test()),
 /// translated to e: NOT robust. For benchmarks.
-double power_test_fast(const WeightedPoint& a, const WeightedPoint& b,
-                       const WeightedPoint& c, const WeightedPoint& d,
+double power_test_fast(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
                        const WeightedPoint& e);
 
 /// power_test() with Simulation of Simplicity on the weights: the point with
@@ -134,9 +132,7 @@ double power_test_fast(const WeightedPoint& a, const WeightedPoint& b,
 /// cospherical inputs, and the decisions need only orient3d of 4-subsets
 /// (the cofactors of the lifting column), derived in predicates.cpp.
 /// Throws nothing.
-Sign power_test_sos(const WeightedPoint& a, const WeightedPoint& b,
-                    const WeightedPoint& c, const WeightedPoint& d,
-                    const WeightedPoint& e, Index ia, Index ib, Index ic, Index id,
-                    Index ie);
+Sign power_test_sos(const WeightedPoint& a, const WeightedPoint& b, const WeightedPoint& c, const WeightedPoint& d,
+                    const WeightedPoint& e, Index ia, Index ib, Index ic, Index id, Index ie);
 
 }  // namespace skinmesh::geometry

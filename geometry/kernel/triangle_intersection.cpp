@@ -35,13 +35,9 @@ P2 drop(const Vec3& p, int axis) {
   }
 }
 
-int o2(const P2& a, const P2& b, const P2& c) {
-  return static_cast<int>(orient2d(a.x, a.y, b.x, b.y, c.x, c.y));
-}
+int o2(const P2& a, const P2& b, const P2& c) { return static_cast<int>(orient2d(a.x, a.y, b.x, b.y, c.x, c.y)); }
 
-int o3(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  return static_cast<int>(orient3d(a, b, c, d));
-}
+int o3(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return static_cast<int>(orient3d(a, b, c, d)); }
 
 // The coordinate to drop so that triangle abc stays non-degenerate: the largest
 // component of the (floating-point) normal first, checked exactly; -1 if abc is
@@ -63,8 +59,7 @@ int projection_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
 int require_projection_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
   const int k = projection_axis(a, b, c);
   if (k < 0)
-    throw std::invalid_argument(
-        "triangle_intersection: degenerate (collinear) triangle where a plane is needed");
+    throw std::invalid_argument("triangle_intersection: degenerate (collinear) triangle where a plane is needed");
   return k;
 }
 
@@ -88,21 +83,20 @@ bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b) {
 // p in the closed non-degenerate triangle abc (either orientation).
 bool point_in_triangle_2d(const P2& p, const P2& a, const P2& b, const P2& c) {
   const int s1 = o2(a, b, p), s2 = o2(b, c, p), s3 = o2(c, a, p);
-  const bool neg = s1 < 0 || s2 < 0 || s3 < 0, pos = s1 > 0 || s2 > 0 || s3 > 0;
+  const bool neg = s1 < 0 || s2 < 0 || s3<0, pos = s1> 0 || s2 > 0 || s3 > 0;
   return !(neg && pos);
 }
 
 // Closed segment [p, q] meets the closed non-degenerate triangle abc, all in a plane.
 bool segment_triangle_2d(const P2& p, const P2& q, const P2& a, const P2& b, const P2& c) {
-  return point_in_triangle_2d(p, a, b, c) || point_in_triangle_2d(q, a, b, c) ||
-         segments_intersect_2d(p, q, a, b) || segments_intersect_2d(p, q, b, c) ||
-         segments_intersect_2d(p, q, c, a);
+  return point_in_triangle_2d(p, a, b, c) || point_in_triangle_2d(q, a, b, c) || segments_intersect_2d(p, q, a, b) ||
+         segments_intersect_2d(p, q, b, c) || segments_intersect_2d(p, q, c, a);
 }
 
 // Segment/triangle with the sides op = orient3d(a, b, c, p), oq = orient3d(a, b, c, q)
 // already known.
-bool segment_triangle_with_sides(const Vec3& p, const Vec3& q, int op, int oq, const Vec3& a,
-                                 const Vec3& b, const Vec3& c) {
+bool segment_triangle_with_sides(const Vec3& p, const Vec3& q, int op, int oq, const Vec3& a, const Vec3& b,
+                                 const Vec3& c) {
   if (op == oq && op != 0) return false;  // strictly on one side of the plane
   if (op == 0 && oq == 0) {               // the segment lies in the plane
     const int k = require_projection_axis(a, b, c);
@@ -112,7 +106,7 @@ bool segment_triangle_with_sides(const Vec3& p, const Vec3& q, int op, int oq, c
   // the closed triangle iff the orientations of the line with the three edges are
   // not strictly of both signs (they cannot all vanish: pq is not in the plane).
   const int s1 = o3(p, q, a, b), s2 = o3(p, q, b, c), s3 = o3(p, q, c, a);
-  const bool neg = s1 < 0 || s2 < 0 || s3 < 0, pos = s1 > 0 || s2 > 0 || s3 > 0;
+  const bool neg = s1 < 0 || s2 < 0 || s3<0, pos = s1> 0 || s2 > 0 || s3 > 0;
   return !(neg && pos);
 }
 
@@ -120,17 +114,14 @@ bool segment_triangle_with_sides(const Vec3& p, const Vec3& q, int op, int oq, c
 
 // Triangle Intersection Public Functions ------------------------------------------
 
-bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return projection_axis(a, b, c) < 0;
-}
+bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c) { return projection_axis(a, b, c) < 0; }
 
-bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                 const Vec3& c) {
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
   return segment_triangle_with_sides(p, q, o3(a, b, c, p), o3(a, b, c, q), a, b, c);
 }
 
-bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                         const Vec3& b1, const Vec3& b2) {
+bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                         const Vec3& b2) {
   // Vertices of B against the plane of A, then of A against the plane of B.
   const int db[3] = {o3(a0, a1, a2, b0), o3(a0, a1, a2, b1), o3(a0, a1, a2, b2)};
   if (db[0] == db[1] && db[1] == db[2] && db[0] != 0) return false;
@@ -163,8 +154,7 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
   return false;
 }
 
-bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3& a2,
-                                       const Vec3& b1, const Vec3& b2) {
+bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2) {
   // If a1 and a2 lie strictly on one side of the plane of B = (s, b1, b2), every
   // point of A = (s, a1, a2) but s does too (orient3d is affine in its last
   // point and vanishes at s), so A and B meet only at s; likewise with A and B
@@ -177,14 +167,12 @@ bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3
          segment_triangle_with_sides(b1, b2, sb1, sb2, s, a1, a2);
 }
 
-bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a,
-                                     const Vec3& b) {
+bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a, const Vec3& b) {
   if (o3(u, v, a, b) != 0) return false;
   const int k = require_projection_axis(u, v, a);
   const P2 pu = drop(u, k), pv = drop(v, k);
   const int sa = o2(pu, pv, drop(a, k)), sb = o2(pu, pv, drop(b, k));
-  if (sb == 0)
-    throw std::invalid_argument("triangles_intersect_beyond_edge: degenerate (collinear) triangle");
+  if (sb == 0) throw std::invalid_argument("triangles_intersect_beyond_edge: degenerate (collinear) triangle");
   return sa == sb;
 }
 
@@ -205,8 +193,8 @@ bool mesh_triangles_intersect(const std::array<Index, 3>& t, const std::array<In
       return triangles_intersect(P(t[0]), P(t[1]), P(t[2]), P(u[0]), P(u[1]), P(u[2]));
     case 1: {
       const int i = ti[0], j = ui[0];
-      return triangles_intersect_beyond_vertex(P(t[i]), P(t[(i + 1) % 3]), P(t[(i + 2) % 3]),
-                                               P(u[(j + 1) % 3]), P(u[(j + 2) % 3]));
+      return triangles_intersect_beyond_vertex(P(t[i]), P(t[(i + 1) % 3]), P(t[(i + 2) % 3]), P(u[(j + 1) % 3]),
+                                               P(u[(j + 2) % 3]));
     }
     case 2: {
       const int a = 3 - ti[0] - ti[1], b = 3 - ui[0] - ui[1];  // the unshared corners

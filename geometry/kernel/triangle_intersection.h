@@ -31,30 +31,27 @@ bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c);
 /// (touching at an endpoint, an edge or a vertex counts). p == q is allowed (a
 /// point). Exact. Pre: abc not degenerate; a degenerate abc is detected when it
 /// matters and throws std::invalid_argument.
-bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                 const Vec3& c);
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// True iff the closed triangles (a0, a1, a2) and (b0, b1, b2) share a point
 /// (touching counts). Orientation of the triangles is irrelevant. Exact. Pre:
 /// neither triangle is degenerate (std::invalid_argument when it matters).
-bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                         const Vec3& b1, const Vec3& b2);
+bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                         const Vec3& b2);
 
 /// For two mesh triangles that share the vertex s, (s, a1, a2) and (s, b1, b2):
 /// true iff they meet anywhere else than at s. Exact. This holds iff [a1, a2]
 /// meets the second triangle or [b1, b2] meets the first (the intersection is a
 /// convex set containing s; walk from s to its far end). Pre: both triangles
 /// not degenerate.
-bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3& a2,
-                                       const Vec3& b1, const Vec3& b2);
+bool triangles_intersect_beyond_vertex(const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2);
 
 /// For two mesh triangles that share the edge uv, (u, v, a) and (u, v, b), in
 /// either orientation: true iff they overlap beyond the segment [u, v], which
 /// happens iff they are coplanar and a, b lie on the same side of the line uv
 /// (non-coplanar triangles meet only on the common line, i.e. in [u, v]).
 /// Exact. Pre: both triangles not degenerate.
-bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a,
-                                     const Vec3& b);
+bool triangles_intersect_beyond_edge(const Vec3& u, const Vec3& v, const Vec3& a, const Vec3& b);
 
 /// Intersection of two mesh triangles given by vertex indices into `positions`,
 /// ignoring what their shared vertices imply: with no shared index,

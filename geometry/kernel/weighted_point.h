@@ -26,8 +26,6 @@ inline constexpr double kMaxWeight = 1e10;
 
 /// Power distance pi_b(x) = |x - z|² - w (Å²); negative inside the ball.
 /// papers/skin/skin_math.md §0.
-inline double power_distance(const WeightedPoint& b, const Vec3& x) {
-  return (x - b.z).squaredNorm() - b.w;
-}
+inline double power_distance(const WeightedPoint& b, const Vec3& x) { return (x - b.z).squaredNorm() - b.w; }
 
 }  // namespace skinmesh::geometry

@@ -86,9 +86,7 @@ SurfaceMesh& SurfaceMesh::operator=(const SurfaceMesh& other) {
 
 // Moving transfers the property arrays (their addresses do not change, so
 // property handles follow the data); the moved-from mesh becomes a fresh empty mesh.
-SurfaceMesh::SurfaceMesh(SurfaceMesh&& other) noexcept : SurfaceMesh() {
-  *this = std::move(other);
-}
+SurfaceMesh::SurfaceMesh(SurfaceMesh&& other) noexcept : SurfaceMesh() { *this = std::move(other); }
 
 SurfaceMesh& SurfaceMesh::operator=(SurfaceMesh&& other) noexcept {
   if (this == &other) return *this;
@@ -134,13 +132,11 @@ void SurfaceMesh::reserve(std::size_t nv, std::size_t nf) {
   fprops_.reserve(nf);
 }
 
-void SurfaceMesh::remove_property(detail::PropertyContainer& c,
-                                  const detail::BasePropertyArray* p) {
+void SurfaceMesh::remove_property(detail::PropertyContainer& c, const detail::BasePropertyArray* p) {
   if (p == nullptr) throw std::invalid_argument("SurfaceMesh: removing an invalid property");
   const std::string& n = p->name();
   for (const char* b : {kVConn, kVPoint, kVDeleted, kHConn, kEDeleted, kFConn, kFDeleted})
-    if (n == b)
-      throw std::invalid_argument("SurfaceMesh: built-in property '" + n + "' cannot be removed");
+    if (n == b) throw std::invalid_argument("SurfaceMesh: built-in property '" + n + "' cannot be removed");
   c.remove(p);
 }
 
@@ -210,9 +206,7 @@ Halfedge SurfaceMesh::find_gap_after(Halfedge from, Halfedge stop) const {
 
 Face SurfaceMesh::add_triangle(Vertex a, Vertex b, Vertex c) {
   const Vertex v[3] = {a, b, c};
-  auto name = [&] {
-    return "SurfaceMesh::add_triangle(" + str(a) + ", " + str(b) + ", " + str(c) + "): ";
-  };
+  auto name = [&] { return "SurfaceMesh::add_triangle(" + str(a) + ", " + str(b) + ", " + str(c) + "): "; };
   for (int i = 0; i < 3; ++i) require_valid(v[i], "add_triangle");
   if (a == b || b == c || c == a) throw TopologyError(name() + "repeated vertex");
 
@@ -230,8 +224,8 @@ Face SurfaceMesh::add_triangle(Vertex a, Vertex b, Vertex c) {
     if (!is_new[i] && !is_boundary(he[i])) {
       if (is_boundary(opposite(he[i])))
         throw TopologyError(name() + "wrong orientation: half-edge " + str(s) + "->" + str(t) +
-                            " is already used by face " + str(face(he[i])) +
-                            " (the new face must traverse it as " + str(t) + "->" + str(s) + ")");
+                            " is already used by face " + str(face(he[i])) + " (the new face must traverse it as " +
+                            str(t) + "->" + str(s) + ")");
       throw TopologyError(name() + "non-manifold edge (" + str(s) + ", " + str(t) +
                           "): it already has faces on both sides");
     }
@@ -350,8 +344,7 @@ Edge SurfaceMesh::find_edge(Vertex a, Vertex b) const {
 std::vector<Halfedge> SurfaceMesh::boundary_loop(Halfedge h) const {
   require_valid(h, "boundary_loop");
   if (!is_boundary(h))
-    throw std::invalid_argument("SurfaceMesh::boundary_loop: " + str(h) +
-                                " is not a boundary half-edge");
+    throw std::invalid_argument("SurfaceMesh::boundary_loop: " + str(h) + " is not a boundary half-edge");
   std::vector<Halfedge> loop_halfedges;
   for (Halfedge g : loop(h)) loop_halfedges.push_back(g);
   return loop_halfedges;
@@ -447,8 +440,8 @@ bool SurfaceMesh::is_collapse_ok(Halfedge h) const {
 void SurfaceMesh::collapse(Halfedge h) {
   require_valid(h, "collapse");
   if (!is_collapse_ok(h))
-    throw TopologyError("SurfaceMesh::collapse(" + str(h) + " = " + str(from_vertex(h)) + "->" +
-                        str(to_vertex(h)) + "): refused by is_collapse_ok (link condition, "
+    throw TopologyError("SurfaceMesh::collapse(" + str(h) + " = " + str(from_vertex(h)) + "->" + str(to_vertex(h)) +
+                        "): refused by is_collapse_ok (link condition, "
                         "boundary configuration or valence)");
   const Halfedge o = opposite(h);
   const Vertex v0 = to_vertex(o), v1 = to_vertex(h);
@@ -662,9 +655,7 @@ void SurfaceMesh::garbage_collection() {
     hkept.push_back(2 * e);
     hkept.push_back(2 * e + 1);
   }
-  auto hmap = [&](Halfedge h) {
-    return h.is_valid() ? Halfedge(2 * emap[h.idx() >> 1] + (h.idx() & 1u)) : h;
-  };
+  auto hmap = [&](Halfedge h) { return h.is_valid() ? Halfedge(2 * emap[h.idx() >> 1] + (h.idx() & 1u)) : h; };
 
   for (Index v : vkept) vconn_[Vertex(v)].halfedge = hmap(vconn_[Vertex(v)].halfedge);
   for (Index f : fkept) fconn_[Face(f)].halfedge = hmap(fconn_[Face(f)].halfedge);
@@ -694,13 +685,11 @@ SurfaceMesh SurfaceMesh::from_indexed_mesh(const IndexedMesh& m) {
   for (std::size_t j = 0; j < m.triangles.size(); ++j) {
     const auto& t = m.triangles[j];
     auto where = [&] {
-      return "SurfaceMesh::from_indexed_mesh: triangle " + std::to_string(j) + " (" +
-             std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
-             "): ";
+      return "SurfaceMesh::from_indexed_mesh: triangle " + std::to_string(j) + " (" + std::to_string(t[0]) + ", " +
+             std::to_string(t[1]) + ", " + std::to_string(t[2]) + "): ";
     };
     if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
-      throw TopologyError(where() + "vertex index out of range (" + std::to_string(nv) +
-                          " vertices)");
+      throw TopologyError(where() + "vertex index out of range (" + std::to_string(nv) + " vertices)");
     try {
       mesh.add_triangle(Vertex(t[0]), Vertex(t[1]), Vertex(t[2]));
     } catch (const TopologyError& e) {
@@ -709,9 +698,8 @@ SurfaceMesh SurfaceMesh::from_indexed_mesh(const IndexedMesh& m) {
   }
   for (Vertex v : mesh.vertices())
     if (!mesh.is_manifold(v))
-      throw TopologyError("SurfaceMesh::from_indexed_mesh: vertex " + std::to_string(v.idx()) +
-                          " is non-manifold (" + std::to_string(mesh.boundary_gaps(v)) +
-                          " fans meet there)");
+      throw TopologyError("SurfaceMesh::from_indexed_mesh: vertex " + std::to_string(v.idx()) + " is non-manifold (" +
+                          std::to_string(mesh.boundary_gaps(v)) + " fans meet there)");
   return mesh;
 }
 
@@ -739,16 +727,12 @@ IndexedMesh SurfaceMesh::to_indexed_mesh() const {
 // ---------------------------------------------------------------------------
 
 void SurfaceMesh::check_consistency() const {
-  auto fail = [](const std::string& what) {
-    throw std::logic_error("SurfaceMesh::check_consistency: " + what);
-  };
-  const std::size_t nv = vertices_size(), nh = halfedges_size(), ne = edges_size(),
-                    nf = faces_size();
+  auto fail = [](const std::string& what) { throw std::logic_error("SurfaceMesh::check_consistency: " + what); };
+  const std::size_t nv = vertices_size(), nh = halfedges_size(), ne = edges_size(), nf = faces_size();
   // Sizes and counters.
   if (nh != 2 * ne) fail("half-edge count " + std::to_string(nh) + " != 2 * edge count");
-  if (vconn_.vector().size() != nv || vpoint_.vector().size() != nv ||
-      vdeleted_.vector().size() != nv || hconn_.vector().size() != nh ||
-      edeleted_.vector().size() != ne || fconn_.vector().size() != nf ||
+  if (vconn_.vector().size() != nv || vpoint_.vector().size() != nv || vdeleted_.vector().size() != nv ||
+      hconn_.vector().size() != nh || edeleted_.vector().size() != ne || fconn_.vector().size() != nf ||
       fdeleted_.vector().size() != nf)
     fail("a built-in property array has the wrong size");
   std::size_t dv = 0, de = 0, df = 0;
@@ -773,8 +757,7 @@ void SurfaceMesh::check_consistency() const {
     if (!live(t, nv)) fail("to_vertex(" + hs() + ") = " + str(t) + " is invalid or deleted");
     if (from_vertex(n) != t) fail("next(" + hs() + ") does not start where " + hs() + " ends");
     if (from_vertex(h) == t) fail(hs() + " is a loop at " + str(t));
-    if (is_boundary(h) && is_boundary(opposite(h)))
-      fail("edge " + str(edge(h)) + " has no face on either side");
+    if (is_boundary(h) && is_boundary(opposite(h))) fail("edge " + str(edge(h)) + " has no face on either side");
     const Face f = face(h);
     if (f.is_valid()) {
       if (!live(f, nf)) fail("face(" + hs() + ") = " + str(f) + " is deleted or out of range");
@@ -807,8 +790,8 @@ void SurfaceMesh::check_consistency() const {
     auto vs = [&] { return str(v); };
     const Halfedge h0 = halfedge(v);
     if (!h0.is_valid()) {
-      if (outgoing[v.idx()] != 0) fail(vs() + " has no half-edge but " +
-                                        std::to_string(outgoing[v.idx()]) + " outgoing ones");
+      if (outgoing[v.idx()] != 0)
+        fail(vs() + " has no half-edge but " + std::to_string(outgoing[v.idx()]) + " outgoing ones");
       continue;
     }
     if (!live(h0, nh)) fail("halfedge(" + vs() + ") = " + str(h0) + " is deleted or out of range");
@@ -830,8 +813,7 @@ void SurfaceMesh::check_consistency() const {
     if (any_boundary && !is_boundary(h0))
       fail("halfedge(" + vs() + ") is interior although " + vs() + " is on the boundary");
     std::sort(ring.begin(), ring.end());
-    if (std::adjacent_find(ring.begin(), ring.end()) != ring.end())
-      fail(vs() + " has two edges to the same vertex");
+    if (std::adjacent_find(ring.begin(), ring.end()) != ring.end()) fail(vs() + " has two edges to the same vertex");
   }
 }
 

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "core/growable_array.h"
-#include "geometry/mesh/indexed_mesh.h"
 #include "core/types.h"
+#include "geometry/mesh/indexed_mesh.h"
 
 namespace skinmesh::geometry {
 
@@ -45,9 +45,7 @@ class Handle {
   constexpr bool is_valid() const { return idx_ != kInvalidIndex; }
   /// Handles compare by index (same kind only).
   friend constexpr bool operator==(Derived a, Derived b) { return a.idx_ == b.idx_; }
-  friend constexpr std::strong_ordering operator<=>(Derived a, Derived b) {
-    return a.idx_ <=> b.idx_;
-  }
+  friend constexpr std::strong_ordering operator<=>(Derived a, Derived b) { return a.idx_ <=> b.idx_; }
 
  private:
   Index idx_ = kInvalidIndex;
@@ -118,8 +116,8 @@ class BasePropertyArray {
 /// eighth at a time: little unused capacity, no copy for large arrays) for
 /// relocatable types, std::vector for the others.
 template <class T>
-using PropertyStorage = std::conditional_t<kRelocatable<T> && std::is_trivially_destructible_v<T>,
-                                           GrowableArray<T>, std::vector<T>>;
+using PropertyStorage =
+    std::conditional_t<kRelocatable<T> && std::is_trivially_destructible_v<T>, GrowableArray<T>, std::vector<T>>;
 
 /// Array of values of type T with a default value for new elements.
 template <class T>
@@ -134,9 +132,7 @@ class PropertyArray final : public BasePropertyArray {
       if (kept[i] != i) data_[i] = data_[kept[i]];
     data_.resize(kept.size());
   }
-  std::unique_ptr<BasePropertyArray> clone() const override {
-    return std::make_unique<PropertyArray<T>>(*this);
-  }
+  std::unique_ptr<BasePropertyArray> clone() const override { return std::make_unique<PropertyArray<T>>(*this); }
   const std::type_info& type() const override { return typeid(T); }
   PropertyStorage<T>& data() { return data_; }
 
@@ -336,9 +332,8 @@ template <CirculatorKind K>
 class Circulator {
  public:
   /// What the circulator yields: Halfedge, Vertex or Face.
-  using value_type = std::conditional_t<
-      K == CirculatorKind::kVertexOutgoing || K == CirculatorKind::kFaceHalfedges, Halfedge,
-      std::conditional_t<K == CirculatorKind::kVertexFaces, Face, Vertex>>;
+  using value_type = std::conditional_t<K == CirculatorKind::kVertexOutgoing || K == CirculatorKind::kFaceHalfedges,
+                                        Halfedge, std::conditional_t<K == CirculatorKind::kVertexFaces, Face, Vertex>>;
   /// Input iterator yielding handles by value.
   class Iterator {
    public:
@@ -537,9 +532,7 @@ class SurfaceMesh {
   /// True if h has no face (the hole is on its left).
   bool is_boundary(Halfedge h) const { return !face(h).is_valid(); }
   /// True if one of e's half-edges is a boundary half-edge.
-  bool is_boundary(Edge e) const {
-    return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1));
-  }
+  bool is_boundary(Edge e) const { return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1)); }
   /// True if v is isolated or has an outgoing boundary half-edge.
   bool is_boundary(Vertex v) const {
     Halfedge h = halfedge(v);
@@ -603,25 +596,17 @@ class SurfaceMesh {
   /// Non-deleted faces in index order.
   HandleRange<Face> faces() const { return {this, Index(faces_size())}; }
   /// Outgoing half-edges of v, counter-clockwise, starting at halfedge(v); empty if isolated.
-  Circulator<CirculatorKind::kVertexOutgoing> halfedges(Vertex v) const {
-    return {this, halfedge(v)};
-  }
+  Circulator<CirculatorKind::kVertexOutgoing> halfedges(Vertex v) const { return {this, halfedge(v)}; }
   /// One-ring vertices of v, counter-clockwise, starting at to_vertex(halfedge(v)).
-  Circulator<CirculatorKind::kVertexVertices> vertices(Vertex v) const {
-    return {this, halfedge(v)};
-  }
+  Circulator<CirculatorKind::kVertexVertices> vertices(Vertex v) const { return {this, halfedge(v)}; }
   /// Faces around v, counter-clockwise (boundary gaps skipped).
   Circulator<CirculatorKind::kVertexFaces> faces(Vertex v) const { return {this, halfedge(v)}; }
   /// The three half-edges of f, starting at halfedge(f).
-  Circulator<CirculatorKind::kFaceHalfedges> halfedges(Face f) const {
-    return {this, halfedge(f)};
-  }
+  Circulator<CirculatorKind::kFaceHalfedges> halfedges(Face f) const { return {this, halfedge(f)}; }
   /// The half-edges of the face or boundary loop through h, along next(), starting at h.
   Circulator<CirculatorKind::kFaceHalfedges> loop(Halfedge h) const { return {this, h}; }
   /// The three vertices of f, counter-clockwise, starting at to_vertex(halfedge(f)).
-  Circulator<CirculatorKind::kFaceVertices> vertices(Face f) const {
-    return {this, halfedge(f)};
-  }
+  Circulator<CirculatorKind::kFaceVertices> vertices(Face f) const { return {this, halfedge(f)}; }
 
   // SurfaceMesh Properties
   // The stages share per-vertex data through named vertex properties; each
@@ -738,8 +723,7 @@ class SurfaceMesh {
 
  private:
   template <class T>
-  static detail::PropertyArray<T>* add_property(detail::PropertyContainer& c,
-                                                const std::string& name, T init);
+  static detail::PropertyArray<T>* add_property(detail::PropertyContainer& c, const std::string& name, T init);
   static void remove_property(detail::PropertyContainer& c, const detail::BasePropertyArray* p);
   void bind_builtin_properties();
   void require_valid(Vertex v, const char* where) const;
@@ -781,8 +765,7 @@ class SurfaceMesh {
 // ---------------------------------------------------------------------------
 
 template <class T>
-detail::PropertyArray<T>* SurfaceMesh::add_property(detail::PropertyContainer& c,
-                                                    const std::string& name, T init) {
+detail::PropertyArray<T>* SurfaceMesh::add_property(detail::PropertyContainer& c, const std::string& name, T init) {
   if (c.find(name) != nullptr)
     throw std::invalid_argument("SurfaceMesh: a property named '" + name + "' exists already");
   return c.add<T>(name, std::move(init));

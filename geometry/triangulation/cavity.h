@@ -47,9 +47,9 @@ struct EdgeSlot {
 /// is scratch. Cells are any type with members v and n (std::array<Index, 4>
 /// of vertices and of neighbours opposite them).
 template <class Cell, class InConflict, class Visit>
-void grow(const std::vector<Cell>& cells, std::vector<std::uint32_t>& mark, std::uint32_t inside,
-          std::uint32_t outside, Index start, Index v, InConflict&& in_conflict, Visit&& visit,
-          std::vector<Index>& stack, std::vector<Index>& conflict, std::vector<Facet>& boundary) {
+void grow(const std::vector<Cell>& cells, std::vector<std::uint32_t>& mark, std::uint32_t inside, std::uint32_t outside,
+          Index start, Index v, InConflict&& in_conflict, Visit&& visit, std::vector<Index>& stack,
+          std::vector<Index>& conflict, std::vector<Facet>& boundary) {
   conflict.clear();
   boundary.clear();
   stack.clear();

@@ -30,7 +30,6 @@ std::string format_point(const Vec3& p) {
   return os.str();
 }
 
-
 std::uint64_t walk_seed(Index start) {
   const std::uint64_t s = 0x9E3779B97F4A7C15ULL ^ (std::uint64_t(start) << 17);
   return s == 0 ? 1 : s;
@@ -71,10 +70,9 @@ void DelaunayTriangulation::Mesh::reset(const std::array<Vec3, 4>& corners) {
     vertex_tet.push_back(0);
   }
   std::array<Index, 4> first = {0, 1, 2, 3};
-  if (orient3d(corners[0], corners[1], corners[2], corners[3]) != Sign::Positive)
-    std::swap(first[0], first[1]);
-  SKINMESH_ASSERT(orient3d(corners[first[0]], corners[first[1]], corners[first[2]],
-                           corners[first[3]]) == Sign::Positive);
+  if (orient3d(corners[0], corners[1], corners[2], corners[3]) != Sign::Positive) std::swap(first[0], first[1]);
+  SKINMESH_ASSERT(orient3d(corners[first[0]], corners[first[1]], corners[first[2]], corners[first[3]]) ==
+                  Sign::Positive);
   cells.push_back(Cell{first, {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex}});
   cell_mark.push_back(0);
   live_cells = 1;
@@ -121,15 +119,14 @@ std::uint32_t DelaunayTriangulation::Mesh::next_generation() {
 
 Sign DelaunayTriangulation::Mesh::conflict_with(Index t, Index v) const {
   const std::array<Index, 4>& tv = cells[t].v;
-  return power_test_sos(points[tv[0]], points[tv[1]], points[tv[2]], points[tv[3]], points[v],
-                        sos[tv[0]], sos[tv[1]], sos[tv[2]], sos[tv[3]], sos[v]);
+  return power_test_sos(points[tv[0]], points[tv[1]], points[tv[2]], points[tv[3]], points[v], sos[tv[0]], sos[tv[1]],
+                        sos[tv[2]], sos[tv[3]], sos[v]);
 }
 
 bool DelaunayTriangulation::Mesh::contains(Index t, const Vec3& p) const {
   const std::array<Index, 4>& tv = cells[t].v;
   for (const auto& f : kFaceVertices) {
-    if (orient3d(points[tv[f[0]]].z, points[tv[f[1]]].z, points[tv[f[2]]].z, p) == Sign::Negative)
-      return false;
+    if (orient3d(points[tv[f[0]]].z, points[tv[f[1]]].z, points[tv[f[2]]].z, p) == Sign::Negative) return false;
   }
   return true;
 }
@@ -145,8 +142,8 @@ Index DelaunayTriangulation::Mesh::scan(const Vec3& p) const {
 // through a face whose plane separates it strictly from p; faces are tried in
 // a random cyclic order, and the face just crossed is not tested again (p is
 // strictly on this side of it).
-Index DelaunayTriangulation::Mesh::walk(const Vec3& p, Index start, std::uint64_t& rng,
-                                        std::uint64_t* steps, std::uint64_t* fallbacks) const {
+Index DelaunayTriangulation::Mesh::walk(const Vec3& p, Index start, std::uint64_t& rng, std::uint64_t* steps,
+                                        std::uint64_t* fallbacks) const {
   // The remembering stochastic visibility walk (geometry/triangulation/walk.h);
   // a cycle is not expected for Delaunay, but scan() decides if one occurs.
   return walk::locate(cells, points, p, start, rng, steps, fallbacks, [&] { return scan(p); });
@@ -156,8 +153,7 @@ Index DelaunayTriangulation::Mesh::walk(const Vec3& p, Index start, std::uint64_
 // vertex v (not a vertex of the mesh at the same position). Grows the
 // conflict region by depth-first search, kills it and fills it with the cone
 // from v over its boundary.
-void DelaunayTriangulation::Mesh::insert_vertex(Index v, Index start,
-                                                std::uint64_t* conflict_count) {
+void DelaunayTriangulation::Mesh::insert_vertex(Index v, Index start, std::uint64_t* conflict_count) {
   // A point in the closed hull of t that is not a vertex of t lies strictly
   // inside t's circumsphere, so the start is in conflict without SoS.
   SKINMESH_ASSERT_MSG(conflict_with(start, v) == Sign::Positive,
@@ -182,8 +178,8 @@ void DelaunayTriangulation::Mesh::insert_vertex(Index v, Index start,
     c.n = {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
     c.n[f.i] = f.outside;
     if (f.outside != kInvalidIndex) cells[f.outside].n[f.outside_face] = nt;
-    SKINMESH_DEBUG_ASSERT(orient3d(points[c.v[0]].z, points[c.v[1]].z, points[c.v[2]].z,
-                                   points[c.v[3]].z) == Sign::Positive);
+    SKINMESH_DEBUG_ASSERT(orient3d(points[c.v[0]].z, points[c.v[1]].z, points[c.v[2]].z, points[c.v[3]].z) ==
+                          Sign::Positive);
     for (const Index w : c.v) vertex_tet[w] = nt;
     cavity::link_cone_faces(cells, edge_table, mask_shift, g, nt, f);
   }
@@ -202,8 +198,7 @@ DelaunayTriangulation::DelaunayTriangulation(const Vec3& lo, const Vec3& hi) : l
          << " is outside the supported range: coordinates within ±" << kMaxCoordinate << " Å";
       throw_input_error(os.str());
     }
-    if (lo[k] > hi[k])
-      throw_input_error("empty box " + format_point(lo) + " - " + format_point(hi));
+    if (lo[k] > hi[k]) throw_input_error("empty box " + format_point(lo) + " - " + format_point(hi));
   }
   // Bounding tetrahedron: RegularTriangulation's, with L' = half the box
   // diagonal (every point of the box is within L' of its centre).
@@ -222,8 +217,8 @@ void DelaunayTriangulation::check_point(const Vec3& p, const char* what) const {
   if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
     throw_input_error(std::string(what) + ": non-finite point " + format_point(p));
   if ((p.array() < lo_.array()).any() || (p.array() > hi_.array()).any())
-    throw_input_error(std::string(what) + ": point " + format_point(p) + " outside the box " +
-                      format_point(lo_) + " - " + format_point(hi_));
+    throw_input_error(std::string(what) + ": point " + format_point(p) + " outside the box " + format_point(lo_) +
+                      " - " + format_point(hi_));
 }
 
 // Locates p (in the box) and refuses it if it coincides with a live vertex
@@ -235,8 +230,7 @@ Index DelaunayTriangulation::locate_checked(const Vec3& p, Index hint, Index ign
   // A live vertex at p is a vertex of every closed tetrahedron containing p.
   for (const Index w : mesh_.cells[t].v) {
     if (w != ignore && mesh_.points[w].z == p)
-      throw_input_error("point " + format_point(p) + " coincides with vertex " +
-                        std::to_string(w));
+      throw_input_error("point " + format_point(p) + " coincides with vertex " + std::to_string(w));
   }
   return t;
 }
@@ -403,8 +397,7 @@ void DelaunayTriangulation::remove_vertex(Index v) {
   stats_.local_tets += link_.live_cells;
 
   // 4. Find every hole facet in the link triangulation, on v's side.
-  std::sort(facets.begin(), facets.end(),
-            [](const HoleFacet& a, const HoleFacet& b) { return a.key < b.key; });
+  std::sort(facets.begin(), facets.end(), [](const HoleFacet& a, const HoleFacet& b) { return a.key < b.key; });
   const Index ncells = static_cast<Index>(link_.cells.size());
   boundary_mask_.assign(ncells, 0);
   boundary_outside_.resize(4 * std::size_t(ncells));
@@ -417,9 +410,8 @@ void DelaunayTriangulation::remove_vertex(Index v) {
     for (int i = 0; i < 4; ++i) {
       const auto& fv = kFaceVertices[i];
       const std::uint64_t key = triangle_key(c.v[fv[0]], c.v[fv[1]], c.v[fv[2]]);
-      const auto it = std::lower_bound(
-          facets.begin(), facets.end(), key,
-          [](const HoleFacet& f, std::uint64_t k) { return f.key < k; });
+      const auto it = std::lower_bound(facets.begin(), facets.end(), key,
+                                       [](const HoleFacet& f, std::uint64_t k) { return f.key < k; });
       if (it == facets.end() || it->key != key) continue;
       if (!same_orientation(it->local, {c.v[fv[0]], c.v[fv[1]], c.v[fv[2]]})) continue;
       boundary_mask_[t] |= std::uint8_t(1u << i);
@@ -431,8 +423,7 @@ void DelaunayTriangulation::remove_vertex(Index v) {
       }
     }
   }
-  SKINMESH_ASSERT_MSG(found == facets.size(),
-                      "a facet of the hole is missing from the link triangulation");
+  SKINMESH_ASSERT_MSG(found == facets.size(), "a facet of the hole is missing from the link triangulation");
 
   // 5. Flood from the seeds across the faces that are not hole facets.
   for (std::size_t k = 0; k < hole_.size(); ++k) {
@@ -574,8 +565,7 @@ bool DelaunayTriangulation::is_valid(std::string* why) const {
     }
     ++live_vertices;
     if (!m.live(t)) return fail("vertex " + std::to_string(v) + " has a dead vertex_tet");
-    if (local_index(t, v) < 0)
-      return fail("vertex_tet of vertex " + std::to_string(v) + " does not contain it");
+    if (local_index(t, v) < 0) return fail("vertex_tet of vertex " + std::to_string(v) + " does not contain it");
   }
   if (live_vertices != num_live_vertices_ + kNumBounding) return fail("live vertex count");
   for (Index t = 0; t < nc; ++t) {
@@ -584,14 +574,12 @@ bool DelaunayTriangulation::is_valid(std::string* why) const {
     const std::string name = "tet " + std::to_string(t);
     const std::array<Index, 4>& q = m.cells[t].v;
     for (int a = 0; a < 4; ++a) {
-      if (q[a] >= np || m.vertex_tet[q[a]] == kInvalidIndex)
-        return fail(name + " has a dead vertex");
+      if (q[a] >= np || m.vertex_tet[q[a]] == kInvalidIndex) return fail(name + " has a dead vertex");
       used[q[a]] = 1;
       for (int b = a + 1; b < 4; ++b)
         if (q[a] == q[b]) return fail(name + " has a repeated vertex");
     }
-    if (orient3d(m.points[q[0]].z, m.points[q[1]].z, m.points[q[2]].z, m.points[q[3]].z) !=
-        Sign::Positive)
+    if (orient3d(m.points[q[0]].z, m.points[q[1]].z, m.points[q[2]].z, m.points[q[3]].z) != Sign::Positive)
       return fail(name + " is not positively oriented");
     for (int i = 0; i < 4; ++i) {
       const Index u = m.cells[t].n[i];

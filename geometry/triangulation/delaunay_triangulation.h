@@ -90,15 +90,15 @@ class DelaunayTriangulation {
 
   /// Counters of the operations so far (diagnostics and benchmarks).
   struct Stats {
-    std::uint64_t insertions = 0;       ///< successful insert() calls (and the insert half of move())
-    std::uint64_t removals = 0;         ///< successful remove() calls (and the remove half of move())
-    std::uint64_t walk_steps = 0;       ///< tetrahedra visited by the walks of insert()/move()
-    std::uint64_t walk_fallbacks = 0;   ///< walks that hit the step limit (exhaustive scan)
-    std::uint64_t conflict_tets = 0;    ///< tetrahedra killed by insertions
-    std::uint64_t star_tets = 0;        ///< tetrahedra killed by removals
-    std::uint64_t link_vertices = 0;    ///< link vertices triangulated by removals, in total
-    std::uint64_t local_tets = 0;       ///< tetrahedra of the link triangulations, in total
-    std::uint64_t kinetic_moves = 0;    ///< move() calls that kept the combinatorics (no removal)
+    std::uint64_t insertions = 0;      ///< successful insert() calls (and the insert half of move())
+    std::uint64_t removals = 0;        ///< successful remove() calls (and the remove half of move())
+    std::uint64_t walk_steps = 0;      ///< tetrahedra visited by the walks of insert()/move()
+    std::uint64_t walk_fallbacks = 0;  ///< walks that hit the step limit (exhaustive scan)
+    std::uint64_t conflict_tets = 0;   ///< tetrahedra killed by insertions
+    std::uint64_t star_tets = 0;       ///< tetrahedra killed by removals
+    std::uint64_t link_vertices = 0;   ///< link vertices triangulated by removals, in total
+    std::uint64_t local_tets = 0;      ///< tetrahedra of the link triangulations, in total
+    std::uint64_t kinetic_moves = 0;   ///< move() calls that kept the combinatorics (no removal)
   };
 
   /// An empty triangulation (the bounding tetrahedron only) for points in the
@@ -250,7 +250,7 @@ class DelaunayTriangulation {
     std::vector<Index> vertex_tet;      // kInvalidIndex: not a live vertex
     std::vector<Cell> cells;
     std::vector<Index> free_cells;
-    std::vector<Index> created;         // cells made since the last clear (last_created())
+    std::vector<Index> created;  // cells made since the last clear (last_created())
     Index live_cells = 0;
     Index last_cell = 0;
     // Scratch of insert_vertex().
@@ -268,8 +268,7 @@ class DelaunayTriangulation {
     Sign conflict_with(Index t, Index v) const;
     bool contains(Index t, const Vec3& p) const;
     Index scan(const Vec3& p) const;
-    Index walk(const Vec3& p, Index start, std::uint64_t& rng, std::uint64_t* steps,
-               std::uint64_t* fallbacks) const;
+    Index walk(const Vec3& p, Index start, std::uint64_t& rng, std::uint64_t* steps, std::uint64_t* fallbacks) const;
     std::uint32_t next_generation();
     void insert_vertex(Index v, Index start, std::uint64_t* conflict_count);
   };
@@ -281,8 +280,8 @@ class DelaunayTriangulation {
   Vec3 lo_, hi_, centre_;
   double radius_ = 0.0;
   std::array<Vec3, 4> corners_;
-  Mesh mesh_;        // the triangulation
-  Mesh link_;        // scratch: the link triangulation of a removal
+  Mesh mesh_;  // the triangulation
+  Mesh link_;  // scratch: the link triangulation of a removal
   Index num_live_vertices_ = 0;
   std::uint64_t rng_ = 0x9E3779B97F4A7C15ULL;
   Stats stats_;

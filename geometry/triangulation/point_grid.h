@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "core/assert.h"
-#include "geometry/triangulation/key_index.h"
 #include "core/types.h"
+#include "geometry/triangulation/key_index.h"
 
 namespace skinmesh::geometry {
 
@@ -212,8 +212,8 @@ class ErasablePointGrid {
   std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
   std::vector<Where> where_;               ///< per id (empty unless erasable_)
   bool erasable_ = true;
-  double max_abs_ = 0;                     ///< largest |coordinate| inserted (Å)
-  double pad_ = 0;                         ///< bound on |stored - true position| (Å)
+  double max_abs_ = 0;  ///< largest |coordinate| inserted (Å)
+  double pad_ = 0;      ///< bound on |stored - true position| (Å)
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the

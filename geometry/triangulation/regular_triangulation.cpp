@@ -63,14 +63,12 @@ namespace {
   throw InputError("", 0, "regular triangulation: " + problem);
 }
 
-
 // Minimum size of the first BRIO round.
 constexpr Index kBrioFirstRound = 64;
 
 }  // namespace
 
-RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points,
-                                           std::uint64_t seed) {
+RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points, std::uint64_t seed) {
   // Validate the input ----------------------------------------------------
   if (points.empty()) {
     throw_input_error("no points");
@@ -80,10 +78,8 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     const WeightedPoint& p = points[i];
-    if (!std::isfinite(p.z.x()) || !std::isfinite(p.z.y()) || !std::isfinite(p.z.z()) ||
-        !std::isfinite(p.w)) {
-      throw_input_error("point " + std::to_string(i) +
-                        " has a non-finite coordinate or weight");
+    if (!std::isfinite(p.z.x()) || !std::isfinite(p.z.y()) || !std::isfinite(p.z.z()) || !std::isfinite(p.w)) {
+      throw_input_error("point " + std::to_string(i) + " has a non-finite coordinate or weight");
     }
     if (p.z.cwiseAbs().maxCoeff() > kMaxCoordinate || std::abs(p.w) > kMaxWeight) {
       std::ostringstream os;
@@ -106,16 +102,15 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
   for (const auto& p : points) {
     extent = std::max(extent, (p.z - c).norm() + std::sqrt(std::max(p.w, 0.0)));
   }
-  constexpr double kMinExtent = 1.0;         // Å: L' >= 1 Å (e.g. coincident points)
-  constexpr double kBoundingFactor = 50.0;   // D / L' (> ~7 needed, see the header)
+  constexpr double kMinExtent = 1.0;        // Å: L' >= 1 Å (e.g. coincident points)
+  constexpr double kBoundingFactor = 50.0;  // D / L' (> ~7 needed, see the header)
   extent = std::max(extent, kMinExtent);
   bounding_centre_ = c;
   bounding_radius_ = kBoundingFactor * extent;
   points_.assign(points.begin(), points.end());
   // Regular tetrahedron: alternate corners of a cube, |corner| = D.
   const double s = bounding_radius_ / std::sqrt(3.0);
-  const Vec3 corners[4] = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1),
-                           Vec3(-1, -1, 1)};
+  const Vec3 corners[4] = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)};
   for (const Vec3& corner : corners) points_.push_back(WeightedPoint{c + s * corner, 0.0});
 
   // Initial triangulation: the bounding tetrahedron -----------------------
@@ -136,12 +131,10 @@ RegularTriangulation::RegularTriangulation(std::span<const WeightedPoint> points
   vertex_state_.assign(n + 4, PointState::NotInserted);
   vertex_mark_.assign(n + 4, 0);
   std::array<Index, 4> first = {0, 1, 2, 3};
-  if (orient3d(work_points_[0].z, work_points_[1].z, work_points_[2].z, work_points_[3].z) !=
-      Sign::Positive) {
+  if (orient3d(work_points_[0].z, work_points_[1].z, work_points_[2].z, work_points_[3].z) != Sign::Positive) {
     std::swap(first[0], first[1]);
   }
-  SKINMESH_ASSERT(orient3d(work_points_[first[0]].z, work_points_[first[1]].z,
-                           work_points_[first[2]].z,
+  SKINMESH_ASSERT(orient3d(work_points_[first[0]].z, work_points_[first[1]].z, work_points_[first[2]].z,
                            work_points_[first[3]].z) == Sign::Positive);
   cells_.push_back(Cell{first, {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex}});
   tet_mark_.push_back(0);
@@ -184,10 +177,7 @@ std::vector<Index> RegularTriangulation::insertion_order(std::uint64_t seed) con
   const double scale = double(detail::kHilbertMask) / span;
   auto key = [&](Index v) {
     const Vec3 q = (points_[v].z - lo) * scale;
-    auto cell = [](double x) {
-      return static_cast<std::uint32_t>(
-          std::clamp(x, 0.0, double(detail::kHilbertMask)));
-    };
+    auto cell = [](double x) { return static_cast<std::uint32_t>(std::clamp(x, 0.0, double(detail::kHilbertMask))); };
     return detail::hilbert_key(cell(q.x()), cell(q.y()), cell(q.z()));
   };
   // Rounds: [0, m0), [m0, 2 m0), ..., [n/2, n): the last round holds half the
@@ -225,8 +215,7 @@ Index RegularTriangulation::new_tet() {
 // re-triangulate the cavity as the cone from v over its boundary.
 void RegularTriangulation::insert(Index v) {
   const WeightedPoint& p = work_points_[v];
-  const Index start = walk(work_points_, p.z, last_tet_, walk_rng_, &stats_.walk_steps,
-                           &stats_.walk_fallbacks);
+  const Index start = walk(work_points_, p.z, last_tet_, walk_rng_, &stats_.walk_steps, &stats_.walk_fallbacks);
   SKINMESH_ASSERT_MSG(start != kInvalidIndex, "input point outside the bounding tetrahedron");
   if (work_conflict(start, v) != Sign::Positive) {
     // The lifted point lies above the lower hull: redundant, never inserted.
@@ -268,8 +257,7 @@ void RegularTriangulation::insert(Index v) {
     cells_[nt].n[f.i] = f.outside;
     if (f.outside != kInvalidIndex) cells_[f.outside].n[f.outside_face] = nt;
     SKINMESH_DEBUG_ASSERT(orient3d(work_points_[f.vertices[0]].z, work_points_[f.vertices[1]].z,
-                                   work_points_[f.vertices[2]].z,
-                                   work_points_[f.vertices[3]].z) == Sign::Positive);
+                                   work_points_[f.vertices[2]].z, work_points_[f.vertices[3]].z) == Sign::Positive);
     for (const Index w : f.vertices) {
       vertex_tet_[w] = nt;
       vertex_mark_[w] = on_boundary;
@@ -292,25 +280,20 @@ void RegularTriangulation::insert(Index v) {
 }
 
 // The remembering stochastic visibility walk (geometry/triangulation/walk.h).
-Index RegularTriangulation::walk(std::span<const WeightedPoint> pts, const Vec3& p,
-                                 Index start, std::uint64_t& rng, std::uint64_t* steps,
-                                 std::uint64_t* fallbacks) const {
+Index RegularTriangulation::walk(std::span<const WeightedPoint> pts, const Vec3& p, Index start, std::uint64_t& rng,
+                                 std::uint64_t* steps, std::uint64_t* fallbacks) const {
   return walk::locate(cells_, pts, p, start, rng, steps, fallbacks, [&] { return locate_by_scan(pts, p); });
 }
 
-bool RegularTriangulation::contains(std::span<const WeightedPoint> pts, Index t,
-                                    const Vec3& p) const {
+bool RegularTriangulation::contains(std::span<const WeightedPoint> pts, Index t, const Vec3& p) const {
   const std::array<Index, 4>& tv = cells_[t].v;
   for (const auto& f : kFaceVertices) {
-    if (orient3d(pts[tv[f[0]]].z, pts[tv[f[1]]].z, pts[tv[f[2]]].z, p) ==
-        Sign::Negative)
-      return false;
+    if (orient3d(pts[tv[f[0]]].z, pts[tv[f[1]]].z, pts[tv[f[2]]].z, p) == Sign::Negative) return false;
   }
   return true;
 }
 
-Index RegularTriangulation::locate_by_scan(std::span<const WeightedPoint> pts,
-                                           const Vec3& p) const {
+Index RegularTriangulation::locate_by_scan(std::span<const WeightedPoint> pts, const Vec3& p) const {
   for (Index t = 0; t < cells_.size(); ++t) {
     if (cells_[t].v[0] != kInvalidIndex && contains(pts, t, p)) return t;
   }
@@ -416,14 +399,14 @@ Sign RegularTriangulation::work_conflict(Index t, Index v) const {
   const std::array<Index, 4>& tv = cells_[t].v;
   const WeightedPoint* p = work_points_.data();
   const Index* id = work_ids_.data();
-  return power_test_sos(p[tv[0]], p[tv[1]], p[tv[2]], p[tv[3]], p[v], id[tv[0]], id[tv[1]],
-                        id[tv[2]], id[tv[3]], id[v]);
+  return power_test_sos(p[tv[0]], p[tv[1]], p[tv[2]], p[tv[3]], p[v], id[tv[0]], id[tv[1]], id[tv[2]], id[tv[3]],
+                        id[v]);
 }
 
 Sign RegularTriangulation::conflict(Index t, Index v) const {
   const std::array<Index, 4>& tv = cells_[t].v;
-  return power_test_sos(points_[tv[0]], points_[tv[1]], points_[tv[2]], points_[tv[3]],
-                        points_[v], tv[0], tv[1], tv[2], tv[3], v);
+  return power_test_sos(points_[tv[0]], points_[tv[1]], points_[tv[2]], points_[tv[3]], points_[v], tv[0], tv[1], tv[2],
+                        tv[3], v);
 }
 
 }  // namespace skinmesh::geometry

@@ -108,10 +108,10 @@ class RegularTriangulation {
 
   /// Counters of the construction (for benchmarks and diagnostics).
   struct BuildStats {
-    std::uint64_t walk_steps = 0;      ///< tetrahedra visited by point location
-    std::uint64_t walk_fallbacks = 0;  ///< walks that hit the step limit (exhaustive scan)
-    std::uint64_t conflict_tets = 0;   ///< tetrahedra removed by insertions, in total
-    std::uint64_t hidden_vertices = 0; ///< vertices made redundant by a later insertion
+    std::uint64_t walk_steps = 0;       ///< tetrahedra visited by point location
+    std::uint64_t walk_fallbacks = 0;   ///< walks that hit the step limit (exhaustive scan)
+    std::uint64_t conflict_tets = 0;    ///< tetrahedra removed by insertions, in total
+    std::uint64_t hidden_vertices = 0;  ///< vertices made redundant by a later insertion
   };
 
   /// Builds the regular triangulation of `points` plus 4 bounding points.
@@ -122,8 +122,7 @@ class RegularTriangulation {
   /// coordinate or weight (a bug of the caller: readers reject such input).
   /// Pre: admissible magnitudes of geometry/kernel/predicates.h. Cost: expected
   /// O(n log n) for well-distributed input.
-  explicit RegularTriangulation(std::span<const WeightedPoint> points,
-                                std::uint64_t seed = kDefaultSeed);
+  explicit RegularTriangulation(std::span<const WeightedPoint> points, std::uint64_t seed = kDefaultSeed);
 
   // Points --------------------------------------------------------------------
 
@@ -182,8 +181,8 @@ class RegularTriangulation {
  private:
   // RegularTriangulation Private Methods
   void insert(Index v);
-  Index walk(std::span<const WeightedPoint> pts, const Vec3& p, Index start,
-             std::uint64_t& rng, std::uint64_t* steps, std::uint64_t* fallbacks) const;
+  Index walk(std::span<const WeightedPoint> pts, const Vec3& p, Index start, std::uint64_t& rng, std::uint64_t* steps,
+             std::uint64_t* fallbacks) const;
   Index locate_by_scan(std::span<const WeightedPoint> pts, const Vec3& p) const;
   bool contains(std::span<const WeightedPoint> pts, Index t, const Vec3& p) const;
   Sign work_conflict(Index t, Index v) const;  // construction numbering

@@ -124,8 +124,8 @@ TEST_CASE("--algorithm dynamic: a checked mesh, its statistics, and options of t
   CHECK(j.at("delaunay").at("insertions").get<std::size_t>() > 100);
   const Run c = run(s, "check " + kAtom + " d.ply --quiet");
   CHECK(c.exit_code == 0);
-  for (const std::string bad : {"--algorithm dynamic --trace", "--algorithm dynamic --max-steps 3",
-                                "--no-growth", "--algorithm sweep --growth-step 0.5"}) {
+  for (const std::string bad : {"--algorithm dynamic --trace", "--algorithm dynamic --max-steps 3", "--no-growth",
+                                "--algorithm sweep --growth-step 0.5"}) {
     INFO(bad);
     const Run e = run(s, "mesh " + kAtom + " -o e.ply " + bad);
     CHECK(e.exit_code == 2);
@@ -251,7 +251,7 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
       double worst = 0;
       for (std::size_t v = 0; v < ply.positions.size(); ++v)
         worst = std::max(worst, (back.positions[v] - ply.positions[v]).cwiseAbs().maxCoeff());
-      if (n == "a.vtk") CHECK(worst == 0);  // shortest round-trip decimals: exact
+      if (n == "a.vtk") CHECK(worst == 0);           // shortest round-trip decimals: exact
       if (n == "a.vert") CHECK(worst <= 5.0001e-4);  // MSMS's three decimals
       if (n == "a.vtk") CHECK(back.rho.size() == ply.positions.size());
     }
@@ -297,8 +297,9 @@ TEST_CASE("--stats: a molecule's mesh area and volume lie close to the exact ski
   // Crambin at probe 1.4 holds edge cells whose end planes cross the axis
   // (β ≈ 0): an early version dropped their cuts and found 25,111 Å² for a
   // skin of 2,638 Å².
-  for (const auto& [name, probe] : {std::pair{"ligand_1hpv_amprenavir.pdb", "1.4"},
-                                    std::pair{"ligand_1hpv_amprenavir.pdb", "0"}, std::pair{"crambin_1crn.pdb", "1.4"}}) {
+  for (const auto& [name, probe] :
+       {std::pair{"ligand_1hpv_amprenavir.pdb", "1.4"}, std::pair{"ligand_1hpv_amprenavir.pdb", "0"},
+        std::pair{"crambin_1crn.pdb", "1.4"}}) {
     CAPTURE(name);
     CAPTURE(probe);
     const std::string mol = quoted(std::string(SKINMESH_DATA) + "/" + name);
@@ -321,12 +322,13 @@ TEST_CASE("--stats: the mesh's area and volume converge to the exact skin's at s
   Scratch s;
   const std::string neck = quoted(std::string(SKINMESH_TEST_DATA) + "/two_atoms_neck.xyzr");
   double last_area = 0, last_volume = 0;
-  for (const char* size : {"--C 0.08 --disc-factor 0.185", "--C 0.04 --disc-factor 0.1037",
-                           "--C 0.02 --disc-factor 0.0551"}) {
+  for (const char* size :
+       {"--C 0.08 --disc-factor 0.185", "--C 0.04 --disc-factor 0.1037", "--C 0.02 --disc-factor 0.0551"}) {
     CAPTURE(size);
     const Run r = run(s, "mesh " + neck + " --probe 0 " + size + " -o n.ply --stats s.json --quiet");
     REQUIRE(r.exit_code == 0);
-    const nlohmann::json d = nlohmann::json::parse(slurp(s.dir / "s.json")).at("surface").at("mesh_relative_difference");
+    const nlohmann::json d =
+        nlohmann::json::parse(slurp(s.dir / "s.json")).at("surface").at("mesh_relative_difference");
     const double area = std::abs(double(d.at("area"))), volume = std::abs(double(d.at("volume")));
     CHECK(area > 0);
     if (last_area > 0) {

@@ -12,8 +12,8 @@
 
 #include "core/types.h"
 
-using skinmesh::Vec3;
 using skinmesh::GrowableArray;
+using skinmesh::Vec3;
 
 namespace {
 
@@ -32,8 +32,7 @@ TEST_CASE("growable_array: push_back through realloc, mmap and mremap keeps ever
     CHECK(a.capacity() >= a.size());
     // Mapped (from 2,731 values on) the capacity grows by an eighth; below, or
     // without mapped blocks (AddressSanitizer, not Linux), it doubles.
-    if (SKINMESH_GROWABLE_ARRAY_MMAP && a.size() > 8192)
-      CHECK(double(a.capacity()) <= 1.126 * double(a.size()) + 16);
+    if (SKINMESH_GROWABLE_ARRAY_MMAP && a.size() > 8192) CHECK(double(a.capacity()) <= 1.126 * double(a.size()) + 16);
   }
   REQUIRE(a.size() == ref.size());
   bool same = true;

@@ -17,8 +17,8 @@ TEST_CASE("stage clock: reports in order, seconds per ended stage") {
   clock.end("skin");
   clock.report("sweep", 0.5);
   clock.end("sweep");
-  const std::vector<std::pair<std::string, double>> expected = {{"skin", 0.0}, {"skin", 1.0}, {"sweep", 0.5},
-                                                                {"sweep", 1.0}};
+  const std::vector<std::pair<std::string, double>> expected = {
+      {"skin", 0.0}, {"skin", 1.0}, {"sweep", 0.5}, {"sweep", 1.0}};
   CHECK(reports == expected);
   REQUIRE(clock.seconds().size() == 2);
   CHECK(clock.seconds()[0].first == "skin");

@@ -14,17 +14,17 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/stage_clock.h"
 #include "dynamic/dynamic_skin.h"
 #include "dynamic/level_set.h"
 #include "dynamic/sample_triangulation.h"
 #include "geometry/triangulation/delaunay_triangulation.h"
-#include "core/errors.h"
-#include "core/stage_clock.h"
-#include "skin/singular_skin.h"
-#include "verify/skin_mesh_check.h"
 #include "skin/molecule_io.h"
+#include "skin/singular_skin.h"
 #include "skin/skin_surface.h"
 #include "tests/skin/skin_test_util.h"
+#include "verify/skin_mesh_check.h"
 
 namespace sd = skinmesh::dynamic;
 using skinmesh::Index;

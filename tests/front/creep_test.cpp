@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "tests/front/front_fixture.h"
 #include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/skin_surface.h"
+#include "tests/front/front_fixture.h"
 #include "tests/skin/skin_test_util.h"
 
 using namespace skinmesh;
@@ -72,8 +72,8 @@ std::vector<double> apex_angles(const FrontState& s, Vertex v, const std::vector
   const Vec3 pv = s.mesh.position(v), n = s.normal[v];
   std::vector<double> a;
   for (std::size_t i = 1; i < fan.size(); ++i)
-    a.push_back(ccw_angle(tangent_dir(pv, n, s.mesh.position(fan[i - 1])), tangent_dir(pv, n, s.mesh.position(fan[i])),
-                          n));
+    a.push_back(
+        ccw_angle(tangent_dir(pv, n, s.mesh.position(fan[i - 1])), tangent_dir(pv, n, s.mesh.position(fan[i])), n));
   return a;
 }
 
@@ -198,7 +198,8 @@ TEST_CASE("every creep of a sweep builds a fan of equal apex angles and keeps ch
       // Unless the deferrals ran out (then m ± 1 may be taken), m = ceil(theta / 60°).
       if (s.deferrals[v] < fx.opt.max_deferrals) {
         CHECK(a.front() <= fx.opt.fan_angle_deg * kDegree * (1 + 1e-9));
-        CHECK(a.front() * static_cast<double>(m) > fx.opt.fan_angle_deg * kDegree * static_cast<double>(m - 1) * (1 - 1e-9));
+        CHECK(a.front() * static_cast<double>(m) >
+              fx.opt.fan_angle_deg * kDegree * static_cast<double>(m - 1) * (1 - 1e-9));
       }
       // The new points: at the tangent-disc radius from v in T_v (moved along n_v only).
       const Vec3 pv = s.mesh.position(v), n = s.normal[v];

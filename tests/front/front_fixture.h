@@ -20,7 +20,6 @@ namespace skinmesh::test {
 using front::detail::FrontState;
 using geometry::Vertex;
 
-
 inline double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
 
 /// A skin with its Morse–Smale complex, kept alive for a Sweep.

@@ -15,12 +15,12 @@
 #include <limits>
 #include <vector>
 
-#include "tests/front/front_fixture.h"
 #include "core/errors.h"
 #include "geometry/kernel/angles.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/skin_surface.h"
+#include "tests/front/front_fixture.h"
 #include "tests/skin/skin_test_util.h"
 
 using namespace skinmesh;

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "tests/front/front_fixture.h"
 #include "core/errors.h"
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/skin_surface.h"
+#include "tests/front/front_fixture.h"
 #include "tests/skin/skin_test_util.h"
 
 using namespace skinmesh;

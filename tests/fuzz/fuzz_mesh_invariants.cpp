@@ -8,8 +8,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using skinmesh::geometry::MeshFormat;
-  for (const MeshFormat f : {MeshFormat::Ply, MeshFormat::Off, MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Vtk,
-                             MeshFormat::Msms})
+  for (const MeshFormat f :
+       {MeshFormat::Ply, MeshFormat::Off, MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Vtk, MeshFormat::Msms})
     skinmesh::fuzz::mesh_input(data, size, f, /*check=*/true);
   return 0;
 }

@@ -46,8 +46,7 @@ inline void check_molecule(const skin::Molecule& m, skin::ReadOptions::Format fo
         invariant_failed("atom coordinate not finite or outside ±kMaxCoordinate", i);
     if (!std::isfinite(a.radius) || a.radius <= 0.0 || a.radius > skin::kMaxRadius)
       invariant_failed("atom radius not in (0, kMaxRadius]", i);
-    if ((format == skin::ReadOptions::Format::Pdb || format == skin::ReadOptions::Format::Mmcif) &&
-        a.element.empty())
+    if ((format == skin::ReadOptions::Format::Pdb || format == skin::ReadOptions::Format::Mmcif) && a.element.empty())
       invariant_failed("PDB/mmCIF atom without element", i);
     if (a.line < 0) invariant_failed("negative atom line", i);
     if (format == skin::ReadOptions::Format::Pdb && a.line == 0)
@@ -80,11 +79,16 @@ inline void check_mesh(const geometry::IndexedMesh& m) {
 /// for ReadOptions::Format::Auto, which the targets do not use).
 inline const char* molecule_name(skin::ReadOptions::Format format) {
   switch (format) {
-    case skin::ReadOptions::Format::Pdb: return "fuzz.pdb";
-    case skin::ReadOptions::Format::Mmcif: return "fuzz.cif";
-    case skin::ReadOptions::Format::Pqr: return "fuzz.pqr";
-    case skin::ReadOptions::Format::Xyzr: return "fuzz.xyzr";
-    case skin::ReadOptions::Format::Auto: break;
+    case skin::ReadOptions::Format::Pdb:
+      return "fuzz.pdb";
+    case skin::ReadOptions::Format::Mmcif:
+      return "fuzz.cif";
+    case skin::ReadOptions::Format::Pqr:
+      return "fuzz.pqr";
+    case skin::ReadOptions::Format::Xyzr:
+      return "fuzz.xyzr";
+    case skin::ReadOptions::Format::Auto:
+      break;
   }
   return "fuzz";
 }
@@ -92,15 +96,14 @@ inline const char* molecule_name(skin::ReadOptions::Format format) {
 /// Reads `data` as a molecule file of `format`. The options vary with the input
 /// length (bit 0: keep_water, bit 1: drop hydrogens) so that every path of the
 /// readers is reached without a byte of the input spent on them.
-inline void molecule_input(const std::uint8_t* data, std::size_t size, skin::ReadOptions::Format format,
-                           bool check) {
+inline void molecule_input(const std::uint8_t* data, std::size_t size, skin::ReadOptions::Format format, bool check) {
   skin::ReadOptions opt;
   opt.format = format;
   opt.keep_water = (size & 1u) != 0;
   opt.keep_hydrogens = (size & 2u) == 0;
   try {
-    const skin::Molecule m = skin::read_molecule_from_string(
-        std::string(reinterpret_cast<const char*>(data), size), molecule_name(format), opt);
+    const skin::Molecule m = skin::read_molecule_from_string(std::string(reinterpret_cast<const char*>(data), size),
+                                                             molecule_name(format), opt);
     if (check) check_molecule(m, format);
   } catch (const InputError&) {
     // Bad input, reported as documented.

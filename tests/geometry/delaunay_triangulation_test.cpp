@@ -17,19 +17,19 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/triangulation/delaunay_triangulation.h"
 #include "core/errors.h"
 #include "geometry/kernel/predicates.h"
+#include "geometry/triangulation/delaunay_triangulation.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;
+using sg::DelaunayTriangulation;
+using sg::WeightedPoint;
 using skinmesh::Index;
 using skinmesh::kInvalidIndex;
 using skinmesh::Sign;
 using skinmesh::Vec3;
-using sg::DelaunayTriangulation;
 using skinmesh::test::integer_sphere;
-using sg::WeightedPoint;
 
 namespace {
 
@@ -72,8 +72,8 @@ std::set<Quad> brute_force(const DelaunayTriangulation& dt) {
           bool empty = true;
           for (std::size_t e = 0; e < n && empty; ++e) {
             if (e == a || e == b || e == c || e == d) continue;
-            empty = sg::power_test_sos(p[q[0]], p[q[1]], p[q[2]], p[q[3]], p[e], vs[q[0]],
-                                       vs[q[1]], vs[q[2]], vs[q[3]], vs[e]) == Sign::Negative;
+            empty = sg::power_test_sos(p[q[0]], p[q[1]], p[q[2]], p[q[3]], p[e], vs[q[0]], vs[q[1]], vs[q[2]], vs[q[3]],
+                                       vs[e]) == Sign::Negative;
           }
           if (empty) out.insert(sorted({vs[a], vs[b], vs[c], vs[d]}));
         }
@@ -105,7 +105,6 @@ std::vector<Vec3> random_points(std::mt19937_64& rng, int n, double box) {
   }
   return pts;
 }
-
 
 std::vector<Vec3> grid(int nx, int ny, int nz, double h) {
   std::vector<Vec3> out;
@@ -141,8 +140,10 @@ void insert_remove_all(const std::vector<Vec3>& pts, unsigned seed, int every) {
   for (const Index v : ids) {
     dt.remove(v);
     CHECK_FALSE(dt.is_vertex(v));
-    if (++k % every == 0) check_brute_force(dt);
-    else check_valid(dt);
+    if (++k % every == 0)
+      check_brute_force(dt);
+    else
+      check_valid(dt);
   }
   CHECK(dt.num_vertices() == 0);
   CHECK(dt.num_tets() == 1);
@@ -167,11 +168,10 @@ TEST_CASE("delaunay triangulation: bad input throws InputError") {
   const std::set<Quad> before = tet_set(dt);
   CHECK_THROWS_AS(dt.insert(Vec3(11, 0, 0)), skinmesh::InputError);
   CHECK_THROWS_AS(dt.insert(Vec3(0, nan, 0)), skinmesh::InputError);
-  CHECK_THROWS_WITH_AS(dt.insert(Vec3(1, 2, 3)), doctest::Contains("coincides with vertex 4"),
-                       skinmesh::InputError);
-  CHECK_THROWS_AS(dt.remove(0), skinmesh::InputError);          // bounding point
+  CHECK_THROWS_WITH_AS(dt.insert(Vec3(1, 2, 3)), doctest::Contains("coincides with vertex 4"), skinmesh::InputError);
+  CHECK_THROWS_AS(dt.remove(0), skinmesh::InputError);  // bounding point
   CHECK_THROWS_AS(dt.remove(3), skinmesh::InputError);
-  CHECK_THROWS_AS(dt.remove(6), skinmesh::InputError);          // never used
+  CHECK_THROWS_AS(dt.remove(6), skinmesh::InputError);  // never used
   CHECK_THROWS_AS(dt.remove(kInvalidIndex), skinmesh::InputError);
   CHECK_THROWS_AS(dt.move(a, Vec3(-1, 0.5, 2)), skinmesh::InputError);  // onto b
   CHECK_THROWS_AS(dt.move(a, Vec3(0, 0, 20)), skinmesh::InputError);
@@ -309,108 +309,108 @@ TEST_CASE("delaunay triangulation: long random insert / remove / move sequence")
   // duplicate refusal), half uniform. Then 600 operations with 7/8 of the
   // positions on the grid (more degenerate).
   for (const auto& run : {std::tuple{20240607u, 4u, 2000}, std::tuple{77u, 7u, 600}}) {
-  const unsigned seed = std::get<0>(run), grid_in_8 = std::get<1>(run);
-  const int num_ops = std::get<2>(run);
-  INFO("seed " << seed);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unif(-4.0, 4.0);
-  auto draw = [&]() {
-    if (rng() % 8 < grid_in_8) {
-      const int x = int(rng() % 5), y = int(rng() % 5), z = int(rng() % 5);
-      return Vec3(x - 2, y - 2, z - 2);
-    }
-    const double x = unif(rng), y = unif(rng), z = unif(rng);
-    return Vec3(x, y, z);
-  };
-  DelaunayTriangulation dt(kLo, kHi);
-  std::map<Index, Vec3> live;
-  auto occupied = [&](const Vec3& p) {
-    for (const auto& [v, q] : live)
-      if (q == p) return true;
-    return false;
-  };
-  int inserts = 0, removes = 0, moves = 0, refused = 0;
-  std::map<Index, std::array<Index, 4>> before;  // live tetrahedra before the operation
-  dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
-  for (int op = 0; op < num_ops; ++op) {
-    INFO("operation " << op);
-    const unsigned r = static_cast<unsigned>(rng() % 100);
-    const std::size_t target = 30;
-    const bool want_insert = live.size() < 5 || (live.size() < target ? r < 50 : r < 30);
-    if (want_insert) {
-      const Vec3 p = draw();
-      if (occupied(p)) {
-        CHECK_THROWS_AS(dt.insert(p), skinmesh::InputError);
-        ++refused;
-      } else {
-        const Index v = dt.insert(p);
-        CHECK(live.count(v) == 0);
-        live[v] = p;
-        ++inserts;
+    const unsigned seed = std::get<0>(run), grid_in_8 = std::get<1>(run);
+    const int num_ops = std::get<2>(run);
+    INFO("seed " << seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unif(-4.0, 4.0);
+    auto draw = [&]() {
+      if (rng() % 8 < grid_in_8) {
+        const int x = int(rng() % 5), y = int(rng() % 5), z = int(rng() % 5);
+        return Vec3(x - 2, y - 2, z - 2);
       }
-    } else {
-      auto it = live.begin();
-      std::advance(it, rng() % live.size());
-      const Index v = it->first;
-      if (r < 75) {
-        dt.remove(v);
-        live.erase(it);
-        ++removes;
-      } else {
-        const Vec3 p = rng() % 4 == 0 ? Vec3(it->second + Vec3(0.01, -0.02, 0.015)) : draw();
-        if (p != it->second && occupied(p)) {
-          CHECK_THROWS_AS(dt.move(v, p), skinmesh::InputError);
+      const double x = unif(rng), y = unif(rng), z = unif(rng);
+      return Vec3(x, y, z);
+    };
+    DelaunayTriangulation dt(kLo, kHi);
+    std::map<Index, Vec3> live;
+    auto occupied = [&](const Vec3& p) {
+      for (const auto& [v, q] : live)
+        if (q == p) return true;
+      return false;
+    };
+    int inserts = 0, removes = 0, moves = 0, refused = 0;
+    std::map<Index, std::array<Index, 4>> before;  // live tetrahedra before the operation
+    dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
+    for (int op = 0; op < num_ops; ++op) {
+      INFO("operation " << op);
+      const unsigned r = static_cast<unsigned>(rng() % 100);
+      const std::size_t target = 30;
+      const bool want_insert = live.size() < 5 || (live.size() < target ? r < 50 : r < 30);
+      if (want_insert) {
+        const Vec3 p = draw();
+        if (occupied(p)) {
+          CHECK_THROWS_AS(dt.insert(p), skinmesh::InputError);
           ++refused;
-        } else if ((p.array().abs() <= 10.0).all()) {
-          dt.move(v, p);
-          it->second = p;
-          ++moves;
+        } else {
+          const Index v = dt.insert(p);
+          CHECK(live.count(v) == 0);
+          live[v] = p;
+          ++inserts;
+        }
+      } else {
+        auto it = live.begin();
+        std::advance(it, rng() % live.size());
+        const Index v = it->first;
+        if (r < 75) {
+          dt.remove(v);
+          live.erase(it);
+          ++removes;
+        } else {
+          const Vec3 p = rng() % 4 == 0 ? Vec3(it->second + Vec3(0.01, -0.02, 0.015)) : draw();
+          if (p != it->second && occupied(p)) {
+            CHECK_THROWS_AS(dt.move(v, p), skinmesh::InputError);
+            ++refused;
+          } else if ((p.array().abs() <= 10.0).all()) {
+            dt.move(v, p);
+            it->second = p;
+            ++moves;
+          }
         }
       }
+      check_valid(dt);
+      REQUIRE(dt.num_vertices() == live.size());
+      if (op % 50 == 49) check_brute_force(dt);
+      // last_created(): every live tetrahedron it does not list is unchanged.
+      {
+        std::set<Index> listed(dt.last_created().begin(), dt.last_created().end());
+        std::size_t unchanged = 0;
+        dt.for_each_tet([&](Index t) {
+          if (listed.count(t)) return;
+          ++unchanged;
+          const auto it_before = before.find(t);
+          REQUIRE(it_before != before.end());
+          CHECK(it_before->second == dt.tet(t));
+        });
+        std::size_t live_listed = 0;
+        for (const Index t : listed) live_listed += dt.is_live(t) ? 1 : 0;
+        CHECK(unchanged + live_listed == dt.num_tets());
+        before.clear();
+        dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
+      }
     }
-    check_valid(dt);
-    REQUIRE(dt.num_vertices() == live.size());
-    if (op % 50 == 49) check_brute_force(dt);
-    // last_created(): every live tetrahedron it does not list is unchanged.
-    {
-      std::set<Index> listed(dt.last_created().begin(), dt.last_created().end());
-      std::size_t unchanged = 0;
-      dt.for_each_tet([&](Index t) {
-        if (listed.count(t)) return;
-        ++unchanged;
-        const auto it_before = before.find(t);
-        REQUIRE(it_before != before.end());
-        CHECK(it_before->second == dt.tet(t));
-      });
-      std::size_t live_listed = 0;
-      for (const Index t : listed) live_listed += dt.is_live(t) ? 1 : 0;
-      CHECK(unchanged + live_listed == dt.num_tets());
-      before.clear();
-      dt.for_each_tet([&](Index t) { before[t] = dt.tet(t); });
-    }
-  }
-  MESSAGE("inserts " << inserts << ", removes " << removes << ", moves " << moves
-                     << ", refused duplicates " << refused);
-  CHECK(inserts > num_ops / 5);
-  CHECK(removes > num_ops / 7);
-  CHECK(moves > num_ops / 20);
-  CHECK(refused > 0);
-  // Small moves of a generic point keep the combinatorics: the kinetic fast
-  // path of move() ran (and every state above matched the brute force).
-  if (grid_in_8 == 4u) CHECK(dt.stats().kinetic_moves > 0);
-  for (const auto& [v, p] : live) CHECK(dt.point(v) == p);
+    MESSAGE("inserts " << inserts << ", removes " << removes << ", moves " << moves << ", refused duplicates "
+                       << refused);
+    CHECK(inserts > num_ops / 5);
+    CHECK(removes > num_ops / 7);
+    CHECK(moves > num_ops / 20);
+    CHECK(refused > 0);
+    // Small moves of a generic point keep the combinatorics: the kinetic fast
+    // path of move() ran (and every state above matched the brute force).
+    if (grid_in_8 == 4u) CHECK(dt.stats().kinetic_moves > 0);
+    for (const auto& [v, p] : live) CHECK(dt.point(v) == p);
 
-  // History independence: the same (id order, position) set built directly
-  // gives the same tetrahedra (SoS uniqueness). Inserting in increasing id
-  // order gives new ids in the same relative order.
-  DelaunayTriangulation direct(kLo, kHi);
-  std::map<Index, Index> old_of_new = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
-  for (const auto& [v, p] : live) old_of_new[direct.insert(p)] = v;
-  check_valid(direct);
-  std::set<Quad> mapped;
-  for (const Quad& q : tet_set(direct))
-    mapped.insert(sorted({old_of_new[q[0]], old_of_new[q[1]], old_of_new[q[2]], old_of_new[q[3]]}));
-  CHECK(mapped == tet_set(dt));
+    // History independence: the same (id order, position) set built directly
+    // gives the same tetrahedra (SoS uniqueness). Inserting in increasing id
+    // order gives new ids in the same relative order.
+    DelaunayTriangulation direct(kLo, kHi);
+    std::map<Index, Index> old_of_new = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
+    for (const auto& [v, p] : live) old_of_new[direct.insert(p)] = v;
+    check_valid(direct);
+    std::set<Quad> mapped;
+    for (const Quad& q : tet_set(direct))
+      mapped.insert(sorted({old_of_new[q[0]], old_of_new[q[1]], old_of_new[q[2]], old_of_new[q[3]]}));
+    CHECK(mapped == tet_set(dt));
   }
 }
 
@@ -524,8 +524,8 @@ TEST_CASE("delaunay triangulation: larger sets, lattice deletions") {
   MESSAGE("insertions " << st.insertions << ", removals " << st.removals << ", per removal: star "
                         << double(st.star_tets) / st.removals << " tets, link "
                         << double(st.link_vertices) / st.removals << " vertices (with the 4 bounding), "
-                        << double(st.local_tets) / st.removals << " link tets; per insertion: "
-                        << double(st.walk_steps) / st.insertions << " walk steps, "
+                        << double(st.local_tets) / st.removals
+                        << " link tets; per insertion: " << double(st.walk_steps) / st.insertions << " walk steps, "
                         << double(st.conflict_tets) / st.insertions << " conflict tets");
   CHECK(st.walk_fallbacks == 0);
 }

@@ -7,8 +7,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -141,7 +141,8 @@ TEST_CASE("mesh_checks broad phase: the column sweep reports exactly the overlap
     std::vector<Box> boxes;
     for (int x = 0; x < 8; ++x)
       for (int y = 0; y < 8; ++y)
-        for (int z = 0; z < 3; ++z) boxes.push_back(Box{x * 0.5, y * 0.5, z * 0.5, x * 0.5 + 0.5, y * 0.5 + 0.5, z * 0.5 + 0.5});
+        for (int z = 0; z < 3; ++z)
+          boxes.push_back(Box{x * 0.5, y * 0.5, z * 0.5, x * 0.5 + 0.5, y * 0.5 + 0.5, z * 0.5 + 0.5});
     const auto expect = brute_force_pairs(boxes);
     CHECK(expect.size() > 1000);
     CHECK(box_overlap_pairs(boxes) == expect);
@@ -215,7 +216,8 @@ TEST_CASE("mesh_checks simple fans: accepted fans are embedded, exactly") {
     // A hexagonal fan in the plane z = 0 around the origin.
     IndexedMesh m;
     m.positions.push_back(Vec3(0, 0, 0));
-    for (int i = 0; i < 6; ++i) m.positions.push_back(Vec3(std::cos(i * 1.0471975511965976), std::sin(i * 1.0471975511965976), 0));
+    for (int i = 0; i < 6; ++i)
+      m.positions.push_back(Vec3(std::cos(i * 1.0471975511965976), std::sin(i * 1.0471975511965976), 0));
     for (Index i = 0; i < 6; ++i) m.triangles.push_back({0, Index(1 + i), Index(1 + (i + 1) % 6)});
     CHECK(simple_fan_vertices(m, classes_of(m), build_incidence(m, classes_of(m)))[0] == 1);
     check_simple_fans_are_embedded(m, accepted);

@@ -12,25 +12,22 @@
 #include <vector>
 
 #include "geometry/check/mesh_checks.h"
-#include "tests/geometry/test_meshes.h"
 #include "geometry/kernel/triangle_intersection.h"
+#include "tests/geometry/test_meshes.h"
 
 using skinmesh::Index;
 using skinmesh::Vec3;
 using namespace skinmesh::geometry;
 
+using skinmesh::test::brute_force_intersections;
 using skinmesh::test::icosahedron;
+using skinmesh::test::join;
 using skinmesh::test::sphere;
 using skinmesh::test::torus;
-using skinmesh::test::brute_force_intersections;
-using skinmesh::test::join;
 
 namespace {
 
 // Fixtures ----------------------------------------------------------------------
-
-
-
 
 // Closed cone with its apex at `apex`, opening along +z (dir = 1) or -z (dir = -1):
 // apex, a ring of k vertices at height dir, the centre of the base.
@@ -72,12 +69,16 @@ bool looks_like_json_object(const std::string& s) {
   for (std::size_t i = 0; i < s.size(); ++i) {
     const char c = s[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
-    else if (c == '{' || c == '[') ++depth;
+    if (c == '"')
+      in_string = true;
+    else if (c == '{' || c == '[')
+      ++depth;
     else if (c == '}' || c == ']') {
       if (--depth < 0) return false;
       if (depth == 0 && i + 1 != s.size()) return false;
@@ -270,8 +271,7 @@ TEST_CASE("check_mesh: two interpenetrating tetrahedra") {
   const MeshCheckReport apart = check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(1.01, 0, 0))));
   CHECK(apart.ok());
   // Touching at a point (a vertex of one on a face of the other) counts.
-  const MeshCheckReport touch =
-      check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, -1))));
+  const MeshCheckReport touch = check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, -1))));
   CHECK(touch.num_self_intersections >= 1);
 }
 
@@ -351,14 +351,14 @@ TEST_CASE("check_mesh: the grid finds exactly the pairs brute force finds") {
 TEST_CASE("check_mesh: degenerate, out-of-range and non-finite input") {
   IndexedMesh m = icosahedron();
   const Index n = Index(m.positions.size());
-  m.positions.push_back(Vec3(0, 0, 0));                                    // n: unreferenced
-  m.positions.push_back(Vec3(0.1, 0.2, 0.3));                              // n+1
-  m.positions.push_back(Vec3(0.2, 0.4, 0.6));                              // n+2: 2 x (n+1)
+  m.positions.push_back(Vec3(0, 0, 0));                                         // n: unreferenced
+  m.positions.push_back(Vec3(0.1, 0.2, 0.3));                                   // n+1
+  m.positions.push_back(Vec3(0.2, 0.4, 0.6));                                   // n+2: 2 x (n+1)
   m.positions.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));  // n+3
-  m.triangles.push_back({1, 1, 2});          // repeated index
-  m.triangles.push_back({n, n + 1, n + 2});  // collinear: 0, p, 2p
-  m.triangles.push_back({0, 1, 99});         // out of range
-  m.triangles.push_back({n + 3, n + 1, n});  // a NaN vertex
+  m.triangles.push_back({1, 1, 2});                                             // repeated index
+  m.triangles.push_back({n, n + 1, n + 2});                                     // collinear: 0, p, 2p
+  m.triangles.push_back({0, 1, 99});                                            // out of range
+  m.triangles.push_back({n + 3, n + 1, n});                                     // a NaN vertex
   const MeshCheckReport r = check_mesh(m);
   CHECK_FALSE(r.ok());
   CHECK(r.num_repeated_index_triangles == 1);
@@ -368,7 +368,7 @@ TEST_CASE("check_mesh: degenerate, out-of-range and non-finite input") {
   CHECK(r.num_out_of_range_triangles == 1);
   CHECK(r.num_nonfinite_vertices == 1);
   CHECK(r.num_unreferenced_vertices == 0);
-  CHECK(r.min_angle_deg == 0.0);          // the collinear triangle: 0, 0, 180 degrees
+  CHECK(r.min_angle_deg == 0.0);  // the collinear triangle: 0, 0, 180 degrees
   CHECK(r.max_angle_deg == doctest::Approx(180.0));
   CHECK(r.worst_triangle == 21);
   CHECK(r.angle_histogram[17] >= 1);
@@ -392,16 +392,15 @@ TEST_CASE("check_mesh: angle statistics") {
   std::size_t total = 0;
   for (std::size_t x : r.angle_histogram) total += x;
   CHECK(total == 6);
-  CHECK(r.angle_histogram[4] == 2);  // the two 45° angles
-  CHECK(r.angle_histogram[0] == 1);  // the thin angle, about 6.3°
+  CHECK(r.angle_histogram[4] == 2);                         // the two 45° angles
+  CHECK(r.angle_histogram[0] == 1);                         // the thin angle, about 6.3°
   CHECK(r.angle_histogram[8] + r.angle_histogram[9] == 3);  // 83.7° and the two right angles
 }
 
 TEST_CASE("check_mesh: self-intersection check can be skipped") {
   MeshCheckOptions opt;
   opt.check_self_intersections = false;
-  const MeshCheckReport r =
-      check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, 0.25))), opt);
+  const MeshCheckReport r = check_mesh(join(tetrahedron(Vec3(0, 0, 0)), tetrahedron(Vec3(0.25, 0.25, 0.25))), opt);
   CHECK_FALSE(r.self_intersections_checked);
   CHECK(r.num_self_intersections == 0);
   CHECK(r.num_pairs_tested == 0);
@@ -421,7 +420,6 @@ TEST_CASE("check_mesh: empty mesh and lone vertices") {
   CHECK(r.num_unreferenced_vertices == 2);
   CHECK(r.num_vertex_components == 0);
 }
-
 
 TEST_CASE("check_mesh: candidate pairs and duplicates equal brute force on a coarse random soup") {
   // Points on a coarse integer grid, so that boxes touch exactly, triangles are
@@ -451,8 +449,10 @@ TEST_CASE("check_mesh: candidate pairs and duplicates equal brute force on a coa
   };
   auto box_overlap = [&](const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
     for (int k = 0; k < 3; ++k) {
-      const double alo = std::min({P[a[0]][k], P[a[1]][k], P[a[2]][k]}), ahi = std::max({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
-      const double blo = std::min({P[b[0]][k], P[b[1]][k], P[b[2]][k]}), bhi = std::max({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
+      const double alo = std::min({P[a[0]][k], P[a[1]][k], P[a[2]][k]}),
+                   ahi = std::max({P[a[0]][k], P[a[1]][k], P[a[2]][k]});
+      const double blo = std::min({P[b[0]][k], P[b[1]][k], P[b[2]][k]}),
+                   bhi = std::max({P[b[0]][k], P[b[1]][k], P[b[2]][k]});
       if (alo > bhi || blo > ahi) return false;
     }
     return true;

@@ -101,7 +101,8 @@ std::multiset<std::array<std::array<double, 3>, 3>> corner_sets(const IndexedMes
   std::multiset<std::array<std::array<double, 3>, 3>> out;
   for (const auto& t : m.triangles) {
     std::array<std::array<double, 3>, 3> c;
-    for (int k = 0; k < 3; ++k) c[k] = {round(m.positions[t[k]].x()), round(m.positions[t[k]].y()), round(m.positions[t[k]].z())};
+    for (int k = 0; k < 3; ++k)
+      c[k] = {round(m.positions[t[k]].x()), round(m.positions[t[k]].y()), round(m.positions[t[k]].z())};
     // the same rotation for the same triangle: smallest corner first
     int first = 0;
     for (int k = 1; k < 3; ++k)
@@ -187,13 +188,14 @@ TEST_CASE("formats: broken STL files name the file and the problem") {
   std::string bytes(84, '\0');
   bytes[80] = 2;  // claims 2 triangles, holds none
   CHECK(error_of(s.write("trunc.stl", bytes)).find("announces 2 triangles") != std::string::npos);
-  const std::string quad = "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
-                           "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+  const std::string quad =
+      "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
   const std::string e = error_of(s.write("quad.stl", quad));
   CHECK(e.find("quad.stl:7") != std::string::npos);
   CHECK(e.find("only triangles") != std::string::npos);
-  CHECK(error_of(s.write("open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"))
-            .find("end of file") != std::string::npos);
+  CHECK(error_of(s.write("open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n")).find("end of file") !=
+        std::string::npos);
   CHECK(error_of(s.write("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 nan 0\n"))
             .find("non-numeric or non-finite") != std::string::npos);
 }
@@ -251,21 +253,26 @@ TEST_CASE("formats: broken VTK files name the file, the line and the problem") {
   CHECK(error_of(s.write("b.vtk", "# vtk DataFile Version 3.0\nx\nBINARY\n")).find("b.vtk:3") != std::string::npos);
   CHECK(error_of(s.write("c.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"))
             .find("not supported") != std::string::npos);
-  const std::string quad = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0 1 0 0 1 1 0 0 1 0\n"
-                           "POLYGONS 1 5\n4 0 1 2 3\n";
+  const std::string quad =
+      "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+      "POLYGONS 1 5\n4 0 1 2 3\n";
   const std::string e = error_of(s.write("d.vtk", quad));
   CHECK(e.find("d.vtk:8") != std::string::npos);
   CHECK(e.find("only triangles") != std::string::npos);
-  CHECK(error_of(s.write("e.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4000000000 double\n0 0 0\n"))
+  CHECK(error_of(s.write("e.vtk",
+                         "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4000000000 double\n0 0 0\n"))
             .find("exceeds what the file holds") != std::string::npos);
-  CHECK(error_of(s.write("c4.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 double\n"))
-            .find("c4.vtk:4:") != std::string::npos);  // the line of the dataset type, not the next one
+  CHECK(
+      error_of(s.write("c4.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 double\n"))
+          .find("c4.vtk:4:") != std::string::npos);  // the line of the dataset type, not the next one
   // A second POINTS section would leave triangles and attributes of the first.
-  const std::string twice = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
-                            "POLYGONS 1 4\n3 1 2 3\nPOINTS 1 double\n0 0 0\n";
+  const std::string twice =
+      "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+      "POLYGONS 1 4\n3 1 2 3\nPOINTS 1 double\n0 0 0\n";
   CHECK(error_of(s.write("twice.vtk", twice)).find("twice.vtk:9: a second POINTS section") != std::string::npos);
-  CHECK(error_of(s.write("f.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 1 double\n0 0 0\n"
-                                  "POLYGONS 1 4\n3 0 0 7\n"))
+  CHECK(error_of(s.write("f.vtk",
+                         "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 1 double\n0 0 0\n"
+                         "POLYGONS 1 4\n3 0 0 7\n"))
             .find("out of range") != std::string::npos);
 }
 
@@ -330,8 +337,9 @@ TEST_CASE("formats: MSMS files written by another program, and broken ones") {
           "    0.000     0.000     0.000     0.000     0.000     1.000       0      1  2\n"
           "    1.000     0.000     0.000     0.000     0.000     1.000       0      2  2\n"
           "    0.000     1.000     0.000     0.000     0.000     1.000      -3      2  1\n");
-  s.write("x.face", "# MSMS solvent excluded surface triangles for x\n#faces  #sphere density probe_r\n    1      2  1.00  1.50\n"
-                    "     1      2      3  2     17\n");
+  s.write("x.face",
+          "# MSMS solvent excluded surface triangles for x\n#faces  #sphere density probe_r\n    1      2  1.00  1.50\n"
+          "     1      2      3  2     17\n");
   const IndexedMesh r = read_mesh(s.path("x.face"));
   CHECK(r.triangles.size() == 1);
   CHECK(r.atom == std::vector<std::int32_t>{0, 1, 1});
@@ -342,7 +350,8 @@ TEST_CASE("formats: MSMS files written by another program, and broken ones") {
   CHECK(e.find("out of range") != std::string::npos);
   CHECK(error_of(s.path("missing.vert")).find("missing.vert") != std::string::npos);
   // In memory: the .vert content followed by the .face content.
-  const IndexedMesh mem = read_mesh_from_bytes(slurp(s.path("x.vert")) + slurp(s.path("x.face")), MeshFormat::Msms, "x");
+  const IndexedMesh mem =
+      read_mesh_from_bytes(slurp(s.path("x.vert")) + slurp(s.path("x.face")), MeshFormat::Msms, "x");
   CHECK(mem.triangles == r.triangles);
 }
 

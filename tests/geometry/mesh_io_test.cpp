@@ -24,8 +24,8 @@ namespace {
 using skinmesh::InputError;
 using skinmesh::Vec3;
 using skinmesh::geometry::IndexedMesh;
-using skinmesh::geometry::MeshWriteOptions;
 using skinmesh::geometry::MeshFormat;
+using skinmesh::geometry::MeshWriteOptions;
 using skinmesh::geometry::read_mesh;
 using skinmesh::geometry::read_mesh_from_bytes;
 using skinmesh::geometry::write_mesh;
@@ -34,8 +34,7 @@ using skinmesh::geometry::write_mesh;
 struct ScratchDir {
   std::filesystem::path dir;
   ScratchDir() {
-    dir = std::filesystem::temp_directory_path() /
-          ("skinmesh_mesh_io_test_" + std::to_string(std::random_device{}()));
+    dir = std::filesystem::temp_directory_path() / ("skinmesh_mesh_io_test_" + std::to_string(std::random_device{}()));
     std::filesystem::create_directories(dir);
   }
   ~ScratchDir() {
@@ -317,7 +316,8 @@ TEST_CASE("mesh_io: malformed inputs name the file and the line") {
                  "zero.obj:5: vertex index 0 out of range"));
   CHECK(contains(read_error(scratch().write("inf.obj", "v 0 0 inf\n")), "inf.obj:1: non-numeric or non-finite"));
   CHECK(contains(read_error(scratch().path("missing.ply")), "missing.ply: cannot open file"));
-  CHECK(contains(read_error(scratch().write("mesh.stp", "solid\n")), "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk"));
+  CHECK(contains(read_error(scratch().write("mesh.stp", "solid\n")),
+                 "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk"));
 }
 
 TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
@@ -371,9 +371,10 @@ TEST_CASE("hostile input: a header that claims more records than the file holds 
   const InputError e = read_error(scratch().write("claims.ply", header + std::string(64, '\0')));
   CHECK(e.line() == 3);
   CHECK(contains(e, "claims 1000000000000 records"));
-  const std::string ascii = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 99999999999\nproperty list uchar int vertex_indices\n"
-                            "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 99999999999\nproperty list uchar int vertex_indices\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   const InputError a = read_error(scratch().write("claims_ascii.ply", ascii));
   CHECK(a.line() == 7);
   const InputError off = read_error(scratch().write("claims.off", "OFF\n9223372036854775807 9223372036854775807 0\n"));
@@ -401,7 +402,8 @@ TEST_CASE("read_mesh_from_bytes: the reader of read_mesh() on bytes in memory") 
     CHECK(contains(e, "memory.off:3: unexpected end of file"));
   }
   // Without a name the message is the problem alone.
-  CHECK_THROWS_WITH_AS(read_mesh_from_bytes("MESH\n", MeshFormat::Off), doctest::Contains("not an OFF file"), InputError);
+  CHECK_THROWS_WITH_AS(read_mesh_from_bytes("MESH\n", MeshFormat::Off), doctest::Contains("not an OFF file"),
+                       InputError);
 }
 
 // Inputs found by the libFuzzer targets of tests/fuzz (make fuzz).
@@ -413,9 +415,14 @@ TEST_CASE("fuzzing regressions: a PLY element without properties claiming 10^13 
   const std::string found =
       "ply\r\n"
       "format ascii 1.0\r\n"
-      "element vert\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000,\000\000z\000\000\000\000\000\000\000\000\274\000\000\000\000\000\000\000\000\000\000\000 1\r\n"
+      "element "
+      "vert\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000,"
+      "\000\000z\000\000\000\000\000\000\000\000\274\000\000\000\000\000\000\000\000\000\000\000 1\r\n"
       "obj_info l\227\214\213\327uiply-0ormat\t\tformat ascii 1.0\r\n"
-      "element vert\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000,\000\000z\000\000\000\000\000\000\000\000\274\000\000\000\000\000\000\000\000\000\000\0004671148 44073709551616\r\n"
+      "element "
+      "vert\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000,"
+      "\000\000z\000\000\000\000\000\000\000\000\274\000\000\000\000\000\000\000\000\000\000\0004671148 "
+      "44073709551616\r\n"
       "obj_info list uiply-0ormat\t\t\t\t\t\t\t\t\t\t\t\t\t\t\t\t\tty uc\t\t\t\t\t\tn1edex\r\n"
       "end_header\r\n"s;
   try {

@@ -72,7 +72,8 @@ TEST_CASE("measures: a cavity's surface counts negative; components in vertex or
   REQUIRE(c.size() == 2);
   CHECK(c[0].volume > 0);
   CHECK(c[1].volume < 0);
-  CHECK(c[1].volume == doctest::Approx(-component_measures(sphere(2, Vec3::Zero(), 4, false))[0].volume).epsilon(1e-12));
+  CHECK(c[1].volume ==
+        doctest::Approx(-component_measures(sphere(2, Vec3::Zero(), 4, false))[0].volume).epsilon(1e-12));
   CHECK(c[0].vertices == body.positions.size());
   // 10^6 Å from the origin: relative to each component's first vertex, no digits lost.
   IndexedMesh far = join(body, cavity);

@@ -97,8 +97,7 @@ struct BigInt {
     for (std::size_t i = 0; i < a.mag.size(); ++i) {
       std::uint64_t carry = 0;
       for (std::size_t j = 0; j < b.mag.size() || carry; ++j) {
-        const std::uint64_t cur = r.mag[i + j] + carry +
-                                  (j < b.mag.size() ? std::uint64_t{a.mag[i]} * b.mag[j] : 0);
+        const std::uint64_t cur = r.mag[i + j] + carry + (j < b.mag.size() ? std::uint64_t{a.mag[i]} * b.mag[j] : 0);
         r.mag[i + j] = static_cast<std::uint32_t>(cur);
         carry = cur >> 32;
       }
@@ -153,8 +152,7 @@ using Mat = std::array<std::array<Dyadic, 3>, 3>;
 Dyadic det_n(const Mat& a, int n) {
   if (n == 1) return a[0][0];
   if (n == 2) return a[0][0] * a[1][1] - a[0][1] * a[1][0];
-  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-         a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
          a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
 }
 
@@ -226,8 +224,7 @@ Sign reference_power_sign(const std::vector<WeightedPoint>& x, const WeightedPoi
 /// X and every given further point k (when X has at most 3 points). Returns
 /// false without checking if X is affinely dependent (outside the predicates'
 /// precondition: rounding can make a lifted corner exactly coplanar).
-bool check_against_reference(const std::vector<WeightedPoint>& x,
-                             const std::vector<WeightedPoint>& others) {
+bool check_against_reference(const std::vector<WeightedPoint>& x, const std::vector<WeightedPoint>& others) {
   if (degenerate(x)) return false;
   const Sign ref_w = reference_weight_sign(x);
   CHECK(geometry::focus_weight_sign(x) == ref_w);
@@ -247,8 +244,7 @@ Eigen::Matrix3d random_rotation(std::mt19937& rng) {
   return q.normalized().toRotationMatrix();
 }
 
-std::vector<WeightedPoint> moved(std::vector<WeightedPoint> pts, const Eigen::Matrix3d& rot,
-                                 const Vec3& shift) {
+std::vector<WeightedPoint> moved(std::vector<WeightedPoint> pts, const Eigen::Matrix3d& rot, const Vec3& shift) {
   for (auto& p : pts) p.z = rot * p.z + shift;
   return pts;
 }
@@ -260,8 +256,8 @@ TEST_SUITE("geometry") {
 TEST_CASE("orthosphere predicates: the reference itself on hand-computed cases") {
   // Two balls of radii 2 and 3 at distance 5 are tangent: w_X = 0; at distance
   // 4 they overlap (w_X < 0), at distance 6 they are apart (w_X > 0).
-  for (const auto& [d, expect] : {std::pair{5.0, Sign::Zero}, std::pair{4.0, Sign::Negative},
-                                  std::pair{6.0, Sign::Positive}}) {
+  for (const auto& [d, expect] :
+       {std::pair{5.0, Sign::Zero}, std::pair{4.0, Sign::Negative}, std::pair{6.0, Sign::Positive}}) {
     const std::vector<WeightedPoint> x = {{Vec3(0, 0, 0), 4.0}, {Vec3(d, 0, 0), 9.0}};
     CHECK(reference_weight_sign(x) == expect);
     CHECK(geometry::focus_weight_sign(x) == expect);
@@ -292,7 +288,7 @@ TEST_CASE("orthosphere predicates: exact ties on cospherical, concyclic and tang
   // Integer points on the sphere |z| = 5 with equal weights: the focus of every
   // subset is in the plane of the subset, and a further point on the same
   // circle is orthogonal to it (sign Zero).
-  const std::vector<Vec3> circle = {Vec3(5, 0, 0), Vec3(3, 4, 0), Vec3(0, 5, 0), Vec3(-4, 3, 0),
+  const std::vector<Vec3> circle = {Vec3(5, 0, 0),  Vec3(3, 4, 0),  Vec3(0, 5, 0), Vec3(-4, 3, 0),
                                     Vec3(-5, 0, 0), Vec3(0, -5, 0), Vec3(4, -3, 0)};
   std::vector<WeightedPoint> pts;
   for (const Vec3& c : circle) pts.push_back({c, 2.0});
@@ -308,16 +304,15 @@ TEST_CASE("orthosphere predicates: exact ties on cospherical, concyclic and tang
       }
   // A tetrahedron of cospherical integer points (|z| = 5) with weight 25: the
   // orthosphere is centred at the origin with weight 25 - 25 = 0.
-  const std::vector<WeightedPoint> tet = {{Vec3(5, 0, 0), 25.0}, {Vec3(0, 3, 4), 25.0},
-                                          {Vec3(-3, 0, 4), 25.0}, {Vec3(0, 0, -5), 25.0}};
+  const std::vector<WeightedPoint> tet = {
+      {Vec3(5, 0, 0), 25.0}, {Vec3(0, 3, 4), 25.0}, {Vec3(-3, 0, 4), 25.0}, {Vec3(0, 0, -5), 25.0}};
   CHECK(reference_weight_sign(tet) == Sign::Zero);
   CHECK(geometry::focus_weight_sign(tet) == Sign::Zero);
   // Three balls meeting in exactly one point: radii 5 from (5,0,0), (0,5,0),
   // (0,0,5)... shifted so that the common point is the origin of the triangle
   // plane only if it is the focus: centres (3,4,0), (-3,4,0), (0,-5,0) on
   // |z| = 5 with weight 25 meet exactly at the origin, their plane's focus.
-  const std::vector<WeightedPoint> tri = {{Vec3(3, 4, 0), 25.0}, {Vec3(-3, 4, 0), 25.0},
-                                          {Vec3(0, -5, 0), 25.0}};
+  const std::vector<WeightedPoint> tri = {{Vec3(3, 4, 0), 25.0}, {Vec3(-3, 4, 0), 25.0}, {Vec3(0, -5, 0), 25.0}};
   CHECK(reference_weight_sign(tri) == Sign::Zero);
   CHECK(geometry::focus_weight_sign(tri) == Sign::Zero);
   // Perturbing one weight by one ulp breaks the tie, in the right direction.
@@ -358,10 +353,13 @@ TEST_CASE("orthosphere predicates: rotated and translated flat and cospherical c
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::Matrix3d rot = random_rotation(rng);
     const Vec3 shift = (trial % 2 == 0) ? Vec3(-1e6, 3e5, 1e6) : Vec3(0.5, 0.25, 0);
-    const std::vector<WeightedPoint> sphere =
-        moved({{Vec3(5, 0, 0), 25.0}, {Vec3(0, 3, 4), 25.0}, {Vec3(-3, 0, 4), 25.0},
-               {Vec3(0, 0, -5), 25.0}, {Vec3(0, -4, 3), 25.0}, {Vec3(4, 3, 0), 25.0}},
-              rot, shift);
+    const std::vector<WeightedPoint> sphere = moved({{Vec3(5, 0, 0), 25.0},
+                                                     {Vec3(0, 3, 4), 25.0},
+                                                     {Vec3(-3, 0, 4), 25.0},
+                                                     {Vec3(0, 0, -5), 25.0},
+                                                     {Vec3(0, -4, 3), 25.0},
+                                                     {Vec3(4, 3, 0), 25.0}},
+                                                    rot, shift);
     check_against_reference({sphere[0], sphere[1], sphere[2], sphere[3]}, {});
     check_against_reference({sphere[0], sphere[1], sphere[2]}, {sphere[3], sphere[4], sphere[5]});
     check_against_reference({sphere[3], sphere[4]}, {sphere[0], sphere[5]});
@@ -373,8 +371,8 @@ TEST_CASE("orthosphere predicates: rotated and translated flat and cospherical c
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::Matrix3d rot = random_rotation(rng);
     const std::vector<WeightedPoint> sq =
-        moved({{Vec3(0, 0, 0), 0.5}, {Vec3(1, 0, 0), 0.5}, {Vec3(1, 1, 1e-12), 0.5}, {Vec3(0, 1, 0), 0.5}},
-              rot, trial % 2 == 0 ? Vec3(1e6, 1e6, 1e6) : Vec3::Zero());
+        moved({{Vec3(0, 0, 0), 0.5}, {Vec3(1, 0, 0), 0.5}, {Vec3(1, 1, 1e-12), 0.5}, {Vec3(0, 1, 0), 0.5}}, rot,
+              trial % 2 == 0 ? Vec3(1e6, 1e6, 1e6) : Vec3::Zero());
     slivers += check_against_reference(sq, {}) ? 1 : 0;
     check_against_reference({sq[0], sq[1], sq[2]}, {sq[3]});
     check_against_reference({sq[0], sq[2]}, {sq[1], sq[3]});

@@ -35,7 +35,7 @@ std::vector<Vec3> cloud(std::mt19937_64& rng, int kind, std::size_t n) {
   std::vector<Vec3> pts;
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 p(u(rng), u(rng), u(rng));
-    if (kind == 1) p.z() = 1e-3 * p.z();                        // a slab
+    if (kind == 1) p.z() = 1e-3 * p.z();                            // a slab
     if (kind == 2) p = Vec3(std::round(p.x()), 0.5, 0) + 1e-2 * p;  // clusters on a line
     pts.push_back(p);
     if (i % 17 == 0) pts.push_back(p);  // duplicate

@@ -14,11 +14,11 @@
 #include "geometry/kernel/predicates.h"
 
 namespace sg = skinmesh::geometry;
+using sg::WeightedPoint;
 using skinmesh::Index;
 using skinmesh::Sign;
-using skinmesh::Vec3;
 using skinmesh::sign_of;
-using sg::WeightedPoint;
+using skinmesh::Vec3;
 
 namespace {
 
@@ -34,8 +34,7 @@ struct IPoint {
 
 WeightedPoint to_wp(const IPoint& p, int shift) {
   const double s = std::ldexp(1.0, -shift);
-  return WeightedPoint{Vec3(double(p.x) * s, double(p.y) * s, double(p.z) * s),
-                       double(p.w) * s * s};
+  return WeightedPoint{Vec3(double(p.x) * s, double(p.y) * s, double(p.z) * s), double(p.w) * s * s};
 }
 Vec3 to_vec(const IPoint& p, int shift) { return to_wp(p, shift).z; }
 
@@ -50,25 +49,21 @@ i128 orient3d_ref(const IPoint& a, const IPoint& b, const IPoint& c, const IPoin
 // Power test reference D = l_a det3(bcd) - l_b det3(acd) + l_c det3(abd) -
 // l_d det3(abc), rows (p - e, |p - e|^2 - w_p + w_e). Pre: |coordinates| < 2^20,
 // |weights| < 2^40.
-i128 power_ref(const IPoint& a, const IPoint& b, const IPoint& c, const IPoint& d,
-               const IPoint& e) {
+i128 power_ref(const IPoint& a, const IPoint& b, const IPoint& c, const IPoint& d, const IPoint& e) {
   auto rel = [&](const IPoint& p) {
     std::array<i128, 4> r{p.x - e.x, p.y - e.y, p.z - e.z, 0};
     r[3] = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - (p.w - e.w);
     return r;
   };
   const auto A = rel(a), B = rel(b), C = rel(c), D = rel(d);
-  auto det3 = [](const std::array<i128, 4>& p, const std::array<i128, 4>& q,
-                 const std::array<i128, 4>& s) {
-    return p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) +
-           p[2] * (q[0] * s[1] - q[1] * s[0]);
+  auto det3 = [](const std::array<i128, 4>& p, const std::array<i128, 4>& q, const std::array<i128, 4>& s) {
+    return p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) + p[2] * (q[0] * s[1] - q[1] * s[0]);
   };
-  return A[3] * det3(B, C, D) - B[3] * det3(A, C, D) + C[3] * det3(A, B, D) -
-         D[3] * det3(A, B, C);
+  return A[3] * det3(B, C, D) - B[3] * det3(A, C, D) + C[3] * det3(A, B, D) - D[3] * det3(A, B, C);
 }
 
-Sign orient2d_ref(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by,
-                  std::int64_t cx, std::int64_t cy) {
+Sign orient2d_ref(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx,
+                  std::int64_t cy) {
   return sign128(i128(bx - ax) * (cy - ay) - i128(by - ay) * (cx - ax));
 }
 
@@ -82,8 +77,7 @@ TEST_CASE("expansion: two_sum, two_product and two_square are error-free") {
   const unsigned seed = 20240611u;
   INFO("seed " << seed);
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<std::int64_t> mant(-(std::int64_t(1) << 52),
-                                                   std::int64_t(1) << 52);
+  std::uniform_int_distribution<std::int64_t> mant(-(std::int64_t(1) << 52), std::int64_t(1) << 52);
   std::uniform_int_distribution<int> expo(0, 20);
   for (int t = 0; t < 2000; ++t) {
     // Integers m * 2^k (k <= 20): sums and products fit in __int128.
@@ -109,8 +103,7 @@ TEST_CASE("expansion: sums, products and compression are exact") {
   const unsigned seed = 7u;
   INFO("seed " << seed);
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<std::int64_t> mant(-(std::int64_t(1) << 30),
-                                                   std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> mant(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
   std::uniform_int_distribution<int> expo(0, 30);
   auto to_i128 = [](int n, const double* e) {
     i128 s = 0;
@@ -164,8 +157,7 @@ TEST_CASE("orient2d: sign convention and symmetry") {
   CHECK(sg::orient2d(0, 0, 1, 0, 0, 1) == Sign::Positive);  // counter-clockwise
   CHECK(sg::orient2d(0, 0, 0, 1, 1, 0) == Sign::Negative);
   CHECK(sg::orient2d(0, 0, 1, 1, 2, 2) == Sign::Zero);
-  CHECK(sg::orient2d(0.1, 0.1, 0.2, 0.2, 0.3, 0.3) ==
-        sg::orient2d_exact(0.1, 0.1, 0.2, 0.2, 0.3, 0.3));
+  CHECK(sg::orient2d(0.1, 0.1, 0.2, 0.2, 0.3, 0.3) == sg::orient2d_exact(0.1, 0.1, 0.2, 0.2, 0.3, 0.3));
 }
 
 TEST_CASE("orient2d: nearly collinear points on an ulp grid (Kettner et al.)") {
@@ -204,14 +196,12 @@ TEST_CASE("orient3d: nearly coplanar points against an exact integer reference")
   const unsigned seed = 12345u;
   INFO("seed " << seed);
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<std::int64_t> big(-(std::int64_t(1) << 37),
-                                                  std::int64_t(1) << 37);
+  std::uniform_int_distribution<std::int64_t> big(-(std::int64_t(1) << 37), std::int64_t(1) << 37);
   std::uniform_int_distribution<int> off(-1, 1);
   int fast_wrong = 0, zeros = 0;
   sg::reset_predicate_stats();
   for (int t = 0; t < 3000; ++t) {
-    IPoint a{big(rng), big(rng), big(rng), 0}, b{big(rng), big(rng), big(rng), 0},
-        c{big(rng), big(rng), big(rng), 0};
+    IPoint a{big(rng), big(rng), big(rng), 0}, b{big(rng), big(rng), big(rng), 0}, c{big(rng), big(rng), big(rng), 0};
     // d on (or next to) the plane abc: d = (a + b + 2c) / 4 when divisible,
     // then moved by at most one unit per axis.
     IPoint d{(a.x + b.x + 2 * c.x) / 4 + off(rng), (a.y + b.y + 2 * c.y) / 4 + off(rng),
@@ -220,8 +210,7 @@ TEST_CASE("orient3d: nearly coplanar points against an exact integer reference")
       d = IPoint{a.x + b.x - c.x, a.y + b.y - c.y, a.z + b.z - c.z, 0};
     }
     const int shift = t % 2 == 0 ? 0 : 40;  // integers, or dyadic fractions
-    const Vec3 A = to_vec(a, shift), B = to_vec(b, shift), C = to_vec(c, shift),
-               D = to_vec(d, shift);
+    const Vec3 A = to_vec(a, shift), B = to_vec(b, shift), C = to_vec(c, shift), D = to_vec(d, shift);
     const Sign ref = sign128(orient3d_ref(a, b, c, d));
     if (ref == Sign::Zero) ++zeros;
     REQUIRE(sg::orient3d(A, B, C, D) == ref);
@@ -255,8 +244,8 @@ TEST_CASE("orient3d: filtered result agrees with the exact layer on PDB-like inp
     const Vec3 a = point(), b = point(), c = point();
     // d near the plane: a rounded affine combination.
     Vec3 d = (a + 2.0 * b - c) * 0.5;
-    if (t % 2) d = Vec3(std::round(d.x() * 1000) / 1000, std::round(d.y() * 1000) / 1000,
-                        std::round(d.z() * 1000) / 1000);
+    if (t % 2)
+      d = Vec3(std::round(d.x() * 1000) / 1000, std::round(d.y() * 1000) / 1000, std::round(d.z() * 1000) / 1000);
     CHECK(sg::orient3d(a, b, c, d) == sg::orient3d_exact(a, b, c, d));
   }
 }
@@ -266,8 +255,7 @@ TEST_CASE("orient3d: filtered result agrees with the exact layer on PDB-like inp
 TEST_CASE("power_test: hand-computed signs on the unit tetrahedron") {
   // a = 0, b = e_x, c = e_y, d = e_z is positively oriented; with weights 0 the
   // orthosphere is the circumsphere: centre (1/2, 1/2, 1/2), w_T = 3/4.
-  const WeightedPoint a{Vec3(0, 0, 0), 0}, b{Vec3(1, 0, 0), 0}, c{Vec3(0, 1, 0), 0},
-      d{Vec3(0, 0, 1), 0};
+  const WeightedPoint a{Vec3(0, 0, 0), 0}, b{Vec3(1, 0, 0), 0}, c{Vec3(0, 1, 0), 0}, d{Vec3(0, 0, 1), 0};
   REQUIRE(sg::orient3d(a.z, b.z, c.z, d.z) == Sign::Positive);
   // e at the circumcentre: pi_e(z_T) = 0 < 3/4: conflict.
   CHECK(sg::power_test(a, b, c, d, {Vec3(0.5, 0.5, 0.5), 0}) == Sign::Positive);
@@ -289,8 +277,7 @@ TEST_CASE("power_test: hand-computed signs on the unit tetrahedron") {
   CHECK(sg::power_test(a_heavy, b, c, d, {Vec3(1, 1, 1), 0}) == Sign::Positive);
   CHECK(sg::power_test(a_heavy, b, c, d, {Vec3(1, 1, 1), -1.0}) == Sign::Zero);
   // The value of the fast evaluation: D = (w_T - pi_e(z_T)) * orient3d = 3/4 * 1.
-  CHECK(sg::power_test_fast(a, b, c, d, {Vec3(0.5, 0.5, 0.5), 0}) ==
-        doctest::Approx(0.75));
+  CHECK(sg::power_test_fast(a, b, c, d, {Vec3(0.5, 0.5, 0.5), 0}) == doctest::Approx(0.75));
   // Reversed orientation reverses the sign.
   CHECK(sg::power_test(b, a, c, d, {Vec3(0.5, 0.5, 0.5), 0}) == Sign::Negative);
 }
@@ -314,8 +301,7 @@ TEST_CASE("power_test: nearly degenerate inputs against an exact integer referen
     }
   REQUIRE(sphere.size() > 50);
   std::uniform_int_distribution<std::size_t> pick(0, sphere.size() - 1);
-  std::uniform_int_distribution<std::int64_t> trans(-(std::int64_t(1) << 18),
-                                                    std::int64_t(1) << 18);
+  std::uniform_int_distribution<std::int64_t> trans(-(std::int64_t(1) << 18), std::int64_t(1) << 18);
   std::uniform_int_distribution<int> nudge(-1, 1);
   int zeros = 0, fast_wrong = 0, done = 0;
   sg::reset_predicate_stats();
@@ -347,8 +333,7 @@ TEST_CASE("power_test: nearly degenerate inputs against an exact integer referen
     if (sign_of(sg::power_test_fast(w[0], w[1], w[2], w[3], w[4])) != ref) ++fast_wrong;
     ++done;
   }
-  MESSAGE("power_test_fast wrong on " << fast_wrong << " of 3000 (" << zeros
-                                       << " exactly cospherical)");
+  MESSAGE("power_test_fast wrong on " << fast_wrong << " of 3000 (" << zeros << " exactly cospherical)");
   CHECK(zeros > 500);
   CHECK(fast_wrong > 0);
   CHECK(sg::predicate_stats().power_test.exact > 0);
@@ -370,8 +355,7 @@ TEST_CASE("power_test: filter agrees with the exact layer on random and PDB-like
     }
     if (sg::orient3d(p[0].z, p[1].z, p[2].z, p[3].z) == Sign::Negative) std::swap(p[0], p[1]);
     if (t % 2 == 0) p[4].z = (p[0].z + p[1].z + p[2].z + p[3].z) * 0.25;
-    CHECK(sg::power_test(p[0], p[1], p[2], p[3], p[4]) ==
-          sg::power_test_exact(p[0], p[1], p[2], p[3], p[4]));
+    CHECK(sg::power_test(p[0], p[1], p[2], p[3], p[4]) == sg::power_test_exact(p[0], p[1], p[2], p[3], p[4]));
   }
 }
 
@@ -380,8 +364,7 @@ TEST_CASE("power_test: filter agrees with the exact layer on random and PDB-like
 TEST_CASE("power_test_sos: ties broken by index, equal to an explicit perturbation") {
   // Cube corners are cospherical: every 5-subset has D = 0 with weights 0.
   std::vector<IPoint> cube;
-  for (int i = 0; i < 8; ++i) cube.push_back({(i & 1) * 2 - 1, ((i >> 1) & 1) * 2 - 1,
-                                              ((i >> 2) & 1) * 2 - 1, 0});
+  for (int i = 0; i < 8; ++i) cube.push_back({(i & 1) * 2 - 1, ((i >> 1) & 1) * 2 - 1, ((i >> 2) & 1) * 2 - 1, 0});
   // Large translation so that the lifts are not small integers.
   for (auto& q : cube) q = IPoint{q.x + 1000, q.y - 700, q.z + 300, 0};
   const unsigned seed = 5u;
@@ -403,8 +386,7 @@ TEST_CASE("power_test_sos: ties broken by index, equal to an explicit perturbati
             REQUIRE(power_ref(cube[a], cube[b], cube[c], cube[d], cube[e]) == 0);
             WeightedPoint w[5];
             for (int i = 0; i < 5; ++i) w[i] = to_wp(cube[v[i]], 0);
-            const Sign s = sg::power_test_sos(w[0], w[1], w[2], w[3], w[4], ids[a], ids[b],
-                                              ids[c], ids[d], ids[e]);
+            const Sign s = sg::power_test_sos(w[0], w[1], w[2], w[3], w[4], ids[a], ids[b], ids[c], ids[d], ids[e]);
             REQUIRE(s != Sign::Zero);
             // Explicit perturbation: weight + 2^(rank of the index * 8); the
             // cofactors here are at most 48 in absolute value, so each rank
@@ -418,10 +400,8 @@ TEST_CASE("power_test_sos: ties broken by index, equal to an explicit perturbati
             }
             CHECK(s == sign128(power_ref(q[0], q[1], q[2], q[3], q[4])));
             // Antisymmetry (swap a and b) and even permutations.
-            CHECK(sg::power_test_sos(w[1], w[0], w[2], w[3], w[4], ids[b], ids[a], ids[c],
-                                     ids[d], ids[e]) == -s);
-            CHECK(sg::power_test_sos(w[1], w[2], w[0], w[3], w[4], ids[b], ids[c], ids[a],
-                                     ids[d], ids[e]) == s);
+            CHECK(sg::power_test_sos(w[1], w[0], w[2], w[3], w[4], ids[b], ids[a], ids[c], ids[d], ids[e]) == -s);
+            CHECK(sg::power_test_sos(w[1], w[2], w[0], w[3], w[4], ids[b], ids[c], ids[a], ids[d], ids[e]) == s);
             ++tested;
           }
   MESSAGE(tested << " cospherical configurations");
@@ -430,8 +410,7 @@ TEST_CASE("power_test_sos: ties broken by index, equal to an explicit perturbati
 }
 
 TEST_CASE("power_test_sos: duplicate centres, the larger weight or index wins") {
-  const WeightedPoint a{Vec3(0, 0, 0), 0}, b{Vec3(1, 0, 0), 0}, c{Vec3(0, 1, 0), 0},
-      d{Vec3(0, 0, 1), 0.3};
+  const WeightedPoint a{Vec3(0, 0, 0), 0}, b{Vec3(1, 0, 0), 0}, c{Vec3(0, 1, 0), 0}, d{Vec3(0, 0, 1), 0.3};
   const WeightedPoint e_same = d;
   const WeightedPoint e_heavier{d.z, 0.4}, e_lighter{d.z, 0.2};
   // Equal weights: index order. e has the larger index: e wins (conflict).
@@ -442,8 +421,7 @@ TEST_CASE("power_test_sos: duplicate centres, the larger weight or index wins") 
   CHECK(sg::power_test_sos(a, b, c, d, e_heavier, 0, 1, 2, 4, 3) == Sign::Positive);
   CHECK(sg::power_test_sos(a, b, c, d, e_lighter, 0, 1, 2, 3, 4) == Sign::Negative);
   // A coplanar e on the circumsphere of a coplanar-free tetrahedron: nonzero.
-  CHECK(sg::power_test_sos(a, b, c, {Vec3(0, 0, 1), 0}, {Vec3(1, 1, 0), 0}, 0, 1, 2, 3, 4) ==
-        Sign::Positive);
+  CHECK(sg::power_test_sos(a, b, c, {Vec3(0, 0, 1), 0}, {Vec3(1, 1, 0), 0}, 0, 1, 2, 3, 4) == Sign::Positive);
   CHECK(sg::power_test_sos(a, b, c, {Vec3(0, 0, 1), 0}, {Vec3(1, 1, 0), 0}, 4, 1, 2, 3, 0) ==
         sg::orient3d(b.z, c.z, Vec3(0, 0, 1), Vec3(1, 1, 0)));
 }

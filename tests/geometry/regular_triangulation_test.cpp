@@ -21,13 +21,13 @@
 #include "tests/geometry/test_meshes.h"
 
 namespace sg = skinmesh::geometry;
+using sg::RegularTriangulation;
+using sg::WeightedPoint;
 using skinmesh::Index;
 using skinmesh::kInvalidIndex;
 using skinmesh::Sign;
 using skinmesh::Vec3;
-using sg::RegularTriangulation;
 using skinmesh::test::integer_sphere;
-using sg::WeightedPoint;
 
 namespace {
 
@@ -67,10 +67,8 @@ void verify(const RegularTriangulation& rt, bool global) {
     REQUIRE(sorted(q)[1] != sorted(q)[2]);
     REQUIRE(sorted(q)[2] != sorted(q)[3]);
     // Positive orientation (exact).
-    REQUIRE(sg::orient3d(rt.point(q[0]).z, rt.point(q[1]).z, rt.point(q[2]).z,
-                         rt.point(q[3]).z) == Sign::Positive);
-    volume += sg::orient3d_fast(rt.point(q[0]).z, rt.point(q[1]).z, rt.point(q[2]).z,
-                                rt.point(q[3]).z) / 6.0;
+    REQUIRE(sg::orient3d(rt.point(q[0]).z, rt.point(q[1]).z, rt.point(q[2]).z, rt.point(q[3]).z) == Sign::Positive);
+    volume += sg::orient3d_fast(rt.point(q[0]).z, rt.point(q[1]).z, rt.point(q[2]).z, rt.point(q[3]).z) / 6.0;
     for (int i = 0; i < 4; ++i) {
       const Index u = rt.neighbor(t, i);
       if (u == kInvalidIndex) {
@@ -119,16 +117,15 @@ void verify(const RegularTriangulation& rt, bool global) {
   }
   for (Index v = n; v < np; ++v) CHECK(rt.is_bounding(v));
   // Volumes add up to the bounding tetrahedron's.
-  const double big = sg::orient3d_fast(rt.point(n).z, rt.point(n + 1).z, rt.point(n + 2).z,
-                                       rt.point(n + 3).z) / 6.0;
+  const double big = sg::orient3d_fast(rt.point(n).z, rt.point(n + 1).z, rt.point(n + 2).z, rt.point(n + 3).z) / 6.0;
   CHECK(volume == doctest::Approx(std::abs(big)).epsilon(1e-9));
   // Euler characteristic of a triangulated ball: V - E + F - T = 1.
   std::set<std::pair<Index, Index>> edges;
   for (const Quad& q : all_tets(rt))
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) edges.insert({std::min(q[a], q[b]), std::max(q[a], q[b])});
-  const long long V = np - Index(redundant.size()), T = rt.num_tets(),
-                  F = (4 * T + outer_faces) / 2, E = static_cast<long long>(edges.size());
+  const long long V = np - Index(redundant.size()), T = rt.num_tets(), F = (4 * T + outer_faces) / 2,
+                  E = static_cast<long long>(edges.size());
   CHECK(V - E + F - T == 1);
   if (global) {
     for (Index t = 0; t < rt.num_tets(); ++t)
@@ -154,8 +151,8 @@ std::set<Quad> brute_force(const RegularTriangulation& rt) {
           bool empty = true;
           for (Index e = 0; e < np && empty; ++e) {
             if (e == a || e == b || e == c || e == d) continue;
-            empty = sg::power_test_sos(pts[q[0]], pts[q[1]], pts[q[2]], pts[q[3]], pts[e], q[0],
-                                       q[1], q[2], q[3], e) == Sign::Negative;
+            empty = sg::power_test_sos(pts[q[0]], pts[q[1]], pts[q[2]], pts[q[3]], pts[e], q[0], q[1], q[2], q[3], e) ==
+                    Sign::Negative;
           }
           if (empty) out.insert(sorted(q));
         }
@@ -176,8 +173,7 @@ void compare_with_brute_force(const std::vector<WeightedPoint>& pts) {
   CHECK(rt.num_tets() == expected.size());
 }
 
-std::vector<WeightedPoint> random_points(std::mt19937_64& rng, int n, double box, double rmin,
-                                         double rmax) {
+std::vector<WeightedPoint> random_points(std::mt19937_64& rng, int n, double box, double rmin, double rmax) {
   std::uniform_real_distribution<double> c(-box, box), r(rmin, rmax);
   std::vector<WeightedPoint> pts;
   for (int i = 0; i < n; ++i) {
@@ -190,7 +186,6 @@ std::vector<WeightedPoint> random_points(std::mt19937_64& rng, int n, double box
 }
 
 double round3(double x) { return std::round(x * 1000.0) / 1000.0; }
-
 
 }  // namespace
 
@@ -214,8 +209,7 @@ TEST_CASE("hilbert_key: consecutive keys are face-adjacent cells") {
 TEST_CASE("regular triangulation: bad input throws InputError") {
   std::vector<WeightedPoint> none;
   CHECK_THROWS_AS(RegularTriangulation{none}, skinmesh::InputError);
-  std::vector<WeightedPoint> nan = {{Vec3(0, 0, 0), 1.0},
-                                    {Vec3(1, std::numeric_limits<double>::quiet_NaN(), 0), 1.0}};
+  std::vector<WeightedPoint> nan = {{Vec3(0, 0, 0), 1.0}, {Vec3(1, std::numeric_limits<double>::quiet_NaN(), 0), 1.0}};
   CHECK_THROWS_AS(RegularTriangulation{nan}, skinmesh::InputError);
   // Outside the admissible range of the exact predicates (issue #7: 1e300 once
   // ended in an orient3d assertion).
@@ -238,16 +232,12 @@ TEST_CASE("regular triangulation: 1, 2 and 3 points") {
     // Bounding tetrahedron: centred at the point, D = 50 * (0 + 1.5) Å.
     CHECK((rt.bounding_centre() - pts[0].z).norm() == 0.0);
     CHECK(rt.bounding_radius() == doctest::Approx(75.0));
-    for (Index v = 1; v < 5; ++v)
-      CHECK((rt.point(v).z - pts[0].z).norm() == doctest::Approx(75.0));
+    for (Index v = 1; v < 5; ++v) CHECK((rt.point(v).z - pts[0].z).norm() == doctest::Approx(75.0));
     compare_with_brute_force(pts);
   }
-  SUBCASE("two points") {
-    compare_with_brute_force({{Vec3(0, 0, 0), 1.0}, {Vec3(1.2, 0, 0), 0.8}});
-  }
+  SUBCASE("two points") { compare_with_brute_force({{Vec3(0, 0, 0), 1.0}, {Vec3(1.2, 0, 0), 0.8}}); }
   SUBCASE("three points") {
-    compare_with_brute_force({{Vec3(0, 0, 0), 1.0}, {Vec3(1.2, 0, 0), 0.8},
-                              {Vec3(0.4, 1.1, 0), 1.44}});
+    compare_with_brute_force({{Vec3(0, 0, 0), 1.0}, {Vec3(1.2, 0, 0), 0.8}, {Vec3(0.4, 1.1, 0), 1.44}});
   }
   SUBCASE("one point of zero weight: L' = 1 Å") {
     const RegularTriangulation rt(std::vector<WeightedPoint>{{Vec3(0, 0, 0), 0.0}});
@@ -305,11 +295,9 @@ TEST_CASE("regular triangulation: degenerate small sets equal the brute force") 
     compare_with_brute_force(pts);
   }
   SUBCASE("duplicate centres with equal and different weights") {
-    std::vector<WeightedPoint> pts = {{Vec3(0, 0, 0), 1.0}, {Vec3(0, 0, 0), 1.0},
-                                      {Vec3(1, 0, 0), 1.0}, {Vec3(1, 0, 0), 2.0},
-                                      {Vec3(0, 1, 0), 3.0}, {Vec3(0, 1, 0), 1.0},
-                                      {Vec3(0, 0, 1), 1.0}, {Vec3(0, 0, 1), 1.0},
-                                      {Vec3(0, 0, 1), 1.0}};
+    std::vector<WeightedPoint> pts = {{Vec3(0, 0, 0), 1.0}, {Vec3(0, 0, 0), 1.0}, {Vec3(1, 0, 0), 1.0},
+                                      {Vec3(1, 0, 0), 2.0}, {Vec3(0, 1, 0), 3.0}, {Vec3(0, 1, 0), 1.0},
+                                      {Vec3(0, 0, 1), 1.0}, {Vec3(0, 0, 1), 1.0}, {Vec3(0, 0, 1), 1.0}};
     compare_with_brute_force(pts);
     const RegularTriangulation rt(pts);
     // Larger weight wins; equal weights: the larger index wins.
@@ -350,8 +338,7 @@ TEST_CASE("regular triangulation: lattice with interstitial points") {
   for (int c = 0; c < 8; ++c) {
     const bool hidden = c % 2 == 0;
     if (hidden) expected.push_back(static_cast<Index>(pts.size()));
-    pts.push_back({Vec3(0.5 + (c & 1), 0.5 + ((c >> 1) & 1), 0.5 + ((c >> 2) & 1)),
-                   hidden ? -1.0 : -0.5});
+    pts.push_back({Vec3(0.5 + (c & 1), 0.5 + ((c >> 1) & 1), 0.5 + ((c >> 2) & 1)), hidden ? -1.0 : -0.5});
   }
   const RegularTriangulation rt(pts);
   verify(rt, true);
@@ -434,8 +421,7 @@ TEST_CASE("regular triangulation: points on a sphere and coplanar sets") {
     for (int layer = 0; layer < 2; ++layer)
       for (int k = 0; k < 6; ++k) {
         const double a = k * M_PI / 3;
-        pts.push_back({Vec3(round3(1.39 * std::cos(a)), round3(1.39 * std::sin(a)), 3.4 * layer),
-                       2.89});
+        pts.push_back({Vec3(round3(1.39 * std::cos(a)), round3(1.39 * std::sin(a)), 3.4 * layer), 2.89});
       }
     compare_with_brute_force(pts);
   }
@@ -502,8 +488,7 @@ TEST_CASE("regular triangulation: locate") {
     REQUIRE(t != kInvalidIndex);
     const Quad& q = rt.tet(t);
     for (const auto& f : RegularTriangulation::kFaceVertices)
-      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z, p) !=
-            Sign::Negative);
+      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z, p) != Sign::Negative);
   }
   // Vertices themselves (on the closed hull of several tetrahedra).
   for (Index v = 0; v < 50; ++v) {
@@ -511,12 +496,11 @@ TEST_CASE("regular triangulation: locate") {
     REQUIRE(t != kInvalidIndex);
     const Quad& q = rt.tet(t);
     for (const auto& f : RegularTriangulation::kFaceVertices)
-      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z,
-                         rt.point(v).z) != Sign::Negative);
+      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z, rt.point(v).z) !=
+            Sign::Negative);
   }
   // Outside the bounding tetrahedron.
-  CHECK(rt.locate(rt.bounding_centre() + Vec3(1, 1, 1) * 10 * rt.bounding_radius()) ==
-        kInvalidIndex);
+  CHECK(rt.locate(rt.bounding_centre() + Vec3(1, 1, 1) * 10 * rt.bounding_radius()) == kInvalidIndex);
 }
 
 TEST_CASE("regular triangulation: face table matches the orientation convention") {
@@ -525,8 +509,8 @@ TEST_CASE("regular triangulation: face table matches the orientation convention"
   for (const Quad& q : all_tets(rt))
     for (int i = 0; i < 4; ++i) {
       const auto& f = RegularTriangulation::kFaceVertices[i];
-      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z,
-                         rt.point(q[i]).z) == Sign::Positive);
+      CHECK(sg::orient3d(rt.point(q[f[0]]).z, rt.point(q[f[1]]).z, rt.point(q[f[2]]).z, rt.point(q[i]).z) ==
+            Sign::Positive);
     }
 }
 

@@ -2,13 +2,13 @@
 // (geometry/mesh/surface_mesh). Every test asserts what an operation changes (counts,
 // valences, boundary loops, endpoints) and runs check_consistency() after each
 // step, so a no-op or a broken link fails.
-#include <Eigen/Geometry>  // cross()
 #include <doctest/doctest.h>
+#include <Eigen/Geometry>  // cross()
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 #include <set>
@@ -19,8 +19,8 @@
 
 #include "core/errors.h"
 #include "geometry/check/mesh_checks.h"
-#include "tests/geometry/test_meshes.h"
 #include "geometry/mesh/surface_mesh.h"
+#include "tests/geometry/test_meshes.h"
 
 using skinmesh::Index;
 using skinmesh::TopologyError;
@@ -35,18 +35,13 @@ namespace {
 
 // Fixtures ----------------------------------------------------------------------
 
-
 // Octahedron with vertices +x, +y, +z, -x, -y, -z (indices 0..5).
 IndexedMesh octahedron() {
   IndexedMesh m;
-  m.positions = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
-                 Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
-  m.triangles = {{0, 1, 2}, {1, 3, 2}, {3, 4, 2}, {4, 0, 2},
-                 {1, 0, 5}, {3, 1, 5}, {4, 3, 5}, {0, 4, 5}};
+  m.positions = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}, {3, 4, 2}, {4, 0, 2}, {1, 0, 5}, {3, 1, 5}, {4, 3, 5}, {0, 4, 5}};
   return m;
 }
-
-
 
 // Helpers -------------------------------------------------------------------------
 
@@ -99,7 +94,9 @@ SurfaceMesh build(const IndexedMesh& im) { return SurfaceMesh::from_indexed_mesh
 Vertex V(Index i) { return Vertex(i); }
 
 template <class P, class H>
-concept IndexableBy = requires(P p, H h) { p[h]; };
+concept IndexableBy = requires(P p, H h) {
+  p[h];
+};
 
 }  // namespace
 
@@ -597,8 +594,7 @@ TEST_CASE("SurfaceMesh: collapse") {
     CHECK(m.n_faces() == 4);
     // Triangular bipyramid: a and b share the neighbour c besides the apexes N, S.
     IndexedMesh bp;
-    bp.positions = {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(-0.5, 0.8, 0),
-                    Vec3(-0.5, -0.8, 0)};
+    bp.positions = {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(-0.5, 0.8, 0), Vec3(-0.5, -0.8, 0)};
     bp.triangles = {{0, 2, 3}, {0, 3, 4}, {0, 4, 2}, {1, 3, 2}, {1, 4, 3}, {1, 2, 4}};
     SurfaceMesh b = build(bp);
     CHECK_FALSE(b.is_collapse_ok(b.find_halfedge(V(2), V(3))));  // link condition
@@ -762,8 +758,7 @@ TEST_CASE("SurfaceMesh: delete_face, delete_vertex and garbage_collection remap 
   CHECK(kept.size() == nf);
   CHECK(kept.count(canonical(ico.triangles[0])) == 0);
   CHECK(kept.count(canonical(ico.triangles[1])) == 0);
-  for (Edge e : m.edges())
-    CHECK(edges.count(std::minmax(Index(vid[m.vertex(e, 0)]), Index(vid[m.vertex(e, 1)]))) == 1);
+  for (Edge e : m.edges()) CHECK(edges.count(std::minmax(Index(vid[m.vertex(e, 0)]), Index(vid[m.vertex(e, 1)]))) == 1);
   CHECK(loops(m).size() == 2);
 }
 
@@ -904,8 +899,7 @@ TEST_CASE("SurfaceMesh: random refinement operations keep a valid oriented surfa
       int holes = 0;
       for (Index f = 0; f < m.faces_size() && holes < 7; f += 37) {
         std::vector<Vertex> vs(m.vertices(Face(f)).begin(), m.vertices(Face(f)).end());
-        if (std::any_of(vs.begin(), vs.end(), [&](Vertex v) { return used.count(v.idx()) > 0; }))
-          continue;
+        if (std::any_of(vs.begin(), vs.end(), [&](Vertex v) { return used.count(v.idx()) > 0; })) continue;
         for (Vertex v : vs) used.insert(v.idx());
         m.delete_face(Face(f));
         ++holes;
@@ -955,8 +949,7 @@ TEST_CASE("SurfaceMesh: random refinement operations keep a valid oriented surfa
         const Edge e(Index(rng() % m.edges_size()));
         if (!m.is_valid(e)) continue;
         const bool boundary_edge = m.is_boundary(e);
-        const Vertex v =
-            m.split_edge(e, 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))));
+        const Vertex v = m.split_edge(e, 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))));
         CHECK(m.valence(v) == (boundary_edge ? 3u : 4u));
         CHECK(m.is_boundary(v) == boundary_edge);
         CHECK(m.n_faces() == nf + (boundary_edge ? 1 : 2));
@@ -970,8 +963,8 @@ TEST_CASE("SurfaceMesh: random refinement operations keep a valid oriented surfa
         consistent(m);
       }
     }
-    INFO("flips " << flips << ", collapses " << collapses << ", face splits " << face_splits
-                  << ", edge splits " << edge_splits);
+    INFO("flips " << flips << ", collapses " << collapses << ", face splits " << face_splits << ", edge splits "
+                  << edge_splits);
     CHECK(flips > 50);
     CHECK(collapses > 50);
     CHECK(face_splits > 50);

@@ -43,7 +43,8 @@ TEST_CASE("coarse_ccw_angle: within 2e-5 rad of ccw_angle for tangents of any le
   CHECK(geometry::coarse_ccw_angle(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 0, 1)) == 0.0);
 }
 
-TEST_CASE("pseudo_angle: monotone in the angle with slope between 1 and 2; pseudo_exceeds never contradicts the angles") {
+TEST_CASE(
+    "pseudo_angle: monotone in the angle with slope between 1 and 2; pseudo_exceeds never contradicts the angles") {
   // Random tangent pairs plus the axis directions with signed zeros; for
   // every pair of directions the angle difference lies between the
   // pseudo-angle difference and twice it, and a certain verdict of

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh/indexed_mesh.h"
 #include "geometry/kernel/triangle_intersection.h"
+#include "geometry/mesh/indexed_mesh.h"
 
 namespace skinmesh::test {
 
@@ -21,13 +21,11 @@ using geometry::IndexedMesh;
 inline IndexedMesh icosahedron() {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   IndexedMesh m;
-  m.positions = {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0),
-                 Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
-                 Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  m.positions = {Vec3(-1, t, 0),  Vec3(1, t, 0),  Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),  Vec3(0, 1, t),
+                 Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1),  Vec3(t, 0, 1),  Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   return m;
 }
 
@@ -67,8 +65,8 @@ inline IndexedMesh torus(int n, int m) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       const double u = 2 * pi * i / n, v = 2 * pi * j / m;
-      t.positions.emplace_back((2 + 0.7 * std::cos(v)) * std::cos(u),
-                               (2 + 0.7 * std::cos(v)) * std::sin(u), 0.7 * std::sin(v));
+      t.positions.emplace_back((2 + 0.7 * std::cos(v)) * std::cos(u), (2 + 0.7 * std::cos(v)) * std::sin(u),
+                               0.7 * std::sin(v));
     }
   auto id = [&](int i, int j) { return Index(((i + n) % n) * m + (j + m) % m); };
   for (int i = 0; i < n; ++i)

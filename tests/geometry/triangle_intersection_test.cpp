@@ -16,8 +16,7 @@ using namespace skinmesh::geometry;
 namespace {
 
 // Both argument orders and both vertex orders give the same answer.
-bool tt(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
-        const Vec3& b2) {
+bool tt(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2) {
   const bool r = triangles_intersect(a0, a1, a2, b0, b1, b2);
   CHECK(triangles_intersect(b0, b1, b2, a0, a1, a2) == r);
   CHECK(triangles_intersect(a2, a1, a0, b1, b0, b2) == r);
@@ -41,21 +40,15 @@ TEST_CASE("triangle_intersection: degenerate triangles are detected exactly") {
 
 TEST_CASE("triangle_intersection: hand cases in general position") {
   const Vec3 a0(0, 0, 0), a1(1, 0, 0), a2(0, 1, 0);
-  SUBCASE("disjoint, parallel planes") {
-    CHECK_FALSE(tt(a0, a1, a2, Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1)));
-  }
+  SUBCASE("disjoint, parallel planes") { CHECK_FALSE(tt(a0, a1, a2, Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1))); }
   SUBCASE("disjoint, crossing planes but apart") {
     CHECK_FALSE(tt(a0, a1, a2, Vec3(2, 2, -1), Vec3(2, 2, 1), Vec3(3, 2, 0)));
   }
-  SUBCASE("piercing") {
-    CHECK(tt(a0, a1, a2, Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), Vec3(2, 2, 0.5)));
-  }
+  SUBCASE("piercing") { CHECK(tt(a0, a1, a2, Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), Vec3(2, 2, 0.5))); }
   SUBCASE("a vertex touches the interior") {
     CHECK(tt(a0, a1, a2, Vec3(0.25, 0.25, 0), Vec3(0.25, 0.25, 1), Vec3(1, 1, 1)));
   }
-  SUBCASE("vertex touches vertex") {
-    CHECK(tt(a0, a1, a2, Vec3(1, 0, 0), Vec3(2, 0, 1), Vec3(2, 1, 1)));
-  }
+  SUBCASE("vertex touches vertex") { CHECK(tt(a0, a1, a2, Vec3(1, 0, 0), Vec3(2, 0, 1), Vec3(2, 1, 1))); }
   SUBCASE("a vertex just above the plane does not touch") {
     CHECK_FALSE(tt(a0, a1, a2, Vec3(0.25, 0.25, 1e-300), Vec3(0.25, 0.25, 1), Vec3(1, 1, 1)));
   }
@@ -64,20 +57,14 @@ TEST_CASE("triangle_intersection: hand cases in general position") {
     CHECK_FALSE(triangles_intersect_beyond_edge(a0, a1, a2, Vec3(0.5, -1, 1)));
     CHECK_FALSE(triangles_intersect_beyond_edge(a0, a1, a2, Vec3(0.5, 1, 1)));
   }
-  SUBCASE("edge crossing an edge") {
-    CHECK(tt(a0, a1, a2, Vec3(0.5, -1, 0), Vec3(0.5, 1, 0), Vec3(0.5, 0, 1)));
-  }
+  SUBCASE("edge crossing an edge") { CHECK(tt(a0, a1, a2, Vec3(0.5, -1, 0), Vec3(0.5, 1, 0), Vec3(0.5, 0, 1))); }
 }
 
 TEST_CASE("triangle_intersection: coplanar cases") {
   const Vec3 a0(0, 0, 0), a1(4, 0, 0), a2(0, 4, 0);
   SUBCASE("overlapping") { CHECK(tt(a0, a1, a2, Vec3(1, 1, 0), Vec3(5, 1, 0), Vec3(1, 5, 0))); }
-  SUBCASE("one inside the other") {
-    CHECK(tt(a0, a1, a2, Vec3(1, 1, 0), Vec3(2, 1, 0), Vec3(1, 2, 0)));
-  }
-  SUBCASE("touching at a point") {
-    CHECK(tt(a0, a1, a2, Vec3(2, 2, 0), Vec3(5, 2, 0), Vec3(2, 5, 0)));
-  }
+  SUBCASE("one inside the other") { CHECK(tt(a0, a1, a2, Vec3(1, 1, 0), Vec3(2, 1, 0), Vec3(1, 2, 0))); }
+  SUBCASE("touching at a point") { CHECK(tt(a0, a1, a2, Vec3(2, 2, 0), Vec3(5, 2, 0), Vec3(2, 5, 0))); }
   SUBCASE("apart") { CHECK_FALSE(tt(a0, a1, a2, Vec3(3, 3, 0), Vec3(5, 3, 0), Vec3(3, 5, 0))); }
   SUBCASE("in a tilted plane (no axis-aligned projection is trivial)") {
     // Plane x + y + z = 0 with integer points: exact.
@@ -156,7 +143,7 @@ TEST_CASE("triangle_intersection: near-coplanar inputs where floating point deci
 }
 
 TEST_CASE("triangle_intersection: mesh triangles by index") {
-  const std::vector<Vec3> P = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(3, 1, 0),
+  const std::vector<Vec3> P = {Vec3(0, 0, 0),  Vec3(4, 0, 0), Vec3(0, 4, 0),  Vec3(3, 1, 0),
                                Vec3(3, -1, 0), Vec3(1, 3, 1), Vec3(-1, -1, 0)};
   using T = std::array<Index, 3>;
   CHECK(mesh_triangles_intersect(T{0, 1, 2}, T{1, 0, 3}, P));        // shared edge, same side
@@ -165,12 +152,11 @@ TEST_CASE("triangle_intersection: mesh triangles by index") {
   CHECK(mesh_triangles_intersect(T{0, 1, 2}, T{2, 3, 4}, P));        // shared vertex, overlap
   CHECK(mesh_triangles_intersect(T{0, 1, 2}, T{2, 0, 1}, P));        // same triangle
   // Distinct indices at equal positions are different vertices: touching counts.
-  const std::vector<Vec3> Q = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0),
-                               Vec3(-1, 0, 1), Vec3(0, -1, 1)};
+  const std::vector<Vec3> Q = {Vec3(0, 0, 0), Vec3(1, 0, 0),  Vec3(0, 1, 0),
+                               Vec3(0, 0, 0), Vec3(-1, 0, 1), Vec3(0, -1, 1)};
   CHECK(mesh_triangles_intersect(T{0, 1, 2}, T{3, 4, 5}, Q));
   CHECK_FALSE(mesh_triangles_intersect(T{0, 1, 2}, T{0, 4, 5}, Q));
 }
-
 
 TEST_CASE("triangle_intersection: beyond-vertex test equals the two segment tests on random grid inputs") {
   // Integer coordinates in a small range: many coplanar and touching cases.

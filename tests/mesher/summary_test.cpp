@@ -49,10 +49,11 @@ TEST_CASE("summary: both algorithms share the schema; every timing is under seco
     context.total_seconds = 2.0;
     const json j = mesher::run_summary(res, options, context);
     INFO(mesher::algorithm_name(algorithm));
-    const std::vector<std::string> head = {"input", "output", "atoms", "probe_radius", "vertices", "triangles",
-                                           "surface", "checked", "min_angle_deg", "max_angle_deg", "checks_passed",
-                                           "problems", "critical_points", "live_critical_points", "algorithm",
-                                           "threads"};
+    const std::vector<std::string> head = {
+        "input",         "output",   "atoms",           "probe_radius",         "vertices",
+        "triangles",     "surface",  "checked",         "min_angle_deg",        "max_angle_deg",
+        "checks_passed", "problems", "critical_points", "live_critical_points", "algorithm",
+        "threads"};
     const std::vector<std::string> keys = keys_of(j);
     REQUIRE(keys.size() > head.size());
     CHECK(std::vector<std::string>(keys.begin(), keys.begin() + head.size()) == head);

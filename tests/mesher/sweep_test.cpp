@@ -14,17 +14,17 @@
 #include <string>
 #include <vector>
 
-#include "mesher/pipeline.h"
 #include "core/errors.h"
-#include "tests/verify/check_expectations.h"
+#include "mesher/pipeline.h"
 #include "tests/skin/skin_test_util.h"
+#include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
 
 namespace {
 
 mesher::MeshResult sweep_and_check(const std::vector<geometry::WeightedPoint>& pts, bool refine = true,
-                           Vec3 direction = morse::default_height_direction()) {
+                                   Vec3 direction = morse::default_height_direction()) {
   mesher::MeshOptions options;
   options.height_direction = direction.normalized();
   options.refine = refine;
@@ -35,7 +35,7 @@ mesher::MeshResult sweep_and_check(const std::vector<geometry::WeightedPoint>& p
 double w_of(double r, double probe) { return 2 * (r + probe) * (r + probe); }
 
 struct Case {
-    const char* name;
+  const char* name;
   std::vector<geometry::WeightedPoint> pts;
   int expected_chi;
   bool expect_bridges;
@@ -80,14 +80,16 @@ TEST_CASE("the sweep's observer is told of every operation; replaying its faces 
     mesher::MeshOptions options;
     options.refine = false;
     std::map<front::SweepOperation, std::size_t> count;
-    std::set<Index> alive;         // faces replayed from the events
-    std::size_t faces_seen = 0;    // faces_size() after the previous event
+    std::set<Index> alive;       // faces replayed from the events
+    std::size_t faces_seen = 0;  // faces_size() after the previous event
     bool creations_done = false, creation_after_other = false, closed_at_last = false;
     std::size_t faces_at_last = 0;
     options.sweep.observer = [&](const front::SweepEvent& e) {
       ++count[e.op];
-      if (e.op != front::SweepOperation::Creation) creations_done = true;
-      else if (creations_done) creation_after_other = true;
+      if (e.op != front::SweepOperation::Creation)
+        creations_done = true;
+      else if (creations_done)
+        creation_after_other = true;
       // No face appears between two events.
       CHECK(e.first_face == faces_seen);
       faces_seen = e.mesh.faces_size();
@@ -147,7 +149,8 @@ TEST_CASE("translation by 1e6 Å changes nothing but the coordinates") {
     }
     const mesher::MeshResult a = sweep_and_check(at_origin), b = sweep_and_check(far);
     test::check_every_property(b.check);
-    INFO("frame " << a.frame_centre.transpose() << " / " << b.frame_centre.transpose() << " tris " << a.mesh.triangles.size() << " " << b.mesh.triangles.size());
+    INFO("frame " << a.frame_centre.transpose() << " / " << b.frame_centre.transpose() << " tris "
+                  << a.mesh.triangles.size() << " " << b.mesh.triangles.size());
     REQUIRE(a.mesh.triangles == b.mesh.triangles);
     REQUIRE(a.mesh.positions.size() == b.mesh.positions.size());
     double worst = 0;
@@ -165,8 +168,7 @@ TEST_CASE("singular skins are refused with the atoms named; a gap of 2e-4 Å sti
   // touch exactly: the skin is a double cone there. With a third atom far away
   // (so that the touching pair is not atoms #1 and #2 by accident of order).
   const double w = skin::atom_weight(1.5, 0.5);
-  const std::vector<geometry::WeightedPoint> touching = {
-      {Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
+  const std::vector<geometry::WeightedPoint> touching = {{Vec3(20, 0, 0), w}, {Vec3(0, 0, 0), w}, {Vec3(4, 4, 0), w}};
   mesher::MeshOptions options;
   try {
     (void)mesher::mesh_skin(touching, options);

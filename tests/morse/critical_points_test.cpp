@@ -151,7 +151,8 @@ TEST_CASE("rotated planar rings: no critical point on the cavity sphere of a sli
       const Vec3 e = along * axis + std::sqrt(1 - along * along) * side;
       const auto cps = morse::critical_points(skin, e);
       double reach = 0;  // max_i |z_i - z_T| / 2: the cell lies in this ball
-      for (int i = 0; i < 4; ++i) reach = std::max(reach, (mc.triangulation().point(T.vertices[i]).z - T.focus).norm() / 2);
+      for (int i = 0; i < 4; ++i)
+        reach = std::max(reach, (mc.triangulation().point(T.vertices[i]).z - T.focus).norm() / 2);
       for (const auto& cp : cps)
         if (cp.cell == c) CHECK((cp.position - T.focus).norm() <= reach * (1 + 1e-9));
       CHECK(morse::count_critical_points(cps).euler() == chi);
@@ -168,8 +169,8 @@ TEST_CASE("rotated planar rings: no critical point on the cavity sphere of a sli
 // interval between their two cofaces' foci in either order, kept the two
 // saddles of the face's hyperboloid (Morse sum 0 instead of chi = 2).
 TEST_CASE("rotated bcc lattice: a cocircular sliver's focus adds no saddles") {
-  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_TEST_DATA) +
-                                                 "/regression/bcc3_probe0.5_rotated_square_sliver.xyzr");
+  const skin::Molecule mol =
+      skin::read_molecule(std::string(SKINMESH_TEST_DATA) + "/regression/bcc3_probe0.5_rotated_square_sliver.xyzr");
   REQUIRE(mol.atoms.size() == 91);
   const auto pts = skin::weighted_points(mol, 0.5);
   for (const bool local : {false, true}) {  // as read (145 Å off) and in the local frame

@@ -21,10 +21,10 @@
 #include "refine/local_refinement.h"
 #include "skin/restricted_delaunay.h"
 #include "skin/size_conditions.h"
-#include "verify/skin_mesh_check.h"
+#include "skin/vertex_data.h"
 #include "tests/geometry/test_meshes.h"
 #include "tests/verify/check_expectations.h"
-#include "skin/vertex_data.h"
+#include "verify/skin_mesh_check.h"
 
 using namespace skinmesh;
 
@@ -179,8 +179,9 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
 
 TEST_SUITE("refine") {
 
-TEST_CASE("angle improvement: one sphere, and two atoms (sphere caps and a hyperboloid neck), get larger "
-          "angles and keep [L], [U], RDT, embedding") {
+TEST_CASE(
+    "angle improvement: one sphere, and two atoms (sphere caps and a hyperboloid neck), get larger "
+    "angles and keep [L], [U], RDT, embedding") {
   const std::pair<const char*, skin::SkinSurface> skins[] = {{"one atom", one_atom()}, {"two atoms", two_atoms()}};
   for (const auto& [name, skin] : skins) {
     for (unsigned seed : {1u, 2u, 3u}) {

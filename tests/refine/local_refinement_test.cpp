@@ -12,10 +12,10 @@
 
 #include "refine/local_refinement.h"
 #include "skin/restricted_delaunay.h"
-#include "verify/skin_mesh_check.h"
+#include "skin/vertex_data.h"
 #include "tests/geometry/test_meshes.h"
 #include "tests/verify/check_expectations.h"
-#include "skin/vertex_data.h"
+#include "verify/skin_mesh_check.h"
 
 using namespace skinmesh;
 

@@ -20,8 +20,7 @@ namespace {
 
 /// n balls of radius rho with centres on a circle of radius R in the plane
 /// z = 0, then rotated by `rot` and translated by `shift`.
-std::vector<WeightedPoint> ring(int n, double R, double rho, const Eigen::Matrix3d& rot,
-                                const Vec3& shift) {
+std::vector<WeightedPoint> ring(int n, double R, double rho, const Eigen::Matrix3d& rot, const Vec3& shift) {
   std::vector<WeightedPoint> pts;
   for (int i = 0; i < n; ++i) {
     const double t = 2 * M_PI * i / n;
@@ -51,14 +50,14 @@ TEST_CASE("K0 of a rotated planar ring: hole open gives a torus, closed a sphere
       const Vec3 shift = (trial % 3 == 1) ? Vec3(1e6, -1e6, 1e6) : (trial % 3 == 2 ? Vec3(0.3, 0.1, 7) : Vec3::Zero());
       for (const double rel : {1e-3, 1e-6}) {
         INFO("n = " << n << ", trial = " << trial << ", margin = " << rel);
-        const auto open = skin::dual_complex_topology(
-            skin::SkinSurface(ring(n, 2.0, 2.0 * (1 - rel), rot, shift)).mixed_complex());
+        const auto open =
+            skin::dual_complex_topology(skin::SkinSurface(ring(n, 2.0, 2.0 * (1 - rel), rot, shift)).mixed_complex());
         CHECK(open.components() == 1);
         CHECK(open.euler_skin() == 0);
         CHECK(open.total_genus() == 1);
         CHECK(open.singular_simplices.empty());
-        const auto closed = skin::dual_complex_topology(
-            skin::SkinSurface(ring(n, 2.0, 2.0 * (1 + rel), rot, shift)).mixed_complex());
+        const auto closed =
+            skin::dual_complex_topology(skin::SkinSurface(ring(n, 2.0, 2.0 * (1 + rel), rot, shift)).mixed_complex());
         CHECK(closed.components() == 1);
         CHECK(closed.euler_skin() == 2);
         CHECK(closed.total_genus() == 0);

@@ -54,12 +54,11 @@ const ScratchDir& scratch() {
 }
 
 /// One fixed-column PDB ATOM/HETATM record (columns as in the PDB v3.3 spec).
-std::string pdb_atom(const char* record, int serial, const char* name, char altloc, const char* res,
-                     const char* chain, int resnum, const char* x, const char* y, const char* z,
-                     const char* element) {
+std::string pdb_atom(const char* record, int serial, const char* name, char altloc, const char* res, const char* chain,
+                     int resnum, const char* x, const char* y, const char* z, const char* element) {
   char buf[128];
-  std::snprintf(buf, sizeof buf, "%-6s%5d %-4s%c%3s %1s%4d    %8s%8s%8s%6.2f%6.2f          %2s", record, serial,
-                name, altloc, res, chain, resnum, x, y, z, 1.0, 10.0, element);
+  std::snprintf(buf, sizeof buf, "%-6s%5d %-4s%c%3s %1s%4d    %8s%8s%8s%6.2f%6.2f          %2s", record, serial, name,
+                altloc, res, chain, resnum, x, y, z, 1.0, 10.0, element);
   return std::string(buf) + "\n";
 }
 
@@ -128,10 +127,14 @@ TEST_CASE("element radii: Bondi values, deuterium, fallback, symbols") {
 TEST_CASE("read_molecule: bundled molecules have the documented atom counts") {
   // data/README.md: total ATOM/HETATM records, minus waters by default.
   const std::map<std::string, std::size_t> expected = {
-      {"ligand_2zmm.pdb", 31},           {"ligand_1hpv_amprenavir.pdb", 35},
-      {"ligand_1hvr_xk263.pdb", 46},     {"gramicidinA_1grm_model1.pdb", 272},
-      {"crambin_1crn.pdb", 327},         {"adna_3dna_fiber_30bp.pdb", 1230},
-      {"hivprotease_xk263_1hvr.pdb", 1890}, {"src_kinase_2src.pdb", 3915 - 269},
+      {"ligand_2zmm.pdb", 31},
+      {"ligand_1hpv_amprenavir.pdb", 35},
+      {"ligand_1hvr_xk263.pdb", 46},
+      {"gramicidinA_1grm_model1.pdb", 272},
+      {"crambin_1crn.pdb", 327},
+      {"adna_3dna_fiber_30bp.pdb", 1230},
+      {"hivprotease_xk263_1hvr.pdb", 1890},
+      {"src_kinase_2src.pdb", 3915 - 269},
   };
   for (const auto& [name, count] : expected) {
     CAPTURE(name);
@@ -268,8 +271,8 @@ TEST_CASE("read_molecule: mmCIF gives the same atoms as PDB, with line numbers")
   char buf[256];
   for (const auto& a : pdb.atoms) {
     std::snprintf(buf, sizeof buf, "ATOM %d %s %s . %s %s %d %.3f %.3f %.3f 1.00 10.00 %d 1\n", a.serial,
-                  a.element.c_str(), a.name.c_str(), a.residue.c_str(), a.chain.c_str(), a.residue_number,
-                  a.centre.x(), a.centre.y(), a.centre.z(), a.residue_number);
+                  a.element.c_str(), a.name.c_str(), a.residue.c_str(), a.chain.c_str(), a.residue_number, a.centre.x(),
+                  a.centre.y(), a.centre.z(), a.residue_number);
     cif << buf;
   }
   // a second model that must be ignored
@@ -310,12 +313,12 @@ TEST_CASE("read_molecule: gzipped PDB") {
 
 TEST_CASE("read_molecule: first model, first alternate location, fallback radius notes") {
   std::string text = "HEADER    TEST\nMODEL        1\n";
-  text += pdb_atom("ATOM", 1, " N", ' ', "SER", "A", 5, "0.000", "0.000", "0.000", "N");      // line 3
-  text += pdb_atom("ATOM", 2, " CA", 'A', "SER", "A", 5, "1.000", "0.000", "0.000", "C");     // kept
-  text += pdb_atom("ATOM", 3, " CA", 'B', "SER", "A", 5, "1.100", "0.000", "0.000", "C");     // line 5 skipped
-  text += pdb_atom("ATOM", 4, " CB", 'A', "SER", "A", 6, "2.000", "0.000", "0.000", "C");     // kept
-  text += pdb_atom("ATOM", 5, " CB", 'B', "THR", "A", 6, "2.100", "0.000", "0.000", "C");     // alt residue
-  text += pdb_atom("ATOM", 6, " OG1", 'B', "THR", "A", 6, "2.200", "0.000", "0.000", "O");    // alt residue
+  text += pdb_atom("ATOM", 1, " N", ' ', "SER", "A", 5, "0.000", "0.000", "0.000", "N");     // line 3
+  text += pdb_atom("ATOM", 2, " CA", 'A', "SER", "A", 5, "1.000", "0.000", "0.000", "C");    // kept
+  text += pdb_atom("ATOM", 3, " CA", 'B', "SER", "A", 5, "1.100", "0.000", "0.000", "C");    // line 5 skipped
+  text += pdb_atom("ATOM", 4, " CB", 'A', "SER", "A", 6, "2.000", "0.000", "0.000", "C");    // kept
+  text += pdb_atom("ATOM", 5, " CB", 'B', "THR", "A", 6, "2.100", "0.000", "0.000", "C");    // alt residue
+  text += pdb_atom("ATOM", 6, " OG1", 'B', "THR", "A", 6, "2.200", "0.000", "0.000", "O");   // alt residue
   text += pdb_atom("HETATM", 7, "FE", ' ', "HEM", "A", 7, "3.000", "0.000", "0.000", "FE");  // line 9
   text += "ENDMDL\nMODEL        2\n";
   text += pdb_atom("ATOM", 1, " N", ' ', "SER", "A", 5, "9.000", "0.000", "0.000", "N");
@@ -361,8 +364,8 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
     }
   }
   SUBCASE("only waters") {
-    const InputError e =
-        error_of(scratch().write("water.pdb", pdb_atom("HETATM", 1, " O", ' ', "HOH", "A", 1, "1.0", "2.0", "3.0", "O")));
+    const InputError e = error_of(
+        scratch().write("water.pdb", pdb_atom("HETATM", 1, " O", ' ', "HOH", "A", 1, "1.0", "2.0", "3.0", "O")));
     CHECK(std::string(e.what()).find("no atoms found (1 skipped") != std::string::npos);
   }
   SUBCASE("PDB non-numeric coordinate (gemmi alone would read 0)") {
@@ -379,14 +382,14 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
     CHECK(std::string(e.what()).find("trailing.pdb:1: non-numeric x coordinate '12.1x4'") != std::string::npos);
   }
   SUBCASE("PDB blank coordinate") {
-    const InputError e = error_of(
-        scratch().write("blank.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "", "C")));
+    const InputError e =
+        error_of(scratch().write("blank.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "", "C")));
     CHECK(std::string(e.what()).find("blank.pdb:1: non-numeric z coordinate ''") != std::string::npos);
   }
   SUBCASE("PDB nan and inf") {
-    const InputError e = error_of(scratch().write(
-        "nan.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
-                       pdb_atom("ATOM", 2, " CB", ' ', "ALA", "A", 1, "1.0", "2.0", "nan", "C")));
+    const InputError e = error_of(
+        scratch().write("nan.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
+                                       pdb_atom("ATOM", 2, " CB", ' ', "ALA", "A", 1, "1.0", "2.0", "nan", "C")));
     CHECK(std::string(e.what()).find("nan.pdb:2: non-finite z coordinate 'nan'") != std::string::npos);
     const InputError f = error_of(
         scratch().write("inf.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "-1e999", "2.0", "3.0", "C")));
@@ -398,9 +401,9 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
     CHECK(std::string(e.what()).find("short.pdb:1: ATOM/HETATM record too short") != std::string::npos);
   }
   SUBCASE("PDB unknown element") {
-    const InputError e = error_of(scratch().write(
-        "elem.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
-                        pdb_atom("HETATM", 2, "QQ", ' ', "UNK", "A", 2, "1.0", "2.0", "4.0", "QQ")));
+    const InputError e = error_of(
+        scratch().write("elem.pdb", pdb_atom("ATOM", 1, " CA", ' ', "ALA", "A", 1, "1.0", "2.0", "3.0", "C") +
+                                        pdb_atom("HETATM", 2, "QQ", ' ', "UNK", "A", 2, "1.0", "2.0", "4.0", "QQ")));
     CHECK(std::string(e.what()).find("elem.pdb:2: unknown element") != std::string::npos);
   }
   SUBCASE("PQR: chain column optional, fields by whitespace") {
@@ -439,8 +442,7 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
     CHECK(std::string(e.what()).find("c0.pqr:2: non-positive radius '0.0000'") != std::string::npos);
   }
   SUBCASE("PQR negative radius on a hydrogen") {
-    const InputError e =
-        error_of(scratch().write("hneg.pqr", "ATOM 1 H ALA 1 1.0 2.0 3.0 0.1 -1.0\n"));
+    const InputError e = error_of(scratch().write("hneg.pqr", "ATOM 1 H ALA 1 1.0 2.0 3.0 0.1 -1.0\n"));
     CHECK(std::string(e.what()).find("hneg.pqr:1: non-positive radius '-1.0'") != std::string::npos);
   }
   SUBCASE("PQR non-numeric and non-finite fields") {
@@ -583,12 +585,13 @@ TEST_CASE("fuzzing regressions: PDB") {
         "DBREF1\n"
         "DBREF2";
     CHECK(string_error_of(found, "dbref.pdb").problem().find("outside the supported range") != std::string::npos);
-    const std::string dbref2 = "DBREF1 1ABC A    1    10  UNP                  ABC_HUMAN\n"
-                               "DBREF2 1ABC A     P12345                     9999999999  9999999999\n";
-    const Molecule m = read_molecule_from_string(
-        dbref2 + "HELIX    1   1 GLY A    1  GLY A    1  1 99999999999\n" +
-            pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C"),
-        "dbref.pdb");
+    const std::string dbref2 =
+        "DBREF1 1ABC A    1    10  UNP                  ABC_HUMAN\n"
+        "DBREF2 1ABC A     P12345                     9999999999  9999999999\n";
+    const Molecule m =
+        read_molecule_from_string(dbref2 + "HELIX    1   1 GLY A    1  GLY A    1  1 99999999999\n" +
+                                      pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.0", "2.0", "3.0", "C"),
+                                  "dbref.pdb");
     REQUIRE(m.atoms.size() == 1);
     CHECK(m.atoms[0].line == 4);
   }
@@ -643,8 +646,9 @@ TEST_CASE("fuzzing regressions: mmCIF integers beyond int") {
       "_atom_site.auth_atom_id\n"
       "_atom_site.pdbx_PDB_model_num\n";
   SUBCASE("the input found: _atom_site.id 318446744073709551616") {
-    const std::string found = "data_1CRN\n" + loop +
-                              "ATOM 318446744073709551616 C C . THR A 1 1 ? 15.685 12.755 5.133 1.00 9.19 ? 1 THR A C 1\n";
+    const std::string found =
+        "data_1CRN\n" + loop +
+        "ATOM 318446744073709551616 C C . THR A 1 1 ? 15.685 12.755 5.133 1.00 9.19 ? 1 THR A C 1\n";
     const Molecule m = read_molecule_from_string(found, "serial.cif");
     REQUIRE(m.atoms.size() == 1);
     CHECK(m.atoms[0].serial == 0);

@@ -18,7 +18,6 @@ using geometry::WeightedPoint;
 
 namespace {
 
-
 /// Area and volume of the skin of two weighted points from the definition,
 /// without the mixed complex: the skin is a surface of revolution about the
 /// line of the centres. On that line (coordinate t, distance r from it) the
@@ -85,8 +84,10 @@ double line_volume(const skin::SkinSurface& skin, Vec3 lo, Vec3 hi, int n) {
             ((f(m) > 0) == (prev_f > 0) ? a : b) = m;
           }
           const double crossing = 0.5 * (a + b);
-          if (prev_f > 0) inside_from = crossing;
-          else volume += (crossing - inside_from) * hx * hy;
+          if (prev_f > 0)
+            inside_from = crossing;
+          else
+            volume += (crossing - inside_from) * hx * hy;
         }
         prev_z = z, prev_f = fz;
       }

@@ -112,9 +112,9 @@ TEST_CASE("mixed-complex f equals the brute-force definition; cells tile space")
   const unsigned seed = 20261121;
   INFO("seed = " << seed);
   std::mt19937 rng(seed);
-  std::vector<std::vector<geometry::WeightedPoint>> configs = {
-      test::two_balls(), test::tetrahedron_void(), test::three_ball_ring(), test::cube_corners(1.6),
-      test::random_points(9, 4.0, 0.8, 2.5, rng)};
+  std::vector<std::vector<geometry::WeightedPoint>> configs = {test::two_balls(), test::tetrahedron_void(),
+                                                               test::three_ball_ring(), test::cube_corners(1.6),
+                                                               test::random_points(9, 4.0, 0.8, 2.5, rng)};
   for (auto& cfg : configs) {
     const Mat3 R = test::random_rotation(rng);
     for (auto& b : cfg) b.z = R * b.z;
@@ -126,8 +126,8 @@ TEST_CASE("mixed-complex f equals the brute-force definition; cells tile space")
     std::uniform_real_distribution<double> u(0, 1);
     int checked = 0;
     for (int i = 0; i < 300; ++i) {
-      const Vec3 x = lo - Vec3::Constant(2.0) +
-                     (hi - lo + Vec3::Constant(4.0)).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+      const Vec3 x =
+          lo - Vec3::Constant(2.0) + (hi - lo + Vec3::Constant(4.0)).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
       const auto s = skin.sample(x);
       const double fb = test::brute_force_skin_function(cfg, x);
       CHECK(std::abs(s.f - fb) <= 1e-10 * L * L);

@@ -97,8 +97,8 @@ inline Mat3 random_rotation(std::mt19937& rng) {
 inline std::vector<WeightedPoint> two_balls() { return {{Vec3(0, 0, 0), 2.0}, {Vec3(2, 0, 0), 2.0}}; }
 inline std::vector<WeightedPoint> tetrahedron_void() {
   const double s = 1.0 / std::sqrt(2.0);
-  return {{Vec3(1, 1, 1) * s, 1.42}, {Vec3(1, -1, -1) * s, 1.42}, {Vec3(-1, 1, -1) * s, 1.42},
-          {Vec3(-1, -1, 1) * s, 1.42}};
+  return {
+      {Vec3(1, 1, 1) * s, 1.42}, {Vec3(1, -1, -1) * s, 1.42}, {Vec3(-1, 1, -1) * s, 1.42}, {Vec3(-1, -1, 1) * s, 1.42}};
 }
 inline std::vector<WeightedPoint> three_ball_ring() {
   const double r = 1.9 / std::sqrt(3.0);
@@ -113,8 +113,7 @@ inline std::vector<WeightedPoint> cube_corners(double w) {
   return p;
 }
 /// n random weighted points in a cube of side `side`, weights in [wlo, whi].
-inline std::vector<WeightedPoint> random_points(int n, double side, double wlo, double whi,
-                                                std::mt19937& rng) {
+inline std::vector<WeightedPoint> random_points(int n, double side, double wlo, double whi, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0, side), uw(wlo, whi);
   std::vector<WeightedPoint> p(n);
   for (auto& b : p) b = {Vec3(u(rng), u(rng), u(rng)), uw(rng)};

@@ -171,10 +171,14 @@ inline SkinVectors load_skin_vectors(const std::string& name) {
       c.e = vec();
       std::string k;
       if (!(is >> k)) fail("expected min, saddle or max in a 'critical' record");
-      if (k == "min") c.index = 0;
-      else if (k == "saddle") c.index = 1;
-      else if (k == "max") c.index = 2;
-      else fail("unknown kind of critical point '" + k + "'");
+      if (k == "min")
+        c.index = 0;
+      else if (k == "saddle")
+        c.index = 1;
+      else if (k == "max")
+        c.index = 2;
+      else
+        fail("unknown kind of critical point '" + k + "'");
       c.position = vec();
       out.critical.push_back(c);
     } else if (kind == "counts") {
@@ -195,8 +199,8 @@ inline SkinVectors load_skin_vectors(const std::string& name) {
 
 /// True if two lists of weighted points are the same up to `tol` (Å, Å²):
 /// checks that the test vectors belong to the configuration under test.
-inline bool same_points(const std::vector<geometry::WeightedPoint>& a,
-                        const std::vector<geometry::WeightedPoint>& b, double tol = 1e-12) {
+inline bool same_points(const std::vector<geometry::WeightedPoint>& a, const std::vector<geometry::WeightedPoint>& b,
+                        double tol = 1e-12) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
     if ((a[i].z - b[i].z).norm() > tol || std::abs(a[i].w - b[i].w) > tol) return false;

@@ -158,8 +158,7 @@ BruteForceTopology brute_force_topology(const std::vector<geometry::WeightedPoin
   std::vector<Vec> x(n);
   std::vector<Real> w(n), radius(n);
   for (std::size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c)
-      x[i][c] = static_cast<Real>(points[i].z[c]) - static_cast<Real>(points[0].z[c]);
+    for (int c = 0; c < 3; ++c) x[i][c] = static_cast<Real>(points[i].z[c]) - static_cast<Real>(points[0].z[c]);
     w[i] = points[i].w;
     radius[i] = w[i] > 0 ? std::sqrt(w[i]) : 0;
   }
@@ -236,8 +235,8 @@ BruteForceTopology brute_force_topology(const std::vector<geometry::WeightedPoin
         const Real p_flat = dot(y, y) - w[i0];
         if (p_flat <= 1e-6L * (dot(y, y) + w[i0]) && !out.near_degenerate) {
           out.near_degenerate = true;
-          std::snprintf(buf, sizeof buf, "nearly flat %d-simplex (relative det %.3Lg) with orthocentre inside",
-                        m, det / diag);
+          std::snprintf(buf, sizeof buf, "nearly flat %d-simplex (relative det %.3Lg) with orthocentre inside", m,
+                        det / diag);
           out.near_reason = buf;
         }
       }

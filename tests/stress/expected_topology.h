@@ -60,8 +60,8 @@ struct BruteForceLimits {
 
 /// Result of brute_force_topology().
 struct BruteForceTopology {
-  bool computed = false;   ///< false: skipped, see `reason`
-  std::string reason;      ///< why it was skipped
+  bool computed = false;  ///< false: skipped, see `reason`
+  std::string reason;     ///< why it was skipped
   /// The nerve with σ inside iff π_σ(z) <= +tol (closed balls) and iff
   /// π_σ(z) < −tol (open balls, shrunk by the tolerance); equal unless near_degenerate.
   Topology closed, open;
@@ -74,7 +74,7 @@ struct BruteForceTopology {
   /// inputs); handled by closing the tie set, not a reason to fall back.
   std::size_t tie_sets = 0;
   std::size_t largest_tie_set = 0;
-  std::uint64_t subsets = 0;        ///< orthocentres computed
+  std::uint64_t subsets = 0;                ///< orthocentres computed
   std::size_t simplices[4] = {0, 0, 0, 0};  ///< of the closed nerve's 3-skeleton
 };
 

@@ -99,7 +99,6 @@ StressCase rotated_translated(const StressCase& c, Rng& rng) {
 
 namespace {
 
-
 /// Short decimal text of x ("1.4", "0.001", "1e-06").
 std::string num(double x) {
   char buf[32];
@@ -175,8 +174,8 @@ void clusters(Suite& s) {
       c.probe = rng.probe();
       const double side = std::cbrt(n * 4.0 / 3.0 * kPi * 1.6 * 1.6 * 1.6 / d.fraction);
       for (int i = 0; i < n; ++i)
-        c.atoms.push_back({Vec3(rng.uniform(0, side), rng.uniform(0, side), rng.uniform(0, side)),
-                           rng.uniform(1.2, 2.0)});
+        c.atoms.push_back(
+            {Vec3(rng.uniform(0, side), rng.uniform(0, side), rng.uniform(0, side)), rng.uniform(1.2, 2.0)});
       c.note = "uniform in a cube of side " + num(side) + " Å, packing fraction " + num(d.fraction);
       s.add(std::move(c));
     }
@@ -238,7 +237,7 @@ std::vector<StressAtom> pseudo_protein(int n, Rng& rng) {
     const std::size_t here = atoms.size() - 1;
     if (static_cast<int>(atoms.size()) >= n) break;
     if (k % 3 == 2) {
-      side_atom(here, 1.52);  // carbonyl O
+      side_atom(here, 1.52);                          // carbonyl O
     } else if (k % 3 == 1 && rng.uniform() < 0.85) {  // CA: side chain
       const int length = 1 + static_cast<int>(rng.index(4));
       std::size_t anchor = here;
@@ -474,7 +473,8 @@ void shells(Suite& s) {
       const double R = unshrunk(r, c.probe);
       if (cfg.centre_atom) c.atoms.push_back({Vec3::Zero(), r});
       for (const Shell& sh : cfg.shells) {
-        const int n = static_cast<int>(std::lround(8 * kPi * sh.radius * sh.radius / (std::sqrt(3.0) * sh.spacing * sh.spacing)));
+        const int n =
+            static_cast<int>(std::lround(8 * kPi * sh.radius * sh.radius / (std::sqrt(3.0) * sh.spacing * sh.spacing)));
         for (const Vec3& x : sphere_points(n, sh.radius * R, rng))
           c.atoms.push_back({x, variant == 0 ? r : r + rng.uniform(-0.1, 0.1)});
       }
@@ -523,8 +523,8 @@ void rings(Suite& s) {
   }
   {  // a square ring (±t, ±t, 0): the hole closes exactly at its centre
     const double rr = 1.5, p = 0.5, t = rr + p;
-    std::vector<StressAtom> atoms = {{Vec3(t, t, 0), rr}, {Vec3(-t, t, 0), rr}, {Vec3(-t, -t, 0), rr},
-                                     {Vec3(t, -t, 0), rr}};
+    std::vector<StressAtom> atoms = {
+        {Vec3(t, t, 0), rr}, {Vec3(-t, t, 0), rr}, {Vec3(-t, -t, 0), rr}, {Vec3(t, -t, 0), rr}};
     add("hole-exact/n4", p, atoms, true, "square ring: centre exactly on the four balls (exact)");
   }
   for (double sign : {1.0, -1.0}) {  // octagon of beads just touching / apart
@@ -604,8 +604,8 @@ void thresholds(Suite& s) {
   for (const auto& rr : radii)
     for (double d : {1e-3, -1e-3, 1e-4, -1e-4, 1e-6, -1e-6, 1e-2, -1e-2}) {
       if (std::abs(d) == 1e-2 && rr[0] != rr[1]) continue;
-      const std::string key = std::string("pair/") + (d > 0 ? "gap" : "overlap") + num(std::abs(d)) + "/r" +
-                              num(rr[0]) + "-" + num(rr[1]);
+      const std::string key =
+          std::string("pair/") + (d > 0 ? "gap" : "overlap") + num(std::abs(d)) + "/r" + num(rr[0]) + "-" + num(rr[1]);
       StressCase probe_seed = s.begin("threshold", key);
       Rng rng(probe_seed.seed);
       const double p = next_probe();
@@ -618,8 +618,8 @@ void thresholds(Suite& s) {
   const double tangent[4][3] = {{1.5, 1.5, 0.0}, {1.5, 1.75, 0.5}, {1.625, 1.875, 3.0}, {1.5, 1.5, 1.4}};
   for (const auto& tg : tangent) {
     const double u = tg[0] + tg[1] + 2 * tg[2];
-    add("pair-tangent/r" + num(tg[0]) + "-" + num(tg[1]), tg[2], {{Vec3::Zero(), tg[0]}, {Vec3(u, u, 0), tg[1]}},
-        true, tg[2] == 1.4 ? "unshrunk balls tangent up to rounding" : "unshrunk balls exactly tangent");
+    add("pair-tangent/r" + num(tg[0]) + "-" + num(tg[1]), tg[2], {{Vec3::Zero(), tg[0]}, {Vec3(u, u, 0), tg[1]}}, true,
+        tg[2] == 1.4 ? "unshrunk balls tangent up to rounding" : "unshrunk balls exactly tangent");
   }
   // Three equal balls on an equilateral triangle of circumradius R ± d: the
   // hole of the three-ball ring just open (torus) or just closed (sphere).
@@ -635,8 +635,8 @@ void thresholds(Suite& s) {
     {
       const double p = next_probe(), rc = unshrunk(r, p) + d;
       const double k = rc / std::sqrt(3.0);
-      std::vector<StressAtom> atoms = {{k * Vec3(1, 1, 1), r}, {k * Vec3(1, -1, -1), r}, {k * Vec3(-1, 1, -1), r},
-                                       {k * Vec3(-1, -1, 1), r}};
+      std::vector<StressAtom> atoms = {
+          {k * Vec3(1, 1, 1), r}, {k * Vec3(1, -1, -1), r}, {k * Vec3(-1, 1, -1), r}, {k * Vec3(-1, -1, 1), r}};
       add(std::string("tet-void/") + (d > 0 ? "open" : "closed") + num(std::abs(d)), p, atoms, false,
           "regular tetrahedron, circumradius R " + std::string(d > 0 ? "+ " : "- ") + num(std::abs(d)) + " Å");
     }
@@ -648,8 +648,7 @@ void thresholds(Suite& s) {
   }
   {  // tetrahedron inscribed in the sphere of radius R about the origin: void closing exactly
     const double r = 1.5, p = 0.5, t = r + p;
-    add("tet-exact", p,
-        {{Vec3(t, t, 0), r}, {Vec3(-t, t, 0), r}, {Vec3(0, -t, t), r}, {Vec3(0, -t, -t), r}}, true,
+    add("tet-exact", p, {{Vec3(t, t, 0), r}, {Vec3(-t, t, 0), r}, {Vec3(0, -t, t), r}, {Vec3(0, -t, -t), r}}, true,
         "tetrahedron with orthocentre exactly on its four balls (exact)");
   }
 }
@@ -732,7 +731,8 @@ void duplicates(Suite& s) {
     Rng rng(c.seed);
     c.probe = next_probe();
     c.atoms = cluster(10, rng);
-    for (int i = 0; i < 10; i += 3) c.atoms.push_back({c.atoms[i].centre + 1e-9 * rng.unit_vector(), c.atoms[i].radius});
+    for (int i = 0; i < 10; i += 3)
+      c.atoms.push_back({c.atoms[i].centre + 1e-9 * rng.unit_vector(), c.atoms[i].radius});
     add(std::move(c), "copies of every third atom moved by 1e-9 Å");
   }
   {
@@ -780,11 +780,9 @@ std::vector<StressCase> generate_suite(std::uint64_t suite_seed) {
   add_twins(s);
   // Keep each family together: twins after their family's base cases.
   std::stable_sort(s.cases.begin(), s.cases.end(), [](const StressCase& a, const StressCase& b) {
-    static const std::vector<std::string> order = {"cluster", "protein", "lattice", "shell",
+    static const std::vector<std::string> order = {"cluster", "protein", "lattice",   "shell",
                                                    "ring",    "helix",   "threshold", "duplicate"};
-    auto rank = [](const std::string& f) {
-      return std::find(order.begin(), order.end(), f) - order.begin();
-    };
+    auto rank = [](const std::string& f) { return std::find(order.begin(), order.end(), f) - order.begin(); };
     return rank(a.family) < rank(b.family);
   });
   check_unique(s.cases);
@@ -805,8 +803,8 @@ std::vector<StressCase> generate_extra(std::uint64_t suite_seed, std::size_t cou
         const double fraction = std::pow(10.0, rng.uniform(-1.7, -0.4));
         const double side = std::cbrt(n * 4.0 / 3.0 * kPi * 1.6 * 1.6 * 1.6 / fraction);
         for (int i = 0; i < n; ++i)
-          c.atoms.push_back({Vec3(rng.uniform(0, side), rng.uniform(0, side), rng.uniform(0, side)),
-                             rng.uniform(1.2, 2.0)});
+          c.atoms.push_back(
+              {Vec3(rng.uniform(0, side), rng.uniform(0, side), rng.uniform(0, side)), rng.uniform(1.2, 2.0)});
         c.note = "n " + std::to_string(n) + ", packing fraction " + num(fraction);
         break;
       }

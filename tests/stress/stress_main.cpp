@@ -40,8 +40,8 @@
 #include <typeinfo>
 #include <vector>
 
-#include "mesher/pipeline.h"
 #include "core/errors.h"
+#include "mesher/pipeline.h"
 #include "tests/stress/expected_topology.h"
 #include "tests/stress/generator.h"
 
@@ -107,23 +107,31 @@ Options parse(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--seed") o.seed = number(value(i), "--seed");
-    else if (a == "--count") o.count = number(value(i), "--count");
+    if (a == "--seed")
+      o.seed = number(value(i), "--seed");
+    else if (a == "--count")
+      o.count = number(value(i), "--count");
     else if (a == "--subset") {
       const std::string s = value(i);
       if (s != "fast") usage("unknown subset '" + s + "' (only 'fast')");
       o.fast = true;
-    } else if (a == "--filter") o.filters.push_back(value(i));
-    else if (a == "--dump") o.dump_dir = value(i);
+    } else if (a == "--filter")
+      o.filters.push_back(value(i));
+    else if (a == "--dump")
+      o.dump_dir = value(i);
     else if (a == "--timeout") {
       const std::string s = value(i);
       char* end = nullptr;
       o.timeout = std::strtod(s.c_str(), &end);
       if (end == s.c_str() || *end != '\0' || !(o.timeout > 0)) usage("--timeout must be a positive number");
-    } else if (a == "--list") o.list = true;
-    else if (a == "--no-fork") o.fork = false;
-    else if (a == "-h" || a == "--help") usage("");
-    else usage("unknown option '" + a + "'");
+    } else if (a == "--list")
+      o.list = true;
+    else if (a == "--no-fork")
+      o.fork = false;
+    else if (a == "-h" || a == "--help")
+      usage("");
+    else
+      usage("unknown option '" + a + "'");
   }
   if (o.fast && o.count) usage("--count and --subset fast exclude each other");
   return o;
@@ -150,10 +158,14 @@ struct RunResult {
 std::string escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
-    if (ch == '\n') out += "\\n";
-    else if (ch == '\t') out += "\\t";
-    else if (ch == '\\') out += "\\\\";
-    else out += ch;
+    if (ch == '\n')
+      out += "\\n";
+    else if (ch == '\t')
+      out += "\\t";
+    else if (ch == '\\')
+      out += "\\\\";
+    else
+      out += ch;
   }
   return out;
 }
@@ -233,17 +245,25 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
     std::istringstream in(value);
     in >> t.b0 >> t.b1 >> t.b2;
     r.project = t;
-  } else if (key == "project_error") r.project_error = unescape(value);
-  else if (key == "check_ok") r.check_ok = value == "1";
-  else if (key == "triangles") r.triangles = std::stoull(value);
-  else if (key == "min_angle") r.min_angle = std::stod(value);
+  } else if (key == "project_error")
+    r.project_error = unescape(value);
+  else if (key == "check_ok")
+    r.check_ok = value == "1";
+  else if (key == "triangles")
+    r.triangles = std::stoull(value);
+  else if (key == "min_angle")
+    r.min_angle = std::stod(value);
   else if (key == "components") {
     std::istringstream in(value);
     for (std::int64_t e; in >> e;) r.component_euler.push_back(e);
-  } else if (key == "problem") r.problems.push_back(unescape(value));
-  else if (key == "error_type") r.error_type = value;
-  else if (key == "error") r.error = unescape(value);
-  else if (key == "done") r.kind = value == "mesh" ? RunResult::Mesh : RunResult::Error;
+  } else if (key == "problem")
+    r.problems.push_back(unescape(value));
+  else if (key == "error_type")
+    r.error_type = value;
+  else if (key == "error")
+    r.error = unescape(value);
+  else if (key == "done")
+    r.kind = value == "mesh" ? RunResult::Mesh : RunResult::Error;
 }
 
 /// Runs `c` in a child process with a time limit (and at most 4 GB more
@@ -324,8 +344,8 @@ RunResult run_isolated(const StressCase& c, double timeout, bool fork_child) {
     r.kind = RunResult::Timeout;
   } else if (WIFSIGNALED(status)) {
     r.kind = RunResult::Crash;
-    r.crash = std::string("killed by signal ") + std::to_string(WTERMSIG(status)) + " (" +
-              strsignal(WTERMSIG(status)) + ")";
+    r.crash =
+        std::string("killed by signal ") + std::to_string(WTERMSIG(status)) + " (" + strsignal(WTERMSIG(status)) + ")";
   } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
     r.kind = RunResult::Crash;
     r.crash = "exit status " + std::to_string(WEXITSTATUS(status));
@@ -544,16 +564,18 @@ int main(int argc, char** argv) {
   }
 
   // Summary.
-  std::size_t passed = 0, singular = 0, singular_mesh = 0, singular_error = 0, singular_failed = 0,
-              hard_failures = 0;
+  std::size_t passed = 0, singular = 0, singular_mesh = 0, singular_error = 0, singular_failed = 0, hard_failures = 0;
   std::map<std::string, std::vector<const CaseReport*>> groups;
   for (const CaseReport& rep : reports) {
     passed += rep.passed;
     if (rep.c->singular) {
       ++singular;
-      if (rep.passed && rep.run.kind == RunResult::Mesh) ++singular_mesh;
-      else if (rep.passed) ++singular_error;
-      else ++singular_failed;
+      if (rep.passed && rep.run.kind == RunResult::Mesh)
+        ++singular_mesh;
+      else if (rep.passed)
+        ++singular_error;
+      else
+        ++singular_failed;
     } else if (!rep.passed) {
       ++hard_failures;
     }
@@ -562,10 +584,12 @@ int main(int argc, char** argv) {
   if (!groups.empty()) {
     std::printf("\nfailures by message (%zu kinds):\n", groups.size());
     std::vector<std::pair<std::string, std::vector<const CaseReport*>>> sorted(groups.begin(), groups.end());
-    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
     for (const auto& [msg, list] : sorted) {
       std::printf("  %3zu x %s\n", list.size(), msg.c_str());
-      for (const CaseReport* rep : list) std::printf("          %s%s\n", rep->c->name.c_str(), rep->c->singular ? " (singular)" : "");
+      for (const CaseReport* rep : list)
+        std::printf("          %s%s\n", rep->c->name.c_str(), rep->c->singular ? " (singular)" : "");
     }
   }
   // Brute force against skin::dual_complex_topology.
@@ -607,13 +631,15 @@ int main(int argc, char** argv) {
   std::printf("brute force vs skin::dual_complex_topology: %zu disagreements in %zu cases away from thresholds\n",
               disagree, compared);
   for (const std::string& d : disagreements) std::printf("  DISAGREE %s\n", d.c_str());
-  std::printf("near-degenerate cases (expectation from dual_complex_topology): %zu, of which %zu where it equals "
-              "neither the all-closed nor the all-open brute-force nerve\n",
-              near_compared, near_other);
+  std::printf(
+      "near-degenerate cases (expectation from dual_complex_topology): %zu, of which %zu where it equals "
+      "neither the all-closed nor the all-open brute-force nerve\n",
+      near_compared, near_other);
   for (const std::string& d : near_notes) std::printf("  near %s\n", d.c_str());
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
-  std::printf("\nstress: %zu/%zu passed (%zu singular: %zu meshed and checked, %zu refused as singular, %zu failed); "
-              "%zu non-singular failures; %.1f s\n",
-              passed, reports.size(), singular, singular_mesh, singular_error, singular_failed, hard_failures, total);
+  std::printf(
+      "\nstress: %zu/%zu passed (%zu singular: %zu meshed and checked, %zu refused as singular, %zu failed); "
+      "%zu non-singular failures; %.1f s\n",
+      passed, reports.size(), singular, singular_mesh, singular_error, singular_failed, hard_failures, total);
   return hard_failures == 0 ? 0 : 1;
 }

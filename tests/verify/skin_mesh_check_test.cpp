@@ -9,9 +9,9 @@
 #include <set>
 
 #include "skin/restricted_delaunay.h"
-#include "verify/skin_mesh_check.h"
 #include "skin/size_conditions.h"
 #include "tests/geometry/test_meshes.h"
+#include "verify/skin_mesh_check.h"
 
 using namespace skinmesh;
 
@@ -122,7 +122,6 @@ TEST_CASE("the verifier finds each kind of defect") {
     CHECK(rep.expected.components() == 2);
   }
 }
-
 
 TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, flipped, duplicated meshes") {
   // Reference: a std::set of undirected edges for [L]; a scan of every vertex for
