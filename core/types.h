@@ -7,7 +7,6 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 
 namespace skinmesh {
 
@@ -18,7 +17,9 @@ using Mat3 = Eigen::Matrix3d;
 
 /// pi, the one definition of the project, and the radians of one degree
 /// (angles are radians inside the code and degrees at its edges).
-inline constexpr double kPi = std::numbers::pi;
+// Spelled out, not std::numbers::pi: the fuzz build compiles the one file that
+// includes gemmi as C++17 (tests/fuzz/CMakeLists.txt). The same double.
+inline constexpr double kPi = 3.141592653589793238462643383279502884;
 inline constexpr double kDegree = kPi / 180.0;
 
 /// Index into a flat array (vertices, simplices, mesh elements).

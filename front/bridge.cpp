@@ -18,7 +18,8 @@ using geometry::min_angle;
 bool try_bridge(FrontState& fs, Index c) {
   const morse::CriticalPoint& cp = fs.ms.critical[c];
   // Held front edges a -> b with both ends held by c, classified by side of
-  // the saddle along its descending direction (papers/front/open_questions.md Q6.1).
+  // the saddle along its descending direction (papers/front/open_questions.md Q6.1 (when a saddle is ready to be
+  // bridged)).
   std::vector<Halfedge> side[2];
   for (Vertex v : fs.held[c]) {
     if (fs.state[v] != VState::Held || fs.held_by[v] != c || !fs.mesh.is_boundary(v)) continue;
@@ -70,7 +71,7 @@ bool try_bridge(FrontState& fs, Index c) {
           (0.5 * (fs.mesh.position(a) + fs.mesh.position(b)) - 0.5 * (fs.mesh.position(cc) + fs.mesh.position(d)))
               .norm();
       // The quad a b c d must be convex in T_s, and the rails a-d, b-c must
-      // enter the hole wedges at a, b, c, d (papers/front/open_questions.md Q6.2).
+      // enter the hole wedges at a, b, c, d (papers/front/open_questions.md Q6.2 (which pair of edges)).
       if (!quad_fits(fs, a, b, cc, d, cp.position, cp.sigma * fs.e)) continue;
       bool same = false;
       const bool leaves1 = path_leaves(b, cc, same);

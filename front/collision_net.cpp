@@ -8,7 +8,8 @@
 //  - a fan whose new point would come within collision_radius · r of another
 //    vertex is not built: the departure vertex joins that vertex's hold, makes
 //    a contact, or is deferred.
-// Notes: papers/front/collision_net.md, papers/front/open_questions.md Q2.3, Q4.3
+// Notes: papers/front/collision_net.md, papers/front/open_questions.md Q2.3 (a cheap safety net), Q4.3 (overlap and
+// snapping)
 #include <algorithm>
 #include <limits>
 

@@ -136,7 +136,7 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
     }
     break;
   }
-  // Fold check (papers/front/open_questions.md Q4.1): the tangent angles of
+  // Fold check (papers/front/open_questions.md Q4.1 (the fan and its orientation)): the tangent angles of
   // the triangles at v plus the hole angle make a full turn.
   if (const double excess = fold_excess(fs, v); std::abs(excess) > fs.opt.fold_tolerance_deg * kDegree) {
     std::ostringstream os;

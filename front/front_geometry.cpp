@@ -4,7 +4,8 @@
 // quad test of bridges and contacts, and the fold test of the paranoid mode.
 // These are the tests the paper leaves implicit in Figure 7 ("the newly added
 // triangles may overlap existing ones").
-// Notes: papers/front/creep.md (hole wedges), papers/front/open_questions.md Q4.1, Q6.2
+// Notes: papers/front/creep.md (hole wedges), papers/front/open_questions.md Q4.1 (the fan and its orientation), Q6.2
+// (which pair of edges)
 #include <sstream>
 
 #include "core/assert.h"

@@ -66,7 +66,8 @@ bool release_holds(FrontState& fs, Index c, bool requeue) {
 bool release_saddles(FrontState& fs) {
   // Saddles never bridged (the front reached them from one side only, or the
   // two sides met elsewhere by a contact): release their holds and go on
-  // (papers/front/open_questions.md Q6.4); the final topology check decides.
+  // (papers/front/open_questions.md Q6.4 (one side arrived when the queue runs empty)); the final topology check
+  // decides.
   bool any = false;
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Saddle || fs.resolved[c]) continue;

@@ -34,7 +34,7 @@ struct MorseSmaleOptions {
   /// Protecting-sphere radius r_p = protect_factor * rho(c). The paper uses the
   /// tangent-disc radius (§4.2, about 0.185–0.208 rho); we default to 0.25 rho
   /// because a fan from a vertex just outside a sphere of the paper's size can
-  /// still cover the critical point (papers/front/open_questions.md Q8.1,
+  /// still cover the critical point (papers/front/open_questions.md Q8.1 (the protecting radius),
   /// papers/morse/morse_smale_complex.md).
   double protect_factor = 0.25;
   /// Arc contraction cancels a (saddle, extremum) pair joined by a single arc

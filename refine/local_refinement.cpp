@@ -182,7 +182,7 @@ void Refiner::push_edges_around(Vertex v) {
 
 bool Refiner::contract(Edge e) {
   // Keep the endpoint whose new star has the better minimum angle, among the
-  // collapses that pass the link condition and turn no triangle over (Q9.3).
+  // collapses that pass the link condition and turn no triangle over (Q9.3 (contraction for [L])).
   // A vertex inserted by this refinement is never the one deleted
   // ("Termination": it keeps contractions and insertions from undoing each
   // other).

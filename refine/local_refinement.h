@@ -33,7 +33,7 @@ struct RefineOptions {
   int max_rounds = 60;
   /// Flips per Lawson pass are capped at this factor times the number of edges
   /// (termination of flips with surface Delaunay balls is not proved,
-  /// papers/front/open_questions.md Q9.2); passes that hit the cap are counted
+  /// papers/front/open_questions.md Q9.2 (the flip criterion)); passes that hit the cap are counted
   /// in RefineStats::flip_caps.
   double max_flips_factor = 20;
   /// An insertion is refused when a vertex inserted earlier lies closer than
@@ -84,8 +84,8 @@ struct RefineStats {
 /// locally restricted Delaunay: Lawson flips with the surface Delaunay ball
 /// test (papers/front/open_questions.md Q9.2), then rounds of contraction of
 /// edges that violate [L] (keeping the endpoint whose new star has the better
-/// minimum angle, Q9.3) and insertion of the surface Delaunay centre of
-/// triangles that violate [U] (Q9.4), each followed by local flips. [L] and [U] together
+/// minimum angle, Q9.3 (contraction for [L])) and insertion of the surface Delaunay centre of
+/// triangles that violate [U] (Q9.4 (insertion for [U])), each followed by local flips. [L] and [U] together
 /// bound every angle below by arcsin(1/Q²) = 21.55°.
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;

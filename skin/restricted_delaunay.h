@@ -1,7 +1,7 @@
 // skin/restricted_delaunay.h: surface Delaunay balls and the restricted
 // Delaunay test for triangles of a mesh with vertices on the skin.
 // Cheng & Shi 2004 §2.2 ("Restricted Delaunay triangulation"), §4.3 (edge
-// flipping keeps it); papers/front/open_questions.md Q9.2.
+// flipping keeps it); papers/front/open_questions.md Q9.2 (the flip criterion).
 // Notes: papers/skin/restricted_delaunay.md
 #pragma once
 

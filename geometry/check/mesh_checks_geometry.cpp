@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/check/mesh_checks_internal.h"
+#include "geometry/kernel/tangent_angles.h"
 
 namespace skinmesh::geometry::mesh_checks_detail {
 
@@ -16,31 +17,14 @@ namespace {
 
 constexpr double kDegPerRad = 180.0 / kPi;
 
-/// An estimate (degrees) of atan2(y, x) * kDegPerRad for y >= 0, within 3e-6
-/// degrees (the degree-15 odd polynomial of Abramowitz & Stegun 4.4.49 for atan
-/// on [-1, 1]: 3.8e-8 rad measured against std::atan on 4e6 points, plus
-/// rounding); NaN when x = y = 0 or an input is NaN. Used only to skip atan2
-/// where the estimate decides everything (measure_angles()).
+/// An estimate (degrees) of atan2(y, x) * kDegPerRad for y >= 0, within
+/// kCoarseAtan2Error rad (geometry/kernel/tangent_angles.h); NaN when
+/// x = y = 0 or an input is NaN. Used only to skip atan2 where the estimate
+/// decides everything (measure_angles()).
 double approx_angle_deg(double y, double x) {
-  auto atan01 = [](double z) {  // z in [-1, 1]
-    const double z2 = z * z;
-    return z *
-           (0.9999993329 +
-            z2 * (-0.3332985605 +
-                  z2 * (0.1994653599 +
-                        z2 * (-0.1390853351 +
-                              z2 * (0.0964200441 + z2 * (-0.0559098861 + z2 * (0.0218612288 - z2 * 0.0040540580)))))));
-  };
-  double rad;
-  if (x > 0 && y <= x)
-    rad = atan01(y / x);
-  else if (y > 0 && std::abs(x) < y)
-    rad = 0.5 * kPi - atan01(x / y);
-  else if (x < 0 && y <= -x)
-    rad = kPi - atan01(y / -x);
-  else
+  if (std::isnan(x) || std::isnan(y) || !(std::max(std::abs(x), std::abs(y)) > 0))
     return std::numeric_limits<double>::quiet_NaN();
-  return rad * kDegPerRad;
+  return coarse_atan2(y, x) * kDegPerRad;
 }
 
 }  // namespace
@@ -77,11 +61,11 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
   const std::size_t nt = T.size();
   double min_angle = std::numeric_limits<double>::infinity(), max_angle = -min_angle;
   // Fast path: estimates within kMargin degrees of the angles (approx_angle_deg()
-  // errs by at most 3e-6) settle the histogram bins, the maximum, the minimum
-  // and the small-angle count whenever no decision lies within kMargin of a
-  // threshold; otherwise the triangle takes the exact path (atan2), so every
-  // output is the one atan2 gives.
-  constexpr double kMargin = 1e-4;
+  // errs by at most kCoarseAtan2Error rad, 1.15e-3 degrees) settle the
+  // histogram bins, the maximum, the minimum and the small-angle count
+  // whenever no decision lies within kMargin of a threshold; otherwise the
+  // triangle takes the exact path (atan2), so every output is the one atan2 gives.
+  constexpr double kMargin = 2e-3;  // [derived] above the estimate's error
   auto bin_of = [](double x) { return std::clamp(int(x / kHistogramBinDeg), 0, kHistogramBins - 1); };
   for (std::size_t t = 0; t < nt; ++t) {
     if (classes.kind[t] != TriangleKind::kGood && classes.kind[t] != TriangleKind::kZeroArea) continue;

@@ -59,13 +59,13 @@ inline PseudoVerdict pseudo_exceeds(double p1, double p0, double tol) {
   return PseudoVerdict::Undecided;
 }
 
-/// ccw_angle() to within 2e-5 rad for tangent vectors a, b of any nonzero
-/// length (zero vectors give 0), for tests with a tolerance of degrees
-/// (fold_excess): a polynomial arctangent on [0, 1] (minimax, degree 9,
-/// odd; the usual octant reduction) instead of std::atan2, and no
-/// normalisation (the angle does not depend on the lengths).
-inline double coarse_ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
-  const double y = a.cross(b).dot(n), x = a.dot(b);
+/// The project's one polynomial arctangent: atan2(y, x) taken in [0, 2 pi),
+/// to within kCoarseAtan2Error rad, for tests that only need a tolerance (the
+/// sweep's fold test, the verifier's fast path): a minimax odd polynomial of
+/// degree 9 on [0, 1] and the usual octant reduction, a few multiplications
+/// instead of std::atan2. (0, 0) gives 0; a NaN gives 0.
+inline constexpr double kCoarseAtan2Error = 2e-5;  // [measured] tests/geometry/tangent_angles_test.cpp
+inline double coarse_atan2(double y, double x) {
   const double ax = std::abs(x), ay = std::abs(y);
   const double hi = std::max(ax, ay), lo = std::min(ax, ay);
   if (!(hi > 0)) return 0.0;
@@ -75,6 +75,14 @@ inline double coarse_ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
   if (x < 0) t = kPi - t;
   if (y < 0) t = 2 * kPi - t;
   return t >= 2 * kPi ? t - 2 * kPi : t;
+}
+
+/// ccw_angle() to within kCoarseAtan2Error rad for tangent vectors a, b of
+/// any nonzero length (zero vectors give 0), for tests with a tolerance of
+/// degrees (fold_excess): coarse_atan2, and no normalisation (the angle does
+/// not depend on the lengths).
+inline double coarse_ccw_angle(const Vec3& a, const Vec3& b, const Vec3& n) {
+  return coarse_atan2(a.cross(b).dot(n), a.dot(b));
 }
 
 /// Rotates tangent vector a about unit axis n by angle t (radians).

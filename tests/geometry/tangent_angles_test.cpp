@@ -86,4 +86,25 @@ TEST_CASE(
   CHECK(geometry::pseudo_exceeds(std::nan(""), 0.0, 1e-6) == geometry::PseudoVerdict::Undecided);
 }
 
+TEST_CASE("coarse_atan2: within kCoarseAtan2Error of atan2 taken in [0, 2 pi), on every octant") {
+  std::uint64_t seed = 4242;
+  auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) / double(1ull << 53);
+  };
+  double worst = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const double t = 2 * kPi * uniform(), len = std::pow(10.0, -6 + 12 * uniform());
+    const double y = len * std::sin(t), x = len * std::cos(t);
+    double exact = std::atan2(y, x);
+    if (exact < 0) exact += 2 * kPi;
+    const double d = std::abs(geometry::coarse_atan2(y, x) - exact);
+    worst = std::max(worst, std::min(d, 2 * kPi - d));
+  }
+  CHECK(worst < geometry::kCoarseAtan2Error);
+  CHECK(worst > 0);  // a polynomial, not atan2
+  CHECK(geometry::coarse_atan2(0.0, 0.0) == 0.0);
+  CHECK(geometry::coarse_atan2(0.0, -1.0) == doctest::Approx(kPi));
+}
+
 }  // TEST_SUITE
