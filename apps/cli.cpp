@@ -83,6 +83,12 @@ Vec3 height_direction(const std::vector<double>& d) {
   return e.normalized();
 }
 
+void add_threads_option(CLI::App& cmd, int& threads, const char* zero, const char* what) {
+  cmd.add_option("--threads", threads, std::string("threads (") + zero + "); the " + what + " the same for every count")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+}
+
 void add_size_options(CLI::App& cmd, skin::SizeConstants& size) {
   cmd.add_option("--C", size.C, "size constant C of [L] and [U]")
       ->check(number_at_least_zero(true))

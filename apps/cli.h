@@ -65,6 +65,10 @@ void add_direction_option(CLI::App& cmd, std::vector<double>& direction);
 /// or non-finite vector.
 Vec3 height_direction(const std::vector<double>& d);
 
+/// --threads of mesh, check and trace: "threads (ZERO); the WHAT is the same
+/// for every count", an integer in [0, 4096].
+void add_threads_option(CLI::App& cmd, int& threads, const char* zero, const char* what);
+
 /// --C and --Q of mesh, check and trace.
 void add_size_options(CLI::App& cmd, skin::SizeConstants& size);
 

@@ -171,10 +171,7 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--no-angle-improvement", mesh.no_angle_improvement,
                 "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
                 "the paper's algorithm alone; papers/refine/angle_improvement.md)");
-  cmd->add_option("--threads", mesh.opt.threads,
-                  "threads (0: every core); the mesh is the same, byte for byte, for every count")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
+  add_threads_option(*cmd, mesh.opt.threads, "0: every core", "mesh is, byte for byte,");
   cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
   cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
   const char* debug = "Debugging the sweep (papers/front/sweep.md)";

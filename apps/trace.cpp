@@ -136,9 +136,7 @@ Command add_trace_command(CLI::App& app) {
   cmd->add_flag("--no-angle-improvement", tr.no_angle_improvement, "skip the angle improvement (sweep)");
   cmd->add_flag("--no-growth", tr.no_growth, "with --algorithm dynamic: the static variant");
   cmd->add_flag("--no-check", tr.no_check, "do not verify the final mesh");
-  cmd->add_option("--threads", tr.opt.mesh.threads, "threads (0: every core); the trace is the same for every count")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
+  add_threads_option(*cmd, tr.opt.mesh.threads, "0: every core", "trace is");
   return {cmd, [args, cmd] {
             if (!options_fit_algorithm(*cmd, args->algorithm == "dynamic",
                                        {"--direction", "--no-angle-improvement", "--no-growth"}, {"--no-growth"}))
