@@ -17,9 +17,9 @@
 #include "apps/mesh_command.h"
 #include "apps/output.h"
 #include "core/errors.h"
-#include "geometry/io/mesh_io.h"
 #include "geometry/mesh/mesh_measures.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_mesh_io.h"
 
 namespace skinmesh::app {
 
@@ -99,7 +99,7 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
         return;
       }
     }
-    geometry::write_mesh(item.output, res.mesh);
+    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data);
     if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
   } catch (const InputError& e) {
     item.exit_code = 1, item.status = "bad input", item.message = e.what();

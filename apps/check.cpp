@@ -6,8 +6,8 @@
 
 #include "apps/cli.h"
 #include "apps/output.h"
-#include "geometry/io/mesh_io.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_mesh_io.h"
 #include "skin/skin_surface.h"
 #include "verify/skin_mesh_check.h"
 
@@ -27,11 +27,11 @@ struct CheckArgs {
 int run_check(CheckArgs& a) {
   if (!a.report.empty()) app::require_writable(a.report);
   const skin::Molecule mol = load_molecule(a.mol);
-  geometry::IndexedMesh mesh = geometry::read_mesh(a.mesh);
+  geometry::IndexedMesh mesh = skin::read_skin_mesh(a.mesh);
   // Formats that round positions: the vertices' distance to the skin is
   // checked to the rounding (unless --max-vertex-distance says otherwise).
   if (!a.max_vertex_distance_given) {
-    const double rounding = geometry::position_rounding(a.mesh, mesh);
+    const double rounding = skin::position_rounding(a.mesh, mesh);
     if (rounding > a.opt.max_vertex_distance) {
       a.opt.max_vertex_distance = rounding;
       if (!a.mol.quiet)

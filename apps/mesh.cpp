@@ -9,9 +9,9 @@
 
 #include "apps/mesh_command.h"
 #include "apps/output.h"
-#include "geometry/io/mesh_io.h"
 #include "mesher/summary.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_mesh_io.h"
 
 namespace skinmesh::app {
 
@@ -28,7 +28,8 @@ std::size_t peak_memory_bytes() {
 
 int run_mesh(MeshArgs& a) {
   // Unknown extension or unwritable folder: fail before the work.
-  geometry::mesh_format_from_extension(a.out);
+  skin::require_mesh_format(a.out);
+  if (!a.opt.sweep.dump_path.empty()) geometry::mesh_format_from_extension(a.opt.sweep.dump_path);
   require_writable(a.out);
   if (!a.stats.empty()) require_writable(a.stats);
   using Clock = std::chrono::steady_clock;
@@ -52,7 +53,7 @@ int run_mesh(MeshArgs& a) {
     return 3;
   }
   const auto write_start = Clock::now();
-  geometry::write_mesh(a.out, res.mesh);
+  skin::write_skin_mesh(a.out, res.mesh, res.vertex_data);
   const double write_s = since(write_start);
   const double total = since(start);
   if (!a.stats.empty()) {
@@ -182,7 +183,8 @@ Command add_mesh_command(CLI::App& app) {
       ->check(number_at_least_zero(false))
       ->group(debug);
   cmd->add_option("--dump-partial", mesh.opt.sweep.dump_path,
-                  "write the partial mesh to this file before the seal or when stopped")
+                  "write the partial mesh to this file (.ply, .off, .obj, .stl or .vtk) before the seal or when "
+                  "stopped")
       ->group(debug);
   return {cmd, [args, cmd] {
             bool batch_run = false;

@@ -73,7 +73,8 @@ void validate(const DynamicOptions& options) {
 }
 
 geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::SizeConstants& size,
-                                   const DynamicOptions& opt, StageClock& clock, DynamicStats& stats) {
+                                   const DynamicOptions& opt, StageClock& clock, DynamicStats& stats,
+                                   skin::SkinVertexData& vertex_data) {
   auto lap = [&clock](const char* name) { clock.end(name); };
   auto report = [&clock](const char* name, double f) { clock.report(name, f); };
   const std::vector<geometry::WeightedPoint>& points = skin.points();
@@ -99,7 +100,7 @@ geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::Si
     stats.samples = st.stats();
     stats.delaunay = st.triangulation().stats();
     lap("refine");
-    mesh = st.extract();
+    mesh = st.extract(nullptr, &vertex_data);
     lap("output");
   } else {
     // Growth: the level sets F_c of the final skin function, c from the birth
@@ -165,7 +166,7 @@ geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::Si
     stats.kinetic_moves = st.triangulation().stats().kinetic_moves;
     stats.moves = st.stats().moves;
     lap("refine");
-    mesh = st.extract();
+    mesh = st.extract(nullptr, &vertex_data);
     lap("output");
   }
   return mesh;

@@ -23,6 +23,7 @@
 #include "geometry/mesh/indexed_mesh.h"
 #include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::dynamic {
 
@@ -85,11 +86,13 @@ void validate(const DynamicOptions& options);
 /// of `size` (Cheng & Shi §2.2) while the skin grows (options.growth) or on
 /// the final skin alone (the static variant). Returns the mesh in the skin's
 /// frame (Å; triangles counter-clockwise seen from outside; per vertex the
-/// unit outward normal, atom, rho and mixed-cell dimension) and fills `stats`
+/// unit outward normal), its vertex data in `vertex_data` (atom, rho and
+/// mixed-cell dimension per vertex) and fills `stats`
 /// except stats.predicates, which the caller measures. Ends the stages
 /// "growth" (not for the static variant), "refine" (the final level) and
 /// "output" on `clock`. Throws GeometryError if a sample cannot be placed.
 geometry::IndexedMesh mesh_dynamic(const skin::SkinSurface& skin, const skin::SizeConstants& size,
-                                   const DynamicOptions& options, StageClock& clock, DynamicStats& stats);
+                                   const DynamicOptions& options, StageClock& clock, DynamicStats& stats,
+                                   skin::SkinVertexData& vertex_data);
 
 }  // namespace skinmesh::dynamic

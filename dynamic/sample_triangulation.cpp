@@ -210,7 +210,7 @@ std::size_t SampleTriangulation::add_ring(Index v) {
   const double d = 0.5 * std::max(rho_[v], rho_floor_);
   std::size_t added = 0;
   for (int k = 0; k < 6; ++k) {
-    const double a = k * (3.14159265358979323846 / 3);
+    const double a = k * (kPi / 3);
     Vec3 y;
     Index cell = cell_[v];
     double rho = 0;
@@ -374,8 +374,11 @@ std::size_t SampleTriangulation::num_restricted_facets() const {
   return n;
 }
 
-geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_ids) const {
+geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_ids, skin::SkinVertexData* data) const {
   geometry::IndexedMesh mesh;
+  skin::SkinVertexData ignored;
+  skin::SkinVertexData& out = data != nullptr ? *data : ignored;
+  out = skin::SkinVertexData();
   std::vector<Index> local(dt_.vertex_capacity(), kInvalidIndex);
   std::vector<std::array<Index, 3>> tris;
   for_each_restricted_facet([&](Index, int, const std::array<Index, 3>& tri) {
@@ -391,14 +394,14 @@ geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_id
     mesh.positions.push_back(x);
     if (DelaunayTriangulation::is_bounding(v)) {
       mesh.normals.push_back(Vec3::UnitZ());
-      mesh.atom.push_back(-1);
-      mesh.rho.push_back(0);
-      mesh.patch.push_back(0);
+      out.atom.push_back(-1);
+      out.rho.push_back(0);
+      out.patch.push_back(0);
     } else {
       mesh.normals.push_back(mc.gradient(cell_[v], x).normalized());
-      mesh.atom.push_back(static_cast<std::int32_t>(skin_->atom_of(cell_[v], x)));
-      mesh.rho.push_back(rho_[v]);
-      mesh.patch.push_back(mc.cell(cell_[v]).dim);
+      out.atom.push_back(static_cast<std::int32_t>(skin_->atom_of(cell_[v], x)));
+      out.rho.push_back(rho_[v]);
+      out.patch.push_back(mc.cell(cell_[v]).dim);
     }
     if (vertex_ids) vertex_ids->push_back(v);
   }

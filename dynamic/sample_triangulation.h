@@ -18,6 +18,7 @@
 #include "geometry/triangulation/delaunay_triangulation.h"
 #include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
+#include "skin/vertex_data.h"
 
 namespace skinmesh::dynamic {
 
@@ -119,10 +120,10 @@ class SampleTriangulation {
   /// The restricted Delaunay triangulation as a mesh: the facets between a
   /// tetrahedron whose circumcentre is inside F_c and one outside, oriented
   /// towards the outside one (outward), vertices compacted (samples in id
-  /// order), with unit normals grad f / |grad f|, and the atom, rho and
-  /// mixed-cell dimension of each vertex's patch. `vertex_ids` (if not null) receives the sample id of
-  /// each mesh vertex.
-  geometry::IndexedMesh extract(std::vector<Index>* vertex_ids = nullptr) const;
+  /// order), with unit normals grad f / |grad f|. `vertex_ids` (if not null)
+  /// receives the sample id of each mesh vertex; `data` (if not null) the
+  /// atom, rho and mixed-cell dimension of each vertex's patch.
+  geometry::IndexedMesh extract(std::vector<Index>* vertex_ids = nullptr, skin::SkinVertexData* data = nullptr) const;
 
   /// Number of restricted facets (a full scan).
   std::size_t num_restricted_facets() const;

@@ -171,7 +171,8 @@ struct SweepOptions {
   /// negative: no limit).
   long max_steps = -1;
   /// If not empty, the partial mesh is written here before the seal, when a
-  /// paranoid check fails, and when max_steps stops the sweep.
+  /// paranoid check fails, and when max_steps stops the sweep (a geometric
+  /// format of geometry::write_mesh: .ply, .off, .obj, .stl or .vtk).
   std::string dump_path;
 };
 

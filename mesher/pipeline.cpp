@@ -26,11 +26,12 @@ namespace skinmesh::mesher {
 
 namespace {
 
-/// The output mesh of a closed SurfaceMesh of the skin: positions, triangles,
-/// and per vertex the normal (skin::kVertexNormal), the atom and the dimension
-/// of its mixed cell (skin::kVertexCell) and rho (skin::kVertexRho). Deleted
-/// elements are left out.
-geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh) {
+/// The output mesh of a closed SurfaceMesh of the skin: positions, triangles
+/// and per vertex the normal (skin::kVertexNormal); into `data` per vertex the
+/// atom and the dimension of its mixed cell (skin::kVertexCell) and rho
+/// (skin::kVertexRho). Deleted elements are left out.
+geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
+                                  skin::SkinVertexData& data) {
   // No garbage_collection(): to_indexed_mesh() and vertices() skip deleted
   // elements in index order, which is the order the compaction keeps (the same
   // output without moving every property array of the mesh once more).
@@ -39,15 +40,15 @@ geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry:
   const auto cell = mesh.get_vertex_property(skin::kVertexCell);
   const auto rho = mesh.get_vertex_property(skin::kVertexRho);
   out.normals.resize(out.positions.size());
-  out.atom.resize(out.positions.size());
-  out.rho.resize(out.positions.size());
-  out.patch.resize(out.positions.size());
+  data.atom.resize(out.positions.size());
+  data.rho.resize(out.positions.size());
+  data.patch.resize(out.positions.size());
   Index i = 0;
   for (geometry::Vertex v : mesh.vertices()) {
     out.normals[i] = normal[v];
-    out.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
-    out.rho[i] = rho[v];
-    out.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
+    data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
+    data.rho[i] = rho[v];
+    data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
     ++i;
   }
   return out;
@@ -165,7 +166,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
       clock.end("angles");
     }
   }
-  res.mesh = output_mesh(skin, swept.mesh);
+  res.mesh = output_mesh(skin, swept.mesh, res.vertex_data);
   swept.mesh = geometry::SurfaceMesh();  // the check reads res.mesh: free the half-edge mesh first
   if (options.observers.memory_released) options.observers.memory_released();
   clock.end("output");
@@ -185,7 +186,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   if (dynamic) {
     res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
     clock.end("skin");
-    res.mesh = dynamic::mesh_dynamic(skin, options.size, options.dynamic, clock, res.dynamic);
+    res.mesh = dynamic::mesh_dynamic(skin, options.size, options.dynamic, clock, res.dynamic, res.vertex_data);
     res.dynamic.predicates = predicates_since(predicates_before);
     if (options.observers.memory_released) options.observers.memory_released();
   } else {

@@ -38,6 +38,7 @@
 #include "skin/dual_complex.h"
 #include "skin/molecule.h"
 #include "skin/size_conditions.h"
+#include "skin/vertex_data.h"
 #include "verify/skin_mesh_check.h"
 
 namespace skinmesh::mesher {
@@ -130,9 +131,11 @@ struct MeshResult {
   /// The algorithm that made the mesh.
   Algorithm algorithm = Algorithm::Sweep;
   /// The mesh: positions (Å, on the skin), triangles counter-clockwise about
-  /// the outward normal, unit outward normals per vertex, and per vertex the
-  /// index (into the input points) of the atom whose mixed cell holds it.
+  /// the outward normal, unit outward normals per vertex.
   geometry::IndexedMesh mesh;
+  /// The skin's data at the vertices of `mesh`: atom, rho and mixed-cell
+  /// dimension, one entry per vertex each (skin/vertex_data.h).
+  skin::SkinVertexData vertex_data;
   /// Critical points of the height function before and after simplification
   /// (Algorithm::Sweep; zero for the baseline).
   morse::MorseCount critical, live;

@@ -26,6 +26,7 @@
 #include "mesher/summary.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_measures.h"
+#include "skin/skin_mesh_io.h"
 #include "skin/skin_surface.h"
 #include "verify/skin_mesh_check.h"
 
@@ -37,6 +38,7 @@ namespace {
 /// A mesh as numpy arrays, and what the run measured.
 struct PyMesh {
   geometry::IndexedMesh mesh;
+  skin::SkinVertexData vertex_data;
   py::dict stats;
   bool ok = true;
 };
@@ -130,6 +132,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     summary = mesher::run_summary(res, options, context).dump();
     out.ok = res.ok();
     out.mesh = std::move(res.mesh);
+    out.vertex_data = std::move(res.vertex_data);
   }
   out.stats = py::module_::import("json").attr("loads")(summary);
   return out;
@@ -145,9 +148,9 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
   } else {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(mesh_or_path));
     py::gil_scoped_release release;
-    m = geometry::read_mesh(path);
+    m = skin::read_skin_mesh(path);
     // Formats that round positions: distances checked to the rounding, as `skinmesh check` does.
-    options.max_vertex_distance = std::max(options.max_vertex_distance, geometry::position_rounding(path, m));
+    options.max_vertex_distance = std::max(options.max_vertex_distance, skin::position_rounding(path, m));
   }
   std::string json;
   {
@@ -209,12 +212,14 @@ PYBIND11_MODULE(skinmesh, m) {
       .def_property_readonly("atom",
                              [](const PyMesh& s) {
                                return array_of<std::int32_t>(
-                                   s.mesh.atom.size(), 1, [&](std::size_t i, std::size_t) { return s.mesh.atom[i]; });
+                                   s.vertex_data.atom.size(), 1,
+                                   [&](std::size_t i, std::size_t) { return s.vertex_data.atom[i]; });
                              })
       .def_property_readonly("rho",
                              [](const PyMesh& s) {
-                               return array_of<double>(s.mesh.rho.size(), 1,
-                                                       [&](std::size_t i, std::size_t) { return s.mesh.rho[i]; });
+                               return array_of<double>(s.vertex_data.rho.size(), 1, [&](std::size_t i, std::size_t) {
+                                 return s.vertex_data.rho[i];
+                               });
                              })
       .def_readonly("stats", &PyMesh::stats)
       .def_readonly("ok", &PyMesh::ok)
@@ -223,7 +228,7 @@ PYBIND11_MODULE(skinmesh, m) {
           [](const PyMesh& s, const py::object& path) {
             const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
             py::gil_scoped_release release;
-            geometry::write_mesh(p, s.mesh);
+            skin::write_skin_mesh(p, s.mesh, s.vertex_data);
           },
           py::arg("path"),
           "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face).")
@@ -262,7 +267,7 @@ PYBIND11_MODULE(skinmesh, m) {
         PyMesh out;
         {
           py::gil_scoped_release release;
-          out.mesh = geometry::read_mesh(p);
+          out.mesh = skin::read_skin_mesh(p, &out.vertex_data);
         }
         out.stats["vertices"] = out.mesh.positions.size();
         out.stats["triangles"] = out.mesh.triangles.size();

@@ -47,7 +47,7 @@ json point_json(const Vec3& p) {
 /// holds iff its ratio exceeds 1).
 std::array<double, 3> face_quality(const std::array<Vec3, 3>& p, const std::array<double, 3>& rho,
                                    const skin::SizeConstants& size) {
-  const double angle = geometry::min_angle(p[0], p[1], p[2]) * 180 / M_PI;
+  const double angle = geometry::min_angle(p[0], p[1], p[2]) * 180 / kPi;
   double L = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;

@@ -31,39 +31,7 @@ namespace skinmesh::geometry {
 
 namespace mesh_io_detail {
 
-namespace {
-
-/// All of `token` as a finite double, or nullopt.
-std::optional<double> to_double(std::string_view token) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
-}
-
-}  // namespace
-
 // Shared Helpers
-
-std::optional<std::int64_t> to_int(std::string_view token) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  std::int64_t v = 0;
-  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (token.empty() || ec != std::errc() || ptr != token.data() + token.size()) return std::nullopt;
-  return v;
-}
-
-double number_or_throw(const std::string& path, int line, std::string_view token, const char* what) {
-  if (std::optional<double> v = to_double(token)) return *v;
-  throw InputError(path, line, std::string("non-numeric or non-finite ") + what + " '" + std::string(token) + "'");
-}
-
-std::int64_t int_or_throw(const std::string& path, int line, std::string_view token, const char* what) {
-  if (std::optional<std::int64_t> v = to_int(token)) return *v;
-  throw InputError(path, line, std::string("non-integer ") + what + " '" + std::string(token) + "'");
-}
 
 void append_number(std::string& out, double v, bool double_precision) {
   std::array<char, 64> buf;
@@ -104,12 +72,9 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
 
 namespace {
 
-using mesh_io_detail::msms_text;
 using mesh_io_detail::obj_text;
 using mesh_io_detail::off_text;
 using mesh_io_detail::ply_bytes;
-using mesh_io_detail::read_msms;
-using mesh_io_detail::read_msms_concatenated;
 using mesh_io_detail::read_obj;
 using mesh_io_detail::read_off;
 using mesh_io_detail::read_ply;
@@ -126,16 +91,26 @@ std::string lowercase(std::string_view s) {
 }
 
 /// Checks the preconditions of write_mesh() (std::logic_error through
-/// SKINMESH_ASSERT_MSG): at most 2^31 - 1 vertices (PLY int indices), normals and
-/// atom ids empty or one per vertex, every triangle index in range.
-void check_writable(const IndexedMesh& m) {
+/// SKINMESH_ASSERT_MSG): at most 2^31 - 1 vertices (PLY int indices), normals
+/// empty or one per vertex, attributes one value per vertex (integers in the
+/// int32 range) named by one word, every triangle index in range.
+void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes) {
   const std::size_t n = m.positions.size();
   SKINMESH_ASSERT_MSG(n <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()),
                       "too many vertices for PLY int indices");
   SKINMESH_ASSERT_MSG(m.normals.empty() || m.normals.size() == n, "one normal per vertex");
-  SKINMESH_ASSERT_MSG(m.atom.empty() || m.atom.size() == n, "one atom id per vertex");
-  SKINMESH_ASSERT_MSG(m.rho.empty() || m.rho.size() == n, "one rho per vertex");
-  SKINMESH_ASSERT_MSG(m.patch.empty() || m.patch.size() == n, "one patch dimension per vertex");
+  for (const VertexAttribute& a : attributes) {
+    SKINMESH_ASSERT_MSG(a.values.size() == n, "one attribute value per vertex");
+    SKINMESH_ASSERT_MSG(
+        !a.name.empty() && std::all_of(a.name.begin(), a.name.end(),
+                                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
+        "an attribute name is one word");
+    if (a.integer)
+      for (double v : a.values)
+        SKINMESH_ASSERT_MSG(v == std::floor(v) && v >= std::numeric_limits<std::int32_t>::min() &&
+                                v <= std::numeric_limits<std::int32_t>::max(),
+                            "integer attribute values in the int32 range");
+  }
   for (const auto& t : m.triangles)
     for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
 }
@@ -185,11 +160,32 @@ void write_file_atomically(const std::string& path, const std::string& bytes, co
   rename_onto(write_temporary(path, bytes, what), path, what);
 }
 
-namespace {
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files, const std::string& what) {
+  // A folder in the way would fail a later rename only: refused first.
+  for (const auto& [path, bytes] : files)
+    if (std::filesystem::is_directory(path))
+      throw InputError(path, 0, "cannot write " + what + " (a folder has this name)");
+  std::vector<std::string> temporaries;
+  const auto remove_temporaries = [&temporaries](std::size_t from) {
+    for (std::size_t k = from; k < temporaries.size(); ++k) std::remove(temporaries[k].c_str());
+  };
+  try {
+    for (const auto& [path, bytes] : files) temporaries.push_back(write_temporary(path, bytes, what));
+  } catch (...) {
+    remove_temporaries(0);
+    throw;
+  }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    try {
+      rename_onto(temporaries[k], files[k].first, what);
+    } catch (...) {
+      remove_temporaries(k + 1);
+      throw;
+    }
+  }
+}
 
-/// The whole content of `path`, read in binary mode. Throws InputError(path, 0,
-/// "cannot open file (...)" or "cannot read file (...)").
-std::string read_bytes(const std::string& path) {
+std::string read_file(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path, 0, std::string("cannot open file (") + std::strerror(errno) + ")");
   std::string data;
@@ -203,35 +199,30 @@ std::string read_bytes(const std::string& path) {
   return data;
 }
 
-}  // namespace
-
 // Mesh I/O Function Definitions
 
-MeshFormat mesh_format_from_extension(const std::string& path) {
+std::optional<MeshFormat> mesh_format_of(const std::string& path) {
   const std::string p = lowercase(path);
   if (p.ends_with(".ply")) return MeshFormat::Ply;
   if (p.ends_with(".off")) return MeshFormat::Off;
   if (p.ends_with(".obj")) return MeshFormat::Obj;
   if (p.ends_with(".stl")) return MeshFormat::Stl;
   if (p.ends_with(".vtk")) return MeshFormat::Vtk;
-  if (p.ends_with(".vert") || p.ends_with(".face")) return MeshFormat::Msms;
-  throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)");
+  return std::nullopt;
 }
 
-std::pair<std::string, std::string> msms_paths(const std::string& path) {
-  const std::string p = lowercase(path);
-  if (!p.ends_with(".vert") && !p.ends_with(".face"))
-    throw InputError(path, 0, "an MSMS mesh is named NAME.vert or NAME.face");
-  const std::string base = path.substr(0, path.size() - 5);
-  return {base + ".vert", base + ".face"};
+MeshFormat mesh_format_from_extension(const std::string& path) {
+  if (const std::optional<MeshFormat> format = mesh_format_of(path)) return *format;
+  throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl or .vtk)");
 }
 
-void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWriteOptions& opt) {
+void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWriteOptions& opt,
+                const std::vector<VertexAttribute>& attributes) {
   const MeshFormat format = mesh_format_from_extension(path);
-  check_writable(mesh);
+  check_writable(mesh, attributes);
   switch (format) {
     case MeshFormat::Ply:
-      write_file_atomically(path, ply_bytes(mesh, opt), "mesh");
+      write_file_atomically(path, ply_bytes(mesh, attributes, opt), "mesh");
       return;
     case MeshFormat::Off:
       write_file_atomically(path, off_text(mesh, opt), "mesh");
@@ -243,66 +234,31 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
       write_file_atomically(path, stl_bytes(mesh), "mesh");
       return;
     case MeshFormat::Vtk:
-      write_file_atomically(path, vtk_text(mesh, opt), "mesh");
+      write_file_atomically(path, vtk_text(mesh, attributes, opt), "mesh");
       return;
-    case MeshFormat::Msms: {
-      const auto [vert_path, face_path] = msms_paths(path);
-      const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
-      const auto [vert, face] = msms_text(mesh, name.substr(0, name.size() - 5));
-      // A folder in the way would fail the second rename only: refused first.
-      for (const std::string& p : {face_path, vert_path})
-        if (std::filesystem::is_directory(p)) throw InputError(p, 0, "cannot write mesh (a folder has this name)");
-      // Both files are written to temporaries first, then renamed one right
-      // after the other: a failure while writing leaves the old pair (if any)
-      // as it was, never a new .face beside an old .vert.
-      const std::string face_tmp = write_temporary(face_path, face, "mesh");
-      std::string vert_tmp;
-      try {
-        vert_tmp = write_temporary(vert_path, vert, "mesh");
-      } catch (...) {
-        std::remove(face_tmp.c_str());
-        throw;
-      }
-      try {
-        rename_onto(face_tmp, face_path, "mesh");
-      } catch (...) {
-        std::remove(vert_tmp.c_str());
-        throw;
-      }
-      rename_onto(vert_tmp, vert_path, "mesh");
-      return;
-    }
   }
 }
 
-double position_rounding(const std::string& path, const IndexedMesh& mesh) {
-  switch (mesh_format_from_extension(path)) {
-    case MeshFormat::Msms:
-      return 1e-3;
-    case MeshFormat::Stl: {
-      double largest = 0;
-      for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-      return 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
-    }
-    default:
-      return 0;
-  }
+double position_rounding(MeshFormat format, const IndexedMesh& mesh) {
+  if (format != MeshFormat::Stl) return 0;
+  double largest = 0;
+  for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  return 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
 }
 
-IndexedMesh read_mesh(const std::string& path) {
+IndexedMesh read_mesh(const std::string& path, std::vector<VertexAttribute>* attributes) {
   const MeshFormat format = mesh_format_from_extension(path);
-  if (format == MeshFormat::Msms) {
-    const auto [vert_path, face_path] = msms_paths(path);
-    const std::string vert = read_bytes(vert_path);  // the .vert first: errors name it first
-    return read_msms(vert_path, vert, face_path, read_bytes(face_path));
-  }
-  return read_mesh_from_bytes(read_bytes(path), format, path);
+  return read_mesh_from_bytes(read_file(path), format, path, attributes);
 }
 
-IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name) {
+IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name,
+                                 std::vector<VertexAttribute>* attributes) {
+  std::vector<VertexAttribute> ignored;
+  std::vector<VertexAttribute>& out = attributes != nullptr ? *attributes : ignored;
+  out.clear();
   switch (format) {
     case MeshFormat::Ply:
-      return read_ply(name, data);
+      return read_ply(name, data, out);
     case MeshFormat::Off:
       return read_off(name, data);
     case MeshFormat::Obj:
@@ -310,9 +266,7 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
     case MeshFormat::Stl:
       return read_stl(name, data);
     case MeshFormat::Vtk:
-      return read_vtk(name, data);
-    case MeshFormat::Msms:
-      return read_msms_concatenated(name, data);
+      return read_vtk(name, data, out);
   }
   return {};
 }

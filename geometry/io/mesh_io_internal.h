@@ -8,7 +8,6 @@
 //   mesh_io_obj.cpp  Wavefront OBJ writer and reader
 //   mesh_io_stl.cpp  STL: binary writer; binary / ascii reader
 //   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
-//   mesh_io_msms.cpp MSMS .vert / .face writer and reader
 // Numbers go through std::to_chars / std::from_chars: shortest text that reads
 // back to the same double, and correctly rounded parsing, so text round trips are
 // bit-exact. Only geometry/io/mesh_io*.cpp include this header.
@@ -22,22 +21,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/text_numbers.h"  // to_int, number_or_throw, int_or_throw
 #include "geometry/io/mesh_io.h"
 #include "geometry/mesh/indexed_mesh.h"
 
 namespace skinmesh::geometry::mesh_io_detail {
 
 // Shared Helpers (mesh_io.cpp)
-
-/// All of `token` (a leading '+' allowed) as an integer, or nullopt.
-std::optional<std::int64_t> to_int(std::string_view token);
-
-/// All of `token` as a finite double (a leading '+' allowed). Throws
-/// InputError(path, line, "non-numeric or non-finite <what> '<token>'").
-double number_or_throw(const std::string& path, int line, std::string_view token, const char* what);
-
-/// to_int(token), or throws InputError(path, line, "non-integer <what> '<token>'").
-std::int64_t int_or_throw(const std::string& path, int line, std::string_view token, const char* what);
 
 /// Appends the shortest decimal text that reads back to `v` (or, if
 /// !double_precision, to float(v)).
@@ -60,10 +50,12 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
 
 /// The binary little-endian PLY file of `m` (layout: write_mesh() in mesh_io.h).
 /// Pre: `m` passed the checks of write_mesh() (check_writable in mesh_io.cpp).
-std::string ply_bytes(const IndexedMesh& m, const MeshWriteOptions& opt);
+std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
+                      const MeshWriteOptions& opt);
 
-/// Reads a PLY file (ascii, binary_little_endian or binary_big_endian).
-IndexedMesh read_ply(const std::string& path, const std::string& data);
+/// Reads a PLY file (ascii, binary_little_endian or binary_big_endian); the
+/// scalar vertex properties besides the position and normal into `attributes`.
+IndexedMesh read_ply(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
 
 /// The OFF file of `m` (NOFF with normals if m.normals is set).
 std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt);
@@ -86,23 +78,13 @@ std::string stl_bytes(const IndexedMesh& m);
 /// become one vertex (in order of first appearance). No normals.
 IndexedMesh read_stl(const std::string& path, const std::string& data);
 
-/// The legacy VTK file of `m` (ascii POLYDATA; POINT_DATA normals, atom, rho
-/// when set; CELL_DATA min_angle in degrees).
-std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+/// The legacy VTK file of `m` (ascii POLYDATA; POINT_DATA normals when set and
+/// one SCALARS array per attribute; CELL_DATA min_angle in degrees).
+std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt);
 
 /// Reads an ascii legacy VTK POLYDATA file (POINTS, POLYGONS of triangles;
-/// VERTICES and LINES skipped; POINT_DATA NORMALS, SCALARS atom and rho kept,
-/// other SCALARS skipped).
-IndexedMesh read_vtk(const std::string& path, const std::string& data);
-
-/// The MSMS .vert and .face files of `m`; `name` goes into the comment lines.
-std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const std::string& name);
-
-/// Reads the MSMS .vert and .face files (their paths for messages).
-IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, const std::string& face_path,
-                      const std::string& face);
-
-/// read_msms() of the .vert file's content followed by the .face file's.
-IndexedMesh read_msms_concatenated(const std::string& name, const std::string& data);
+/// VERTICES and LINES skipped; POINT_DATA NORMALS kept, one-component SCALARS
+/// into `attributes`, other attributes skipped).
+IndexedMesh read_vtk(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
 
 }  // namespace skinmesh::geometry::mesh_io_detail

@@ -178,16 +178,17 @@ class PlyBinaryReader {
 };
 
 /// Reads the values of every element of `elements` from `in` (PlyAsciiReader or
-/// PlyBinaryReader): vertex x, y, z (and nx, ny, nz, atom when present) into
-/// `mesh`, faces from their vertex_indices (or vertex_index) list, one entry of
-/// `face_lines` per face (its text line, 0 in binary data); other properties
-/// and elements are read and dropped. Throws InputError for a missing or
-/// second vertex element, a property of the wrong type, a non-finite coordinate
-/// or normal, an atom id out of int32 range, a face that is not a triangle, a
+/// PlyBinaryReader): vertex x, y, z (and nx, ny, nz when present) into `mesh`,
+/// the other scalar vertex properties into `attributes`, faces from their
+/// vertex_indices (or vertex_index) list, one entry of `face_lines` per face (its
+/// text line, 0 in binary data); other properties and elements are read and
+/// dropped. Throws InputError for a missing or second vertex element, a property
+/// of the wrong type, a non-finite coordinate or normal, an integer attribute
+/// out of the int32 range, a face that is not a triangle, a
 /// negative index and truncated data.
 template <class Reader>
 void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyElement>& elements, IndexedMesh& mesh,
-                   std::vector<int>& face_lines) {
+                   std::vector<VertexAttribute>& attributes, std::vector<int>& face_lines) {
   bool have_vertices = false;
   for (const PlyElement& el : elements) {
     const auto find = [&](std::string_view name) -> int {
@@ -195,9 +196,10 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
         if (el.properties[k].name == name && !el.properties[k].is_list) return static_cast<int>(k);
       return -1;
     };
-    // Role of each property: 0-2 position, 3-5 normal, 6 atom, 7 triangle, -1 skipped.
+    // Role of each property: 0-2 position, 3-5 normal, 6 attribute, 7 triangle, -1 skipped.
     std::vector<int> role(el.properties.size(), -1);
-    bool with_normals = false, with_atom = false;
+    std::vector<std::size_t> attribute_of(el.properties.size(), 0);  // role 6: index into `attributes`
+    bool with_normals = false;
     if (el.name == "vertex") {
       if (have_vertices) throw InputError(path, el.header_line, "second PLY vertex element");
       have_vertices = true;
@@ -213,16 +215,15 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
         role[static_cast<std::size_t>(ny)] = 4;
         role[static_cast<std::size_t>(nz)] = 5;
       }
-      const int atom = find("atom");
-      with_atom = atom >= 0;
-      if (with_atom) {
-        if (!is_integer(el.properties[static_cast<std::size_t>(atom)].type))
-          throw InputError(path, el.header_line, "PLY vertex property 'atom' must have an integer type");
-        role[static_cast<std::size_t>(atom)] = 6;
+      for (std::size_t k = 0; k < el.properties.size(); ++k) {
+        const PlyProperty& p = el.properties[k];
+        if (role[k] >= 0 || p.is_list || find(p.name) != static_cast<int>(k)) continue;  // first of a name only
+        role[k] = 6;
+        attribute_of[k] = attributes.size();
+        attributes.push_back({p.name, is_integer(p.type), std::vector<double>(el.count, 0.0)});
       }
       mesh.positions.assign(el.count, Vec3::Zero());
       if (with_normals) mesh.normals.assign(el.count, Vec3::Zero());
-      if (with_atom) mesh.atom.assign(el.count, -1);
     } else if (el.name == "face") {
       int list = -1;
       for (std::size_t k = 0; k < el.properties.size(); ++k)
@@ -262,11 +263,14 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
             case 5:
               mesh.normals[i][role[k] - 3] = v;
               break;
-            case 6:
-              if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
-                throw InputError(path, in.line(), "atom id out of range in " + context);
-              mesh.atom[i] = static_cast<std::int32_t>(v);
+            case 6: {
+              VertexAttribute& a = attributes[attribute_of[k]];
+              if (a.integer &&
+                  (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max()))
+                throw InputError(path, in.line(), p.name + " out of the int32 range in " + context);
+              a.values[i] = v;
               break;
+            }
             default:
               break;
           }
@@ -304,18 +308,22 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
 
 }  // namespace
 
-std::string ply_bytes(const IndexedMesh& m, const MeshWriteOptions& opt) {
+std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
+                      const MeshWriteOptions& opt) {
   const char* real = opt.double_precision ? "double" : "float";
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by skinmesh\n";
   out += "element vertex " + std::to_string(m.positions.size()) + "\n";
   for (const char* p : {"x", "y", "z"}) out += std::string("property ") + real + " " + p + "\n";
   if (!m.normals.empty())
     for (const char* p : {"nx", "ny", "nz"}) out += std::string("property ") + real + " " + p + "\n";
-  if (!m.atom.empty()) out += "property int atom\n";
+  for (const VertexAttribute& a : attributes)
+    out += std::string("property ") + (a.integer ? "int" : real) + " " + a.name + "\n";
   out += "element face " + std::to_string(m.triangles.size()) + "\n";
   out += "property list uchar int vertex_indices\nend_header\n";
   const std::size_t real_size = opt.double_precision ? 8 : 4;
-  out.reserve(out.size() + m.positions.size() * (3 * real_size * (m.normals.empty() ? 1 : 2) + 4) +
+  std::size_t attribute_size = 0;
+  for (const VertexAttribute& a : attributes) attribute_size += a.integer ? 4 : real_size;
+  out.reserve(out.size() + m.positions.size() * (3 * real_size * (m.normals.empty() ? 1 : 2) + attribute_size) +
               m.triangles.size() * 13);
   auto put_real = [&](double v) {
     if (opt.double_precision)
@@ -327,7 +335,12 @@ std::string ply_bytes(const IndexedMesh& m, const MeshWriteOptions& opt) {
     for (int k = 0; k < 3; ++k) put_real(m.positions[i][k]);
     if (!m.normals.empty())
       for (int k = 0; k < 3; ++k) put_real(m.normals[i][k]);
-    if (!m.atom.empty()) append_le(out, static_cast<std::int32_t>(m.atom[i]));
+    for (const VertexAttribute& a : attributes) {
+      if (a.integer)
+        append_le(out, static_cast<std::int32_t>(a.values[i]));
+      else
+        put_real(a.values[i]);
+    }
   }
   for (const auto& t : m.triangles) {
     append_le(out, static_cast<std::uint8_t>(3));
@@ -336,7 +349,7 @@ std::string ply_bytes(const IndexedMesh& m, const MeshWriteOptions& opt) {
   return out;
 }
 
-IndexedMesh read_ply(const std::string& path, const std::string& data) {
+IndexedMesh read_ply(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes) {
   // Header: lines up to "end_header".
   std::vector<PlyElement> elements;
   enum class Encoding { Ascii, BinaryLittle, BinaryBig };
@@ -423,10 +436,10 @@ IndexedMesh read_ply(const std::string& path, const std::string& data) {
   const std::string_view body = std::string_view(data).substr(std::min(pos, data.size()));
   if (*encoding == Encoding::Ascii) {
     PlyAsciiReader in(path, body, line + 1);
-    read_ply_body(path, in, elements, mesh, face_lines);
+    read_ply_body(path, in, elements, mesh, attributes, face_lines);
   } else {
     PlyBinaryReader in(path, body, *encoding == Encoding::BinaryBig);
-    read_ply_body(path, in, elements, mesh, face_lines);
+    read_ply_body(path, in, elements, mesh, attributes, face_lines);
   }
   check_indices(path, mesh, face_lines);
   return mesh;

@@ -1,10 +1,8 @@
 // geometry/io/mesh_io_vtk.cpp: the legacy VTK format of mesh_io.h (Kitware, "VTK
 // File Formats", the simple legacy format that ParaView and VTK read) — the
-// ascii POLYDATA writer, with per-vertex normals, atom index and local length
-// scale rho and per-triangle smallest angle as attributes, and the reader of
-// ascii POLYDATA files. Numbers are written as the shortest text that reads
-// back to the same double, so a round trip is exact. Declared in
-// mesh_io_internal.h.
+// ascii POLYDATA writer, with per-vertex normals and scalar attributes and
+// per-triangle smallest angle, and the reader of ascii POLYDATA files. Numbers are written as the shortest text that
+// reads back to the same double, so a round trip is exact. Declared in mesh_io_internal.h.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -75,9 +73,18 @@ std::string upper(std::string_view s) {
   return out;
 }
 
+/// True for the legacy VTK data types of integers (upper-case `type`).
+bool is_integer_type(std::string_view type) {
+  for (std::string_view t : {"BIT", "CHAR", "UNSIGNED_CHAR", "SHORT", "UNSIGNED_SHORT", "INT", "UNSIGNED_INT", "LONG",
+                             "UNSIGNED_LONG", "VTKIDTYPE"})
+    if (type == t) return true;
+  return false;
+}
+
 }  // namespace
 
-std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
+std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
+                     const MeshWriteOptions& opt) {
   const bool dp = opt.double_precision;
   const char* type = dp ? "double" : "float";
   std::string out = "# vtk DataFile Version 3.0\nskinmesh: a triangulated skin surface\nASCII\nDATASET POLYDATA\n";
@@ -91,7 +98,7 @@ std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
   }
   out += "POLYGONS " + std::to_string(m.triangles.size()) + " " + std::to_string(4 * m.triangles.size()) + "\n";
   append_triangle_lines(out, m.triangles);
-  if (!m.normals.empty() || !m.atom.empty() || !m.rho.empty()) {
+  if (!m.normals.empty() || !attributes.empty()) {
     out += "POINT_DATA " + std::to_string(m.positions.size()) + "\n";
     if (!m.normals.empty()) {
       out += std::string("NORMALS normals ") + type + "\n";
@@ -103,14 +110,13 @@ std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
         out += '\n';
       }
     }
-    if (!m.atom.empty()) {
-      out += "SCALARS atom int 1\nLOOKUP_TABLE default\n";
-      for (std::int32_t a : m.atom) out += std::to_string(a) + '\n';
-    }
-    if (!m.rho.empty()) {
-      out += std::string("SCALARS rho ") + type + " 1\nLOOKUP_TABLE default\n";
-      for (double r : m.rho) {
-        append_number(out, r, dp);
+    for (const VertexAttribute& a : attributes) {
+      out += "SCALARS " + a.name + " " + (a.integer ? "int" : type) + " 1\nLOOKUP_TABLE default\n";
+      for (double v : a.values) {
+        if (a.integer)
+          out += std::to_string(static_cast<std::int32_t>(v));
+        else
+          append_number(out, v, dp);
         out += '\n';
       }
     }
@@ -118,14 +124,14 @@ std::string vtk_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
   if (!m.triangles.empty()) {
     out += "CELL_DATA " + std::to_string(m.triangles.size()) + "\nSCALARS min_angle double 1\nLOOKUP_TABLE default\n";
     for (const auto& t : m.triangles) {
-      append_number(out, min_angle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) * 180 / M_PI, dp);
+      append_number(out, min_angle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) * 180 / kPi, dp);
       out += '\n';
     }
   }
   return out;
 }
 
-IndexedMesh read_vtk(const std::string& path, const std::string& data) {
+IndexedMesh read_vtk(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes) {
   const std::vector<std::string_view> lines = split_lines(data);
   if (lines.empty() || !trim(lines[0]).starts_with("# vtk DataFile Version"))
     throw InputError(path, 1, "not a legacy VTK file (the first line must be '# vtk DataFile Version x.x')");
@@ -189,7 +195,7 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
     } else if (key == "NORMALS" || key == "SCALARS") {
       if (data_kind == Data::None) throw InputError(path, line, key + " outside POINT_DATA or CELL_DATA");
       const std::string name(tok.next("the attribute name"));
-      tok.next("the attribute type");
+      const bool integer_type = is_integer_type(upper(tok.next("the attribute type")));
       std::int64_t components = 3;
       if (key == "SCALARS") {
         components = 1;
@@ -201,21 +207,23 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
         tok.next("the lookup table name");
       }
       const bool point = data_kind == Data::Point;
-      const bool normals = point && key == "NORMALS",
-                 atom = point && key == "SCALARS" && name == "atom" && components == 1,
-                 rho = point && key == "SCALARS" && name == "rho" && components == 1;
+      const bool normals = point && key == "NORMALS", scalar = point && key == "SCALARS" && components == 1;
       if (normals) mesh.normals.resize(data_count);
-      if (atom) mesh.atom.resize(data_count);
-      if (rho) mesh.rho.resize(data_count);
+      VertexAttribute* attribute = nullptr;
+      if (scalar) {
+        // A second array of the same name replaces the first.
+        std::erase_if(attributes, [&](const VertexAttribute& a) { return a.name == name; });
+        attribute = &attributes.emplace_back(VertexAttribute{name, integer_type, std::vector<double>(data_count)});
+      }
       for (std::size_t i = 0; i < data_count; ++i)
         for (std::int64_t k = 0; k < components; ++k) {
           const int vl = tok.line();
           const double v = tok.number("attribute value");
           if (normals) mesh.normals[i][k] = v;
-          if (rho) mesh.rho[i] = v;
-          if (atom) {
-            if (v != std::floor(v) || std::fabs(v) > 2147483647.0) throw InputError(path, vl, "non-integer atom index");
-            mesh.atom[i] = static_cast<std::int32_t>(v);
+          if (attribute != nullptr) {
+            if (integer_type && (v != std::floor(v) || std::fabs(v) > 2147483647.0))
+              throw InputError(path, vl, "non-integer or out-of-range value in SCALARS " + name);
+            attribute->values[i] = v;
           }
         }
     } else if (key == "FIELD" || key == "COLOR_SCALARS" || key == "VECTORS" || key == "TEXTURE_COORDINATES" ||
@@ -234,10 +242,7 @@ IndexedMesh read_vtk(const std::string& path, const std::string& data) {
           std::string(what) + " for " + std::to_string(n) + " points, but POINTS has " + std::to_string(n_points));
   };
   sized(mesh.normals.size(), "NORMALS");
-  sized(mesh.atom.size(), "SCALARS atom");
-  sized(mesh.rho.size(), "SCALARS rho");
-  for (std::int32_t a : mesh.atom)
-    if (a < -1) throw InputError(path, 0, "atom index " + std::to_string(a) + " (expected >= -1)");
+  for (const VertexAttribute& a : attributes) sized(a.values.size(), ("SCALARS " + a.name).c_str());
   check_indices(path, mesh, {});
   return mesh;
 }

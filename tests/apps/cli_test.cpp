@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/io/mesh_io.h"
+#include "skin/skin_mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -227,13 +227,15 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
   Scratch s;
   const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb");
   REQUIRE(run(s, "mesh " + mol + " -o a.ply --quiet").exit_code == 0);
-  const skinmesh::geometry::IndexedMesh ply = skinmesh::geometry::read_mesh((s.dir / "a.ply").string());
+  skinmesh::skin::SkinVertexData ply_data;
+  const skinmesh::geometry::IndexedMesh ply = skinmesh::skin::read_skin_mesh((s.dir / "a.ply").string(), &ply_data);
   REQUIRE(ply.triangles.size() > 1000);
   for (const char* name : {"a.stl", "a.vtk", "a.vert"}) {
     CAPTURE(name);
     const Run r = run(s, "mesh " + mol + " -o " + name + " --quiet");
     REQUIRE(r.exit_code == 0);
-    const skinmesh::geometry::IndexedMesh back = skinmesh::geometry::read_mesh((s.dir / name).string());
+    skinmesh::skin::SkinVertexData data;
+    const skinmesh::geometry::IndexedMesh back = skinmesh::skin::read_skin_mesh((s.dir / name).string(), &data);
     CHECK(back.triangles.size() == ply.triangles.size());
     const std::string n = name;
     if (n == "a.stl") {
@@ -247,13 +249,13 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
     } else {
       REQUIRE(back.positions.size() == ply.positions.size());
       CHECK(back.triangles == ply.triangles);
-      CHECK(back.atom == ply.atom);
+      CHECK(data.atom == ply_data.atom);
       double worst = 0;
       for (std::size_t v = 0; v < ply.positions.size(); ++v)
         worst = std::max(worst, (back.positions[v] - ply.positions[v]).cwiseAbs().maxCoeff());
       if (n == "a.vtk") CHECK(worst == 0);           // shortest round-trip decimals: exact
       if (n == "a.vert") CHECK(worst <= 5.0001e-4);  // MSMS's three decimals
-      if (n == "a.vtk") CHECK(back.rho.size() == ply.positions.size());
+      if (n == "a.vtk") CHECK(data.rho.size() == ply.positions.size());
     }
   }
   // check reads every format; STL's float32 corners are checked to their rounding.

@@ -50,8 +50,19 @@ skinmesh::geometry::IndexedMesh mesh_of(const std::vector<WeightedPoint>& points
   sd::DynamicOptions opt;
   opt.growth = growth;
   skinmesh::StageClock clock;
-  skinmesh::geometry::IndexedMesh mesh = sd::mesh_dynamic(skin, {}, opt, clock, stats);
+  skinmesh::skin::SkinVertexData data;
+  skinmesh::geometry::IndexedMesh mesh = sd::mesh_dynamic(skin, {}, opt, clock, stats, data);
   check = skinmesh::verify::check_skin_mesh(skin, mesh);
+  // The vertex data: one entry per vertex, an atom of the input, rho > 0, a cell dimension.
+  REQUIRE(data.atom.size() == mesh.positions.size());
+  REQUIRE(data.rho.size() == mesh.positions.size());
+  REQUIRE(data.patch.size() == mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    CHECK(data.atom[v] >= 0);
+    CHECK(static_cast<std::size_t>(data.atom[v]) < points.size());
+    CHECK(data.rho[v] > 0);
+    CHECK(data.patch[v] <= 3);
+  }
   return mesh;
 }
 

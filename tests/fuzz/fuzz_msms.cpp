@@ -1,8 +1,8 @@
 // tests/fuzz/fuzz_msms.cpp: libFuzzer target — every input is read as an MSMS .vert file followed by its .face file by
-// geometry::read_mesh_from_bytes() (tests/fuzz/fuzz_readers.h says what counts as a bug).
+// skinmesh::fuzz::mesh_input() (tests/fuzz/fuzz_readers.h says what counts as a bug).
 #include "tests/fuzz/fuzz_readers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  skinmesh::fuzz::mesh_input(data, size, skinmesh::geometry::MeshFormat::Msms, /*check=*/false);
+  skinmesh::fuzz::mesh_input(data, size, skinmesh::fuzz::MeshInput::Msms, /*check=*/false);
   return 0;
 }

@@ -1,6 +1,7 @@
 // tests/fuzz/fuzz_readers.h: what the libFuzzer targets of tests/fuzz/ share —
-// one input through skin::read_molecule_from_string() or
-// geometry::read_mesh_from_bytes(), in memory (no temporary files).
+// one input through skin::read_molecule_from_string(),
+// geometry::read_mesh_from_bytes() or skin::read_msms_from_bytes(), in memory
+// (no temporary files).
 //
 // The readers document one exception for bad input, skinmesh::InputError
 // (core/errors.h); it is caught and the input rejected. Anything else — a
@@ -18,10 +19,12 @@
 #include <cstdlib>
 #include <string>
 
+#include <vector>
 #include "core/errors.h"
 #include "geometry/io/mesh_io.h"
 #include "geometry/kernel/weighted_point.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_mesh_io.h"
 
 namespace skinmesh::fuzz {
 
@@ -56,20 +59,30 @@ inline void check_molecule(const skin::Molecule& m, skin::ReadOptions::Format fo
     if (m.notes[i].empty()) invariant_failed("empty note", i);
 }
 
-/// The invariants of an IndexedMesh returned by read_mesh() (mesh_io.h): every
-/// position finite; normals, atom ids and rho empty or one per vertex, normals
-/// finite; every triangle index < the number of vertices. (read_mesh() does not
-/// bound coordinates by geometry::kMaxCoordinate: a mesh file may hold any
+/// The invariants of an IndexedMesh returned by read_mesh() (mesh_io.h) or
+/// read_msms_from_bytes() (skin_mesh_io.h): every position finite; normals
+/// empty or one per vertex and finite; every attribute one value per vertex,
+/// an integer one's values integers in the int32 range; atom ids empty or one
+/// per vertex; every triangle index < the number of vertices. (The readers do
+/// not bound coordinates by geometry::kMaxCoordinate: a mesh file may hold any
 /// finite position.)
-inline void check_mesh(const geometry::IndexedMesh& m) {
+inline void check_mesh(const geometry::IndexedMesh& m, const std::vector<geometry::VertexAttribute>& attributes,
+                       const skin::SkinVertexData& data) {
   const std::size_t n = m.positions.size();
   for (std::size_t i = 0; i < n; ++i)
     if (!m.positions[i].allFinite()) invariant_failed("vertex position not finite", i);
   if (!m.normals.empty() && m.normals.size() != n) invariant_failed("normals not one per vertex", m.normals.size());
   for (std::size_t i = 0; i < m.normals.size(); ++i)
     if (!m.normals[i].allFinite()) invariant_failed("vertex normal not finite", i);
-  if (!m.atom.empty() && m.atom.size() != n) invariant_failed("atom ids not one per vertex", m.atom.size());
-  if (!m.rho.empty() && m.rho.size() != n) invariant_failed("rho not one per vertex", m.rho.size());
+  for (std::size_t k = 0; k < attributes.size(); ++k) {
+    const geometry::VertexAttribute& a = attributes[k];
+    if (a.values.size() != n) invariant_failed("attribute not one value per vertex", k);
+    if (a.integer)
+      for (double v : a.values)
+        if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
+          invariant_failed("integer attribute value not an int32", k);
+  }
+  if (!data.atom.empty() && data.atom.size() != n) invariant_failed("atom ids not one per vertex", data.atom.size());
   for (std::size_t i = 0; i < m.triangles.size(); ++i)
     for (const Index v : m.triangles[i])
       if (v >= n) invariant_failed("triangle index out of range", i);
@@ -110,12 +123,25 @@ inline void molecule_input(const std::uint8_t* data, std::size_t size, skin::Rea
   }
 }
 
+/// The mesh file formats the targets read: the geometric ones and MSMS.
+enum class MeshInput { Ply, Off, Obj, Stl, Vtk, Msms };
+
 /// Reads `data` as a mesh file of `format`.
-inline void mesh_input(const std::uint8_t* data, std::size_t size, geometry::MeshFormat format, bool check) {
+inline void mesh_input(const std::uint8_t* data, std::size_t size, MeshInput format, bool check) {
   try {
-    const geometry::IndexedMesh m =
-        geometry::read_mesh_from_bytes(std::string(reinterpret_cast<const char*>(data), size), format, "fuzz");
-    if (check) check_mesh(m);
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    std::vector<geometry::VertexAttribute> attributes;
+    skin::SkinVertexData vertex_data;
+    geometry::IndexedMesh m;
+    if (format == MeshInput::Msms) {
+      m = skin::read_msms_from_bytes(bytes, "fuzz", &vertex_data);
+    } else {
+      const geometry::MeshFormat geometric[] = {geometry::MeshFormat::Ply, geometry::MeshFormat::Off,
+                                                geometry::MeshFormat::Obj, geometry::MeshFormat::Stl,
+                                                geometry::MeshFormat::Vtk};
+      m = geometry::read_mesh_from_bytes(bytes, geometric[static_cast<int>(format)], "fuzz", &attributes);
+    }
+    if (check) check_mesh(m, attributes, vertex_data);
   } catch (const InputError&) {
     // Bad input, reported as documented.
   }

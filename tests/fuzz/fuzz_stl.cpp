@@ -1,8 +1,8 @@
 // tests/fuzz/fuzz_stl.cpp: libFuzzer target — every input is read as an STL file (binary or ascii) by
-// geometry::read_mesh_from_bytes() (tests/fuzz/fuzz_readers.h says what counts as a bug).
+// skinmesh::fuzz::mesh_input() (tests/fuzz/fuzz_readers.h says what counts as a bug).
 #include "tests/fuzz/fuzz_readers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  skinmesh::fuzz::mesh_input(data, size, skinmesh::geometry::MeshFormat::Stl, /*check=*/false);
+  skinmesh::fuzz::mesh_input(data, size, skinmesh::fuzz::MeshInput::Stl, /*check=*/false);
   return 0;
 }

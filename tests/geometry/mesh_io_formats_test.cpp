@@ -19,6 +19,7 @@
 
 #include "core/errors.h"
 #include "geometry/io/mesh_io.h"
+#include "tests/geometry/mesh_file_fixture.h"
 
 namespace {
 
@@ -32,66 +33,19 @@ using skinmesh::geometry::read_mesh_from_bytes;
 using skinmesh::geometry::write_mesh;
 
 namespace fs = std::filesystem;
+using skinmesh::geometry::VertexAttribute;
+using skinmesh::test::Scratch;
+using skinmesh::test::slurp;
+using skinmesh::test::sphere_mesh;
 
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("skinmesh_formats_test_" + std::to_string(std::random_device{}()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
-/// A closed mesh (a subdivided, jittered octahedron: 66 vertices, 128
-/// triangles) with every per-vertex attribute set.
-IndexedMesh sphere_mesh() {
-  IndexedMesh m;
-  std::map<std::pair<Index, Index>, Index> mid;
-  m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int round = 0; round < 2; ++round) {
-    std::vector<std::array<Index, 3>> next;
-    auto middle = [&](Index a, Index b) {
-      const auto key = std::minmax(a, b);
-      auto [it, inserted] = mid.try_emplace(key, Index(m.positions.size()));
-      if (inserted) m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-      return it->second;
-    };
-    for (const auto& t : m.triangles) {
-      const Index ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
-      next.push_back({t[0], ab, ca});
-      next.push_back({ab, t[1], bc});
-      next.push_back({ca, bc, t[2]});
-      next.push_back({ab, bc, ca});
-    }
-    m.triangles = next;
-  }
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> jitter(-1e-4, 1e-4);
+/// The attributes of sphere_mesh() the VTK test writes: an integer one and a real one.
+std::vector<VertexAttribute> sphere_attributes(const IndexedMesh& m) {
+  VertexAttribute atom{"atom", true, {}}, rho{"rho", false, {}};
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
-    Vec3& p = m.positions[v];
-    p = 12.3456789 * p + Vec3(31.25 + jitter(rng), -7.5 + jitter(rng), 1.0 / 3.0);
-    m.normals.push_back((p - Vec3(31.25, -7.5, 1.0 / 3.0)).normalized());
-    m.atom.push_back(static_cast<std::int32_t>(v % 17));
-    m.rho.push_back(0.5 + 0.01 * double(v));
-    m.patch.push_back(static_cast<std::uint8_t>(v % 4));
+    atom.values.push_back(double(v % 17));
+    rho.values.push_back(0.5 + 0.01 * double(v));
   }
-  return m;
+  return {atom, rho};
 }
 
 /// The triangles as sets of corner positions (each rounded by `round`), for
@@ -127,19 +81,15 @@ std::string error_of(const std::string& path) {
 
 TEST_SUITE("geometry") {
 
-TEST_CASE("formats: the extension chooses the format; MSMS is a pair of files") {
+TEST_CASE("formats: the extension chooses the format; the molecular MSMS is not a geometric format") {
   CHECK(skinmesh::geometry::mesh_format_from_extension("a.STL") == MeshFormat::Stl);
   CHECK(skinmesh::geometry::mesh_format_from_extension("a.vtk") == MeshFormat::Vtk);
-  CHECK(skinmesh::geometry::mesh_format_from_extension("a.vert") == MeshFormat::Msms);
-  CHECK(skinmesh::geometry::mesh_format_from_extension("a.face") == MeshFormat::Msms);
+  CHECK_FALSE(skinmesh::geometry::mesh_format_of("a.vert"));
   CHECK_THROWS_AS(skinmesh::geometry::mesh_format_from_extension("a.stp"), InputError);
-  const auto [vert, face] = skinmesh::geometry::msms_paths("dir/x.y.face");
-  CHECK(vert == "dir/x.y.vert");
-  CHECK(face == "dir/x.y.face");
 }
 
 TEST_CASE("formats: binary STL round trip — float32 corners, shared vertices merged, facet normals outward") {
-  Scratch s;
+  Scratch s("skinmesh_formats_test_");
   const IndexedMesh m = sphere_mesh();
   write_mesh(s.path("m.stl"), m);
   const std::string bytes = slurp(s.path("m.stl"));
@@ -159,7 +109,7 @@ TEST_CASE("formats: binary STL round trip — float32 corners, shared vertices m
 }
 
 TEST_CASE("formats: ascii STL, and a binary STL whose header begins with 'solid'") {
-  Scratch s;
+  Scratch s("skinmesh_formats_test_");
   const std::string ascii =
       "solid tetra\n"
       " facet normal 0 0 -1\n  outer loop\n   vertex 0 0 0\n   vertex 0 1 0\n   vertex 1 0 0\n  endloop\n endfacet\n"
@@ -183,7 +133,7 @@ TEST_CASE("formats: ascii STL, and a binary STL whose header begins with 'solid'
 }
 
 TEST_CASE("formats: broken STL files name the file and the problem") {
-  Scratch s;
+  Scratch s("skinmesh_formats_test_");
   CHECK(error_of(s.write("short.stl", "abc")).find("not an STL file") != std::string::npos);
   std::string bytes(84, '\0');
   bytes[80] = 2;  // claims 2 triangles, holds none
@@ -200,16 +150,22 @@ TEST_CASE("formats: broken STL files name the file and the problem") {
             .find("non-numeric or non-finite") != std::string::npos);
 }
 
-TEST_CASE("formats: VTK round trip is exact, with normals, atom, rho and the min angle per triangle") {
-  Scratch s;
+TEST_CASE("formats: VTK round trip is exact, with normals, attributes and the min angle per triangle") {
+  Scratch s("skinmesh_formats_test_");
   const IndexedMesh m = sphere_mesh();
-  write_mesh(s.path("m.vtk"), m);
-  const IndexedMesh r = read_mesh(s.path("m.vtk"));
+  const std::vector<VertexAttribute> attributes = sphere_attributes(m);
+  write_mesh(s.path("m.vtk"), m, {}, attributes);
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r = read_mesh(s.path("m.vtk"), &read);
   CHECK(r.positions == m.positions);
   CHECK(r.triangles == m.triangles);
   CHECK(r.normals == m.normals);
-  CHECK(r.atom == m.atom);
-  CHECK(r.rho == m.rho);
+  REQUIRE(read.size() == 2);
+  for (int k = 0; k < 2; ++k) {
+    CHECK(read[k].name == attributes[k].name);
+    CHECK(read[k].integer == attributes[k].integer);
+    CHECK(read[k].values == attributes[k].values);
+  }
   const std::string text = slurp(s.path("m.vtk"));
   CHECK(text.rfind("# vtk DataFile Version 3.0\n", 0) == 0);
   CHECK(text.find("DATASET POLYDATA\nPOINTS 66 double\n") != std::string::npos);
@@ -231,7 +187,7 @@ TEST_CASE("formats: VTK round trip is exact, with normals, atom, rho and the min
 }
 
 TEST_CASE("formats: a hand-written VTK file with cells and attributes this reader skips") {
-  Scratch s;
+  Scratch s("skinmesh_formats_test_");
   const std::string text =
       "# vtk DataFile Version 2.0\nhand written\nascii\nDATASET POLYDATA\n"
       "POINTS 4 float\n0 0 0  1 0 0\n0 1 0  0 0 1\n"
@@ -240,15 +196,22 @@ TEST_CASE("formats: a hand-written VTK file with cells and attributes this reade
       "POINT_DATA 4\nSCALARS temperature float\nLOOKUP_TABLE default\n1 2 3 4\n"
       "SCALARS atom int 1\nLOOKUP_TABLE default\n5 6 7 8\n"
       "CELL_DATA 4\nSCALARS quality float 1\nLOOKUP_TABLE default\n1 1 1 1\n";
-  const IndexedMesh r = read_mesh(s.write("hand.vtk", text));
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r = read_mesh(s.write("hand.vtk", text), &read);
   CHECK(r.positions.size() == 4);
   CHECK(r.triangles.size() == 4);
-  CHECK(r.atom == std::vector<std::int32_t>{5, 6, 7, 8});
+  REQUIRE(read.size() == 2);  // the point data's scalars, not the cells'
+  CHECK(read[0].name == "temperature");
+  CHECK_FALSE(read[0].integer);
+  CHECK(read[0].values == std::vector<double>{1, 2, 3, 4});
+  CHECK(read[1].name == "atom");
+  CHECK(read[1].integer);
+  CHECK(read[1].values == std::vector<double>{5, 6, 7, 8});
   CHECK(r.normals.empty());
 }
 
 TEST_CASE("formats: broken VTK files name the file, the line and the problem") {
-  Scratch s;
+  Scratch s("skinmesh_formats_test_");
   CHECK(error_of(s.write("a.vtk", "hello\n")).find("not a legacy VTK file") != std::string::npos);
   CHECK(error_of(s.write("b.vtk", "# vtk DataFile Version 3.0\nx\nBINARY\n")).find("b.vtk:3") != std::string::npos);
   CHECK(error_of(s.write("c.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"))
@@ -274,102 +237,6 @@ TEST_CASE("formats: broken VTK files name the file, the line and the problem") {
                          "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 1 double\n0 0 0\n"
                          "POLYGONS 1 4\n3 0 0 7\n"))
             .find("out of range") != std::string::npos);
-}
-
-TEST_CASE("formats: MSMS round trip — positions and normals to 1e-3, the 1-based atom, types and components") {
-  Scratch s;
-  IndexedMesh m = sphere_mesh();
-  // A second component, shifted: its vertices get component 2.
-  const std::size_t n = m.positions.size(), nt = m.triangles.size();
-  for (std::size_t v = 0; v < n; ++v) {
-    m.positions.push_back(m.positions[v] + Vec3(100, 0, 0));
-    m.normals.push_back(m.normals[v]);
-    m.atom.push_back(m.atom[v] + 17);
-    m.rho.push_back(m.rho[v]);
-    m.patch.push_back(0);
-  }
-  for (std::size_t t = 0; t < nt; ++t)
-    m.triangles.push_back({Index(m.triangles[t][0] + n), Index(m.triangles[t][1] + n), Index(m.triangles[t][2] + n)});
-  write_mesh(s.path("m.vert"), m);
-  REQUIRE(fs::exists(s.path("m.face")));
-  for (const char* name : {"m.vert", "m.face"}) {
-    CAPTURE(name);
-    const IndexedMesh r = read_mesh(s.path(name));
-    REQUIRE(r.positions.size() == m.positions.size());
-    CHECK(r.triangles == m.triangles);
-    CHECK(r.atom == m.atom);
-    for (std::size_t v = 0; v < m.positions.size(); ++v) {
-      CHECK((r.positions[v] - m.positions[v]).cwiseAbs().maxCoeff() <= 5.0001e-4);
-      CHECK((r.normals[v] - m.normals[v]).cwiseAbs().maxCoeff() <= 5.0001e-4);
-    }
-  }
-  // The layout MSMS writes: three header lines, fixed-width records.
-  std::istringstream vert(slurp(s.path("m.vert")));
-  std::string l1, l2, l3, first;
-  std::getline(vert, l1), std::getline(vert, l2), std::getline(vert, l3), std::getline(vert, first);
-  CHECK(l1.rfind("# MSMS", 0) == 0);
-  CHECK(l2 == "#vertex #sphere density probe_r");
-  CHECK(std::stoul(l3) == m.positions.size());
-  CHECK(first.size() == 6 * 9 + 5 + (1 + 7) + (1 + 7) + (1 + 2));  // "%9.3f" ×6, two " %7d", " %2d"
-  std::istringstream fields(first);
-  double x[6];
-  int component = 0, atom = 0, type = 0;
-  for (double& v : x) fields >> v;
-  fields >> component >> atom >> type;
-  CHECK(component == 1);
-  CHECK(atom == m.atom[0] + 1);
-  CHECK(type == 3);  // patch 0: an atom's sphere patch is MSMS "contact"
-  const std::string face = slurp(s.path("m.face"));
-  CHECK(face.find("\n#faces  #sphere density probe_r\n") != std::string::npos);
-  const std::size_t last_line = face.rfind('\n', face.size() - 2);
-  std::istringstream last(face.substr(last_line + 1));
-  int a = 0, b = 0, c = 0;
-  last >> a >> b >> c >> type >> component;
-  CHECK(component == 2);
-  CHECK(type == 3);
-  CHECK(Index(a - 1) == m.triangles.back()[0]);
-}
-
-TEST_CASE("formats: MSMS files written by another program, and broken ones") {
-  Scratch s;
-  s.write("x.vert",
-          "# MSMS solvent excluded surface vertices for x\n#vertex #sphere density probe_r\n    3      2  1.00  1.50\n"
-          "    0.000     0.000     0.000     0.000     0.000     1.000       0      1  2\n"
-          "    1.000     0.000     0.000     0.000     0.000     1.000       0      2  2\n"
-          "    0.000     1.000     0.000     0.000     0.000     1.000      -3      2  1\n");
-  s.write("x.face",
-          "# MSMS solvent excluded surface triangles for x\n#faces  #sphere density probe_r\n    1      2  1.00  1.50\n"
-          "     1      2      3  2     17\n");
-  const IndexedMesh r = read_mesh(s.path("x.face"));
-  CHECK(r.triangles.size() == 1);
-  CHECK(r.atom == std::vector<std::int32_t>{0, 1, 1});
-  s.write("y.vert", "# v\n#vertex\n 1 1 1 1\n 0 0 0 0 0 1 0 1 2\n");
-  s.write("y.face", "# f\n#faces\n 1 1 1 1\n 1 2 3 2 1\n");
-  const std::string e = error_of(s.path("y.vert"));
-  CHECK(e.find("y.face:4") != std::string::npos);
-  CHECK(e.find("out of range") != std::string::npos);
-  CHECK(error_of(s.path("missing.vert")).find("missing.vert") != std::string::npos);
-  // In memory: the .vert content followed by the .face content.
-  const IndexedMesh mem =
-      read_mesh_from_bytes(slurp(s.path("x.vert")) + slurp(s.path("x.face")), MeshFormat::Msms, "x");
-  CHECK(mem.triangles == r.triangles);
-}
-
-TEST_CASE("formats: MSMS writes both files or neither") {
-  Scratch s;
-  fs::create_directories(s.path("blocked.vert"));  // the .vert cannot be written over a folder
-  CHECK_THROWS_AS(write_mesh(s.path("blocked.vert"), sphere_mesh()), InputError);
-  CHECK_FALSE(fs::exists(s.path("blocked.face")));
-  // An earlier pair stays whole when a new one cannot be written.
-  write_mesh(s.path("pair.vert"), sphere_mesh());
-  const std::string vert = slurp(s.path("pair.vert")), face = slurp(s.path("pair.face"));
-  fs::remove(s.path("pair.face"));
-  fs::create_directories(s.path("pair.face"));
-  CHECK_THROWS_AS(write_mesh(s.path("pair.vert"), IndexedMesh{}), InputError);
-  CHECK(slurp(s.path("pair.vert")) == vert);
-  // No temporary file is left behind.
-  for (const auto& entry : fs::directory_iterator(s.dir))
-    CHECK(entry.path().filename().string().find(".tmp.") == std::string::npos);
 }
 
 }  // TEST_SUITE

@@ -28,6 +28,7 @@ using skinmesh::geometry::MeshFormat;
 using skinmesh::geometry::MeshWriteOptions;
 using skinmesh::geometry::read_mesh;
 using skinmesh::geometry::read_mesh_from_bytes;
+using skinmesh::geometry::VertexAttribute;
 using skinmesh::geometry::write_mesh;
 
 /// A scratch directory for this test run, removed at exit.
@@ -54,7 +55,7 @@ const ScratchDir& scratch() {
 }
 
 /// An octahedron with coordinates that need all 17 significant digits (fixed
-/// seed 20240611), unit normals and atom ids.
+/// seed 20240611) and unit normals.
 IndexedMesh octahedron() {
   std::mt19937_64 rng(20240611);
   std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
@@ -66,9 +67,11 @@ IndexedMesh octahedron() {
     m.normals.push_back(p.normalized());
   }
   m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  m.atom = {0, 1, 2, -1, 4, 2147483647};
   return m;
 }
+
+/// An integer attribute of octahedron()'s vertices, to the ends of the int32 range's use.
+const std::vector<VertexAttribute> kOctahedronAtoms{{"atom", true, {0, 1, 2, -1, 4, 2147483647}}};
 
 /// Bitwise equality of two vectors (distinguishes -0.0 from 0.0).
 bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; }
@@ -105,10 +108,14 @@ TEST_SUITE("geometry") {
 TEST_CASE("mesh_io: PLY round trip is bit-exact with doubles") {
   const IndexedMesh m = octahedron();
   const std::string path = scratch().path("octa.ply");
-  write_mesh(path, m);
-  const IndexedMesh r = read_mesh(path);
+  write_mesh(path, m, {}, kOctahedronAtoms);
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r = read_mesh(path, &read);
   check_same_geometry(m, r, true);
-  CHECK(r.atom == m.atom);
+  REQUIRE(read.size() == 1);
+  CHECK(read[0].name == "atom");
+  CHECK(read[0].integer);
+  CHECK(read[0].values == kOctahedronAtoms[0].values);
   // the header is what the documentation promises
   std::ifstream in(path, std::ios::binary);
   std::string header, line;
@@ -121,17 +128,17 @@ TEST_CASE("mesh_io: PLY round trip is bit-exact with doubles") {
 
 TEST_CASE("mesh_io: PLY with float32 stores float-rounded values") {
   IndexedMesh m = octahedron();
-  m.atom.clear();
   const std::string path = scratch().path("octa_float.ply");
   write_mesh(path, m, MeshWriteOptions{.double_precision = false});
-  const IndexedMesh r = read_mesh(path);
+  std::vector<VertexAttribute> read{{"stale", false, {}}};
+  const IndexedMesh r = read_mesh(path, &read);
   REQUIRE(r.positions.size() == m.positions.size());
   for (std::size_t i = 0; i < m.positions.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       CHECK(r.positions[i][k] == static_cast<double>(static_cast<float>(m.positions[i][k])));
       CHECK(r.normals[i][k] == static_cast<double>(static_cast<float>(m.normals[i][k])));
     }
-  CHECK(r.atom.empty());
+  CHECK(read.empty());
   CHECK(r.triangles == m.triangles);
   CHECK(std::filesystem::file_size(path) < std::filesystem::file_size(scratch().path("octa.ply")));
 }
@@ -141,10 +148,11 @@ TEST_CASE("mesh_io: OFF and OBJ round trips are bit-exact") {
   for (const char* name : {"octa.off", "octa.obj"}) {
     CAPTURE(name);
     const std::string path = scratch().path(name);
-    write_mesh(path, m);
-    const IndexedMesh r = read_mesh(path);
+    write_mesh(path, m, {}, kOctahedronAtoms);
+    std::vector<VertexAttribute> read;
+    const IndexedMesh r = read_mesh(path, &read);
     check_same_geometry(m, r, true);
-    CHECK(r.atom.empty());  // OFF and OBJ do not store atom ids
+    CHECK(read.empty());  // OFF and OBJ have no vertex attributes
     IndexedMesh plain = m;
     plain.normals.clear();
     write_mesh(path, plain);
@@ -192,11 +200,17 @@ TEST_CASE("mesh_io: hand-written ascii PLY with extra properties and elements") 
       "0 3 0 2 1\n"
       "1 3 0 1 3\n"
       "0 1\n";
-  const IndexedMesh m = read_mesh(scratch().write("hand.ply", text));
+  std::vector<VertexAttribute> read;
+  const IndexedMesh m = read_mesh(scratch().write("hand.ply", text), &read);
   REQUIRE(m.positions.size() == 4);
   CHECK(m.positions[3] == Vec3(0, 0, 1.25));
   CHECK(m.normals.empty());
-  CHECK(m.atom == std::vector<std::int32_t>{7, -1, 3, 4});
+  REQUIRE(read.size() == 2);  // the scalar vertex properties; the list `extra` is skipped
+  CHECK(read[0].name == "red");
+  CHECK(read[0].values == std::vector<double>{255, 255, 255, 255});
+  CHECK(read[1].name == "atom");
+  CHECK(read[1].integer);
+  CHECK(read[1].values == std::vector<double>{7, -1, 3, 4});
   REQUIRE(m.triangles.size() == 2);
   CHECK(m.triangles[0] == std::array<skinmesh::Index, 3>{0, 2, 1});
   CHECK(m.triangles[1] == std::array<skinmesh::Index, 3>{0, 1, 3});
@@ -317,7 +331,7 @@ TEST_CASE("mesh_io: malformed inputs name the file and the line") {
   CHECK(contains(read_error(scratch().write("inf.obj", "v 0 0 inf\n")), "inf.obj:1: non-numeric or non-finite"));
   CHECK(contains(read_error(scratch().path("missing.ply")), "missing.ply: cannot open file"));
   CHECK(contains(read_error(scratch().write("mesh.stp", "solid\n")),
-                 "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk"));
+                 "unknown mesh format (expected .ply, .off, .obj, .stl or .vtk)"));
 }
 
 TEST_CASE("mesh_io: an unwritable path leaves no file behind") {

@@ -57,7 +57,7 @@ TEST_CASE("threads: the same mesh and the same counts, byte for byte, with 1 and
   CHECK(res[0].mesh.positions == res[1].mesh.positions);
   CHECK(res[0].mesh.triangles == res[1].mesh.triangles);
   CHECK(res[0].mesh.normals == res[1].mesh.normals);
-  CHECK(res[0].mesh.atom == res[1].mesh.atom);
+  CHECK(res[0].vertex_data.atom == res[1].vertex_data.atom);
   CHECK(res[0].critical.saddles == res[1].critical.saddles);
   CHECK(res[0].live.saddles == res[1].live.saddles);
   CHECK(res[0].sweep.creeps == res[1].sweep.creeps);

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     r = skinmesh::mesher::mesh_skin(points);
   }
   std::printf("vertices %zu triangles %zu normals %zu atoms %zu min_angle %.3f ok %d\n", r.mesh.positions.size(),
-              r.mesh.triangles.size(), r.mesh.normals.size(), r.mesh.atom.size(), r.check.mesh.min_angle_deg,
+              r.mesh.triangles.size(), r.mesh.normals.size(), r.vertex_data.atom.size(), r.check.mesh.min_angle_deg,
               int(r.ok()));
   return r.ok() && !r.mesh.triangles.empty() ? 0 : 1;
 }

@@ -1,0 +1,277 @@
+// skin/skin_mesh_io.cpp: the files of a mesh of the skin (skin_mesh_io.h) —
+// the skin's vertex data as attributes of the geometric formats, and the MSMS
+// format, which electrostatics solvers and surface-learning pipelines read: a
+// pair of text files NAME.vert and NAME.face.
+//   NAME.vert: three header lines ("# ...", "#vertex #sphere density probe_r",
+//     then the counts: vertices, atoms — the largest atom index of a vertex
+//     plus one, as the mesh does not know atoms without vertices — and 0 0,
+//     the skin having neither density nor probe), then per vertex
+//     "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d": position (Å), unit
+//     normal, the number of its surface component (1-based), the 1-based index
+//     of its atom, and the MSMS type of its patch.
+//   NAME.face: three header lines, then per triangle "%6d %6d %6d %2d %6d":
+//     1-based vertex indices, the type, the component.
+// MSMS types are 1 (toric reentrant, saddle-shaped), 2 (spheric reentrant,
+// concave), 3 (contact, convex). On the skin: a sphere patch of an atom's
+// vertex cell is 3, the concave sphere patch of a tetrahedron cell 2, the
+// hyperboloid patches of edge and triangle cells 1 (SkinVertexData::patch); a
+// triangle has the type its corners share, 1 when they differ. Positions have
+// three decimals, as MSMS writes them.
+#include "skin/skin_mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/assert.h"
+#include "core/errors.h"
+#include "core/text_numbers.h"
+#include "core/text_split.h"
+#include "geometry/mesh/mesh_measures.h"
+
+namespace skinmesh::skin {
+
+using geometry::IndexedMesh;
+using geometry::VertexAttribute;
+
+namespace {
+
+/// MSMS type of vertex `v` from the dimension of its mixed cell (0..3); 0 if unknown.
+int msms_type(const SkinVertexData& data, std::size_t v) {
+  if (data.patch.empty()) return 0;
+  switch (data.patch[v]) {
+    case 0:
+      return 3;
+    case 3:
+      return 2;
+    default:
+      return 1;
+  }
+}
+
+/// Reads the three header lines of an MSMS file starting at `first` and
+/// returns the count on the third line; the records follow.
+std::size_t msms_header(const std::string& path, const std::vector<std::string_view>& lines, std::size_t first,
+                        const char* what) {
+  if (lines.size() < first + 3)
+    throw InputError(path, static_cast<int>(lines.size()),
+                     std::string("unexpected end of the MSMS ") + what + " header");
+  for (std::size_t k = first; k < first + 2; ++k)
+    if (!trim(lines[k]).starts_with("#"))
+      throw InputError(path, static_cast<int>(k + 1),
+                       std::string("not an MSMS ") + what + " file (header lines begin with '#')");
+  const std::vector<std::string_view> counts = split_blanks(lines[first + 2]);
+  const int line = static_cast<int>(first + 3);
+  if (counts.empty()) throw InputError(path, line, std::string("MSMS ") + what + " header without a count");
+  const std::int64_t n = int_or_throw(path, line, counts[0], "count");
+  if (n < 0) throw InputError(path, line, "negative count");
+  if (static_cast<std::uint64_t>(n) > lines.size() - (first + 3))
+    throw InputError(path, static_cast<int>(lines.size()),
+                     "unexpected end of file: expected " + std::to_string(n) + " " + what + " records");
+  return static_cast<std::size_t>(n);
+}
+
+/// The MSMS .vert and .face files of `m` with its vertex data; `name` goes
+/// into the comment lines.
+std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const SkinVertexData& data,
+                                              const std::string& name) {
+  const std::vector<int> component = vertex_components(m);
+  int n_atoms = 0;
+  for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
+  char buf[160];
+  std::string vert = "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
+  vert += "#vertex #sphere density probe_r\n";
+  std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.positions.size(), n_atoms, 0.0, 0.0);
+  vert += buf;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const Vec3& p = m.positions[v];
+    const Vec3 n = m.normals.empty() ? Vec3::Zero() : m.normals[v];
+    const int atom = data.atom.empty() ? 0 : data.atom[v] + 1;
+    std::snprintf(buf, sizeof buf, "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d\n", p.x(), p.y(), p.z(), n.x(),
+                  n.y(), n.z(), component[v], atom, msms_type(data, v));
+    vert += buf;
+  }
+  std::string face = "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
+  face += "#faces  #sphere density probe_r\n";
+  std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.triangles.size(), n_atoms, 0.0, 0.0);
+  face += buf;
+  for (const auto& t : m.triangles) {
+    const int a = msms_type(data, t[0]), b = msms_type(data, t[1]), c = msms_type(data, t[2]);
+    const int type = a == b && b == c ? a : (a == 0 || b == 0 || c == 0 ? 0 : 1);
+    std::snprintf(buf, sizeof buf, "%6u %6u %6u %2d %6d\n", unsigned(t[0] + 1), unsigned(t[1] + 1), unsigned(t[2] + 1),
+                  type, component[t[0]]);
+    face += buf;
+  }
+  return {vert, face};
+}
+
+/// Reads the MSMS .vert and .face files (their paths for messages); the atoms
+/// into `atom` (0-based; empty unless every vertex record has one).
+IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, const std::string& face_path,
+                      const std::string& face, std::vector<std::int32_t>& atom) {
+  IndexedMesh mesh;
+  atom.clear();
+  const std::vector<std::string_view> vl = split_lines(vert);
+  const std::size_t nv = msms_header(vert_path, vl, 0, "vertex");
+  mesh.positions.reserve(nv);
+  mesh.normals.reserve(nv);
+  bool atoms = true;
+  for (std::size_t i = 0; i < nv; ++i) {
+    const int line = static_cast<int>(i + 4);
+    const std::vector<std::string_view> f = split_blanks(vl[i + 3]);
+    if (f.size() < 6)
+      throw InputError(vert_path, line, "vertex " + std::to_string(i + 1) + " needs at least 6 numbers");
+    double x[6];
+    for (int k = 0; k < 6; ++k) x[k] = number_or_throw(vert_path, line, f[k], k < 3 ? "vertex coordinate" : "normal");
+    mesh.positions.emplace_back(x[0], x[1], x[2]);
+    mesh.normals.emplace_back(x[3], x[4], x[5]);
+    if (f.size() >= 8) {
+      const std::int64_t a = int_or_throw(vert_path, line, f[7], "atom index");
+      if (a < 0 || a > 2147483647) throw InputError(vert_path, line, "atom index out of range");
+      atom.push_back(static_cast<std::int32_t>(a - 1));
+    } else {
+      atoms = false;
+    }
+  }
+  if (!atoms) atom.clear();
+  const std::vector<std::string_view> fl = split_lines(face);
+  const std::size_t nf = msms_header(face_path, fl, 0, "face");
+  mesh.triangles.reserve(nf);
+  for (std::size_t i = 0; i < nf; ++i) {
+    const int line = static_cast<int>(i + 4);
+    const std::vector<std::string_view> f = split_blanks(fl[i + 3]);
+    if (f.size() < 3) throw InputError(face_path, line, "face " + std::to_string(i + 1) + " needs 3 vertex indices");
+    std::array<Index, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t v = int_or_throw(face_path, line, f[k], "vertex index");
+      if (v < 1 || static_cast<std::uint64_t>(v) > nv)
+        throw InputError(face_path, line,
+                         "face " + std::to_string(i + 1) + ": vertex index " + std::to_string(v) +
+                             " out of range (1.." + std::to_string(nv) + ")");
+      t[k] = static_cast<Index>(v - 1);
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+IndexedMesh read_msms_from_bytes(const std::string& data, const std::string& name, SkinVertexData* vertex_data) {
+  // The .vert part ends after its three header lines and its records.
+  const std::vector<std::string_view> lines = split_lines(data);
+  const std::size_t nv = msms_header(name, lines, 0, "vertex");
+  const std::size_t face_line = 3 + nv;
+  if (face_line >= lines.size())
+    throw InputError(name, static_cast<int>(lines.size()), "no .face part after the vertices");
+  const std::size_t offset = static_cast<std::size_t>(lines[face_line].data() - data.data());
+  std::vector<std::int32_t> atom;
+  IndexedMesh mesh = read_msms(name, data.substr(0, offset), name, data.substr(offset), atom);
+  if (vertex_data != nullptr) *vertex_data = SkinVertexData{std::move(atom), {}, {}};
+  return mesh;
+}
+
+namespace {
+
+/// The lower-case copy of `s` (ASCII letters only).
+std::string lowercase(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// `data`'s vertex data read from the file attributes of `path`: `atom` (an
+/// integer attribute, every value >= -1) and `rho`. Throws InputError(path, 0, ...).
+SkinVertexData vertex_data_of(const std::string& path, const std::vector<VertexAttribute>& attributes) {
+  SkinVertexData data;
+  if (const VertexAttribute* atom = geometry::find_attribute(attributes, "atom")) {
+    if (!atom->integer) throw InputError(path, 0, "vertex attribute 'atom' must have an integer type");
+    data.atom.reserve(atom->values.size());
+    for (double a : atom->values) {
+      if (a < -1)
+        throw InputError(path, 0, "atom index " + std::to_string(static_cast<long long>(a)) + " (expected >= -1)");
+      data.atom.push_back(static_cast<std::int32_t>(a));
+    }
+  }
+  if (const VertexAttribute* rho = geometry::find_attribute(attributes, "rho")) data.rho = rho->values;
+  return data;
+}
+
+}  // namespace
+
+bool is_msms_path(const std::string& path) {
+  const std::string p = lowercase(path);
+  return p.ends_with(".vert") || p.ends_with(".face");
+}
+
+std::pair<std::string, std::string> msms_paths(const std::string& path) {
+  if (!is_msms_path(path)) throw InputError(path, 0, "an MSMS mesh is named NAME.vert or NAME.face");
+  const std::string base = path.substr(0, path.size() - 5);
+  return {base + ".vert", base + ".face"};
+}
+
+void require_mesh_format(const std::string& path) {
+  if (!is_msms_path(path) && !geometry::mesh_format_of(path))
+    throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)");
+}
+
+std::vector<VertexAttribute> file_attributes(const SkinVertexData& data, geometry::MeshFormat format) {
+  std::vector<VertexAttribute> out;
+  if (format != geometry::MeshFormat::Ply && format != geometry::MeshFormat::Vtk) return out;
+  if (!data.atom.empty()) out.push_back({"atom", true, std::vector<double>(data.atom.begin(), data.atom.end())});
+  if (format == geometry::MeshFormat::Vtk && !data.rho.empty()) out.push_back({"rho", false, data.rho});
+  return out;
+}
+
+void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const SkinVertexData& data,
+                     const geometry::MeshWriteOptions& opt) {
+  require_mesh_format(path);
+  const std::size_t n = mesh.positions.size();
+  SKINMESH_ASSERT_MSG(data.atom.empty() || data.atom.size() == n, "one atom id per vertex");
+  SKINMESH_ASSERT_MSG(data.rho.empty() || data.rho.size() == n, "one rho per vertex");
+  SKINMESH_ASSERT_MSG(data.patch.empty() || data.patch.size() == n, "one patch dimension per vertex");
+  if (!is_msms_path(path)) {
+    const geometry::MeshFormat format = geometry::mesh_format_from_extension(path);
+    geometry::write_mesh(path, mesh, opt, file_attributes(data, format));
+    return;
+  }
+  // The checks write_mesh() makes (an empty attribute list adds none).
+  SKINMESH_ASSERT_MSG(n <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()), "too many vertices");
+  SKINMESH_ASSERT_MSG(mesh.normals.empty() || mesh.normals.size() == n, "one normal per vertex");
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
+  const auto [vert_path, face_path] = msms_paths(path);
+  const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
+  const auto [vert, face] = msms_text(mesh, data, name.substr(0, name.size() - 5));
+  // The .face first, then the .vert: a reader polling for the .vert finds the pair complete.
+  geometry::write_files_atomically({{face_path, face}, {vert_path, vert}}, "mesh");
+}
+
+IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* data) {
+  if (is_msms_path(path)) {
+    const auto [vert_path, face_path] = msms_paths(path);
+    const std::string vert = geometry::read_file(vert_path);  // the .vert first: errors name it first
+    std::vector<std::int32_t> atom;
+    IndexedMesh mesh = read_msms(vert_path, vert, face_path, geometry::read_file(face_path), atom);
+    if (data != nullptr) *data = SkinVertexData{std::move(atom), {}, {}};
+    return mesh;
+  }
+  std::vector<VertexAttribute> attributes;
+  IndexedMesh mesh = geometry::read_mesh(path, &attributes);
+  SkinVertexData read = vertex_data_of(path, attributes);
+  if (data != nullptr) *data = std::move(read);
+  return mesh;
+}
+
+double position_rounding(const std::string& path, const IndexedMesh& mesh) {
+  if (is_msms_path(path)) return 1e-3;
+  return geometry::position_rounding(geometry::mesh_format_from_extension(path), mesh);
+}
+
+}  // namespace skinmesh::skin

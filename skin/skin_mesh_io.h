@@ -1,0 +1,74 @@
+// skin/skin_mesh_io.h: the files of a mesh of the skin — the geometric formats
+// of geometry/io/mesh_io.h (PLY, OFF, OBJ, STL, VTK) with the skin's vertex data
+// (SkinVertexData) as their per-vertex attributes, and the molecular format
+// MSMS .vert/.face (M. F. Sanner, "Reduced surface: an efficient way to compute
+// molecular surfaces", Biopolymers 38, 1996), whose records hold atoms and
+// patch types. Which vertex data each format stores is decided here, where
+// its meaning is known; the geometry layer only passes named scalars through.
+// Implemented in skin/skin_mesh_io.cpp.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/io/mesh_io.h"
+#include "geometry/mesh/indexed_mesh.h"
+#include "skin/vertex_data.h"
+
+namespace skinmesh::skin {
+
+/// True if `path` ends in .vert or .face (case-insensitive): an MSMS mesh.
+bool is_msms_path(const std::string& path);
+
+/// The two files of the MSMS mesh `path` (NAME.vert or NAME.face): NAME.vert
+/// and NAME.face. Throws InputError(path, 0, ...) if `path` ends in neither.
+std::pair<std::string, std::string> msms_paths(const std::string& path);
+
+/// Checks that `path` names a mesh format write_skin_mesh() writes: .ply,
+/// .off, .obj, .stl, .vtk, or .vert/.face (case-insensitive). Throws
+/// InputError(path, 0, "unknown mesh format (expected ...)").
+void require_mesh_format(const std::string& path);
+
+/// The attributes the file format `format` stores of `data`: PLY the atom
+/// index (`int atom`); VTK the atom index and rho (`SCALARS atom int`,
+/// `SCALARS rho double|float`); OFF, OBJ and STL none. Arrays of `data` that
+/// are empty are left out.
+std::vector<geometry::VertexAttribute> file_attributes(const SkinVertexData& data, geometry::MeshFormat format);
+
+/// Writes `mesh` with its vertex data `data` to `path` in the format of its
+/// extension: geometry::write_mesh() with file_attributes(data, format) for
+/// PLY, OFF, OBJ, STL and VTK (see there), or for .vert/.face (MSMS) both
+/// NAME.vert and NAME.face, in the layout MSMS writes (three header lines; per
+/// vertex position, normal, component, 1-based atom, patch type; per face
+/// 1-based vertices, type, component; positions to 1e-3 Å;
+/// skin/skin_mesh_io.cpp), written as one (geometry::write_files_atomically).
+/// Pre (checked, std::logic_error): mesh and data as geometry::write_mesh()
+/// requires (every array of `data` empty or one entry per vertex).
+/// Throws InputError(path, 0, "unknown mesh format ...") or
+/// InputError(path, 0, "cannot write ...").
+void write_skin_mesh(const std::string& path, const geometry::IndexedMesh& mesh, const SkinVertexData& data,
+                     const geometry::MeshWriteOptions& opt = {});
+
+/// Reads a mesh of the skin from `path` (any format write_skin_mesh() writes;
+/// for MSMS either name) and, if `data` is given, the vertex data the file
+/// holds: `atom` from a PLY vertex property or VTK SCALARS array `atom` (an
+/// integer type, values >= -1) or from the MSMS atom field (1-based in the
+/// file); `rho` from a PLY property or VTK array `rho`; `patch` is not read.
+/// Throws InputError(path, line, problem) as geometry::read_mesh() does, and
+/// for an MSMS record or an `atom` attribute that breaks the rules above.
+geometry::IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* data = nullptr);
+
+/// Reads an MSMS mesh from `bytes`, the .vert file's content followed by the
+/// .face file's (`name` stands for the paths in messages), as read_skin_mesh()
+/// reads the pair: the in-memory entry point the fuzzers use.
+geometry::IndexedMesh read_msms_from_bytes(const std::string& bytes, const std::string& name,
+                                           SkinVertexData* data = nullptr);
+
+/// How far (Å) the format of `path` may have moved the positions of `mesh`
+/// read from it: 1e-3 for MSMS (three decimals, at most 0.87e-3 off), else
+/// geometry::position_rounding(). The verifier's vertex-distance tolerance
+/// must not be below it.
+double position_rounding(const std::string& path, const geometry::IndexedMesh& mesh);
+
+}  // namespace skinmesh::skin

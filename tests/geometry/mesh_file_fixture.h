@@ -1,0 +1,84 @@
+// tests/geometry/mesh_file_fixture.h: what the tests of mesh files share — a
+// scratch folder removed at the end, reading a file whole, and a closed mesh
+// to write (tests/geometry/mesh_io_formats_test.cpp, tests/skin/skin_mesh_io_test.cpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "core/types.h"
+#include "geometry/mesh/indexed_mesh.h"
+
+namespace skinmesh::test {
+
+using geometry::IndexedMesh;
+
+/// A fresh folder under the system's temporary folder, removed with its content.
+struct Scratch {
+  std::filesystem::path dir;
+  explicit Scratch(const std::string& prefix) {
+    dir = std::filesystem::temp_directory_path() / (prefix + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(path(name), std::ios::binary) << bytes;
+    return path(name);
+  }
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+/// A closed mesh (a subdivided, jittered octahedron: 66 vertices, 128
+/// triangles, centred at (31.25, -7.5, 1/3)) with unit outward normals.
+inline IndexedMesh sphere_mesh() {
+  IndexedMesh m;
+  std::map<std::pair<Index, Index>, Index> mid;
+  m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int round = 0; round < 2; ++round) {
+    std::vector<std::array<Index, 3>> next;
+    auto middle = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      auto [it, inserted] = mid.try_emplace(key, Index(m.positions.size()));
+      if (inserted) m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+      return it->second;
+    };
+    for (const auto& t : m.triangles) {
+      const Index ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
+      next.push_back({t[0], ab, ca});
+      next.push_back({ab, t[1], bc});
+      next.push_back({ca, bc, t[2]});
+      next.push_back({ab, bc, ca});
+    }
+    m.triangles = next;
+  }
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> jitter(-1e-4, 1e-4);
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    Vec3& p = m.positions[v];
+    p = 12.3456789 * p + Vec3(31.25 + jitter(rng), -7.5 + jitter(rng), 1.0 / 3.0);
+    m.normals.push_back((p - Vec3(31.25, -7.5, 1.0 / 3.0)).normalized());
+  }
+  return m;
+}
+
+}  // namespace skinmesh::test

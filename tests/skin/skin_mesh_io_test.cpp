@@ -1,0 +1,195 @@
+// tests/skin/skin_mesh_io_test.cpp: the files of a mesh of the skin — the
+// skin's vertex data as attributes of PLY and VTK (and absent from OFF, OBJ
+// and STL), the molecular MSMS .vert/.face pair written and read back (1e-3 Å),
+// MSMS files of another program, broken ones, and the pair written as one.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "skin/skin_mesh_io.h"
+#include "tests/geometry/mesh_file_fixture.h"
+
+namespace {
+
+using skinmesh::Index;
+using skinmesh::InputError;
+using skinmesh::Vec3;
+using skinmesh::geometry::IndexedMesh;
+using skinmesh::skin::read_msms_from_bytes;
+using skinmesh::skin::read_skin_mesh;
+using skinmesh::skin::SkinVertexData;
+using skinmesh::skin::write_skin_mesh;
+using skinmesh::test::Scratch;
+using skinmesh::test::slurp;
+using skinmesh::test::sphere_mesh;
+
+namespace fs = std::filesystem;
+
+/// Vertex data for every vertex of `m`: atoms 0..16 in turn, distinct rho, every patch dimension.
+SkinVertexData sphere_data(const IndexedMesh& m) {
+  SkinVertexData d;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    d.atom.push_back(static_cast<std::int32_t>(v % 17));
+    d.rho.push_back(0.5 + 0.01 * double(v));
+    d.patch.push_back(static_cast<std::uint8_t>(v % 4));
+  }
+  return d;
+}
+
+/// The message of the InputError read_skin_mesh(path) throws ("no error" if none).
+std::string error_of(const std::string& path) {
+  try {
+    read_skin_mesh(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_SUITE("skin") {
+
+TEST_CASE("skin mesh files: the extension chooses the format; MSMS is a pair of files") {
+  CHECK(skinmesh::skin::is_msms_path("a.VERT"));
+  CHECK(skinmesh::skin::is_msms_path("a.face"));
+  CHECK_FALSE(skinmesh::skin::is_msms_path("a.ply"));
+  CHECK_NOTHROW(skinmesh::skin::require_mesh_format("a.vtk"));
+  CHECK_NOTHROW(skinmesh::skin::require_mesh_format("a.face"));
+  CHECK_THROWS_AS(skinmesh::skin::require_mesh_format("a.stp"), InputError);
+  const auto [vert, face] = skinmesh::skin::msms_paths("dir/x.y.face");
+  CHECK(vert == "dir/x.y.vert");
+  CHECK(face == "dir/x.y.face");
+}
+
+TEST_CASE("skin mesh files: PLY keeps the atom, VTK the atom and rho, OFF, OBJ and STL neither") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  const IndexedMesh m = sphere_mesh();
+  const SkinVertexData d = sphere_data(m);
+  for (const char* name : {"m.ply", "m.vtk", "m.off", "m.obj", "m.stl"}) {
+    CAPTURE(name);
+    write_skin_mesh(s.path(name), m, d);
+    SkinVertexData r;
+    r.patch = {1};  // never read: cleared
+    const IndexedMesh back = read_skin_mesh(s.path(name), &r);
+    CHECK(back.triangles.size() == m.triangles.size());
+    const std::string n = name;
+    CHECK(r.atom == (n == "m.ply" || n == "m.vtk" ? d.atom : std::vector<std::int32_t>{}));
+    CHECK(r.rho == (n == "m.vtk" ? d.rho : std::vector<double>{}));
+    CHECK(r.patch.empty());
+  }
+  // An atom attribute must be an integer, and -1 (no atom) at least.
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\n";
+  const std::string tail = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  CHECK(error_of(s.write("real.ply", head + "property float atom\n" + tail + "0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n"))
+            .find("'atom' must have an integer type") != std::string::npos);
+  CHECK(error_of(s.write("low.ply", head + "property int atom\n" + tail + "0 0 0 1\n1 0 0 -2\n0 1 0 1\n3 0 1 2\n"))
+            .find("atom index -2 (expected >= -1)") != std::string::npos);
+}
+
+TEST_CASE("formats: MSMS round trip — positions and normals to 1e-3, the 1-based atom, types and components") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  IndexedMesh m = sphere_mesh();
+  SkinVertexData d = sphere_data(m);
+  // A second component, shifted: its vertices get component 2.
+  const std::size_t n = m.positions.size(), nt = m.triangles.size();
+  for (std::size_t v = 0; v < n; ++v) {
+    m.positions.push_back(m.positions[v] + Vec3(100, 0, 0));
+    m.normals.push_back(m.normals[v]);
+    d.atom.push_back(d.atom[v] + 17);
+    d.rho.push_back(d.rho[v]);
+    d.patch.push_back(0);
+  }
+  for (std::size_t t = 0; t < nt; ++t)
+    m.triangles.push_back({Index(m.triangles[t][0] + n), Index(m.triangles[t][1] + n), Index(m.triangles[t][2] + n)});
+  write_skin_mesh(s.path("m.vert"), m, d);
+  REQUIRE(fs::exists(s.path("m.face")));
+  for (const char* name : {"m.vert", "m.face"}) {
+    CAPTURE(name);
+    SkinVertexData rd;
+    const IndexedMesh r = read_skin_mesh(s.path(name), &rd);
+    REQUIRE(r.positions.size() == m.positions.size());
+    CHECK(r.triangles == m.triangles);
+    CHECK(rd.atom == d.atom);
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      CHECK((r.positions[v] - m.positions[v]).cwiseAbs().maxCoeff() <= 5.0001e-4);
+      CHECK((r.normals[v] - m.normals[v]).cwiseAbs().maxCoeff() <= 5.0001e-4);
+    }
+  }
+  // The layout MSMS writes: three header lines, fixed-width records.
+  std::istringstream vert(slurp(s.path("m.vert")));
+  std::string l1, l2, l3, first;
+  std::getline(vert, l1), std::getline(vert, l2), std::getline(vert, l3), std::getline(vert, first);
+  CHECK(l1.rfind("# MSMS", 0) == 0);
+  CHECK(l2 == "#vertex #sphere density probe_r");
+  CHECK(std::stoul(l3) == m.positions.size());
+  CHECK(first.size() == 6 * 9 + 5 + (1 + 7) + (1 + 7) + (1 + 2));  // "%9.3f" ×6, two " %7d", " %2d"
+  std::istringstream fields(first);
+  double x[6];
+  int component = 0, atom = 0, type = 0;
+  for (double& v : x) fields >> v;
+  fields >> component >> atom >> type;
+  CHECK(component == 1);
+  CHECK(atom == d.atom[0] + 1);
+  CHECK(type == 3);  // patch 0: an atom's sphere patch is MSMS "contact"
+  const std::string face = slurp(s.path("m.face"));
+  CHECK(face.find("\n#faces  #sphere density probe_r\n") != std::string::npos);
+  const std::size_t last_line = face.rfind('\n', face.size() - 2);
+  std::istringstream last(face.substr(last_line + 1));
+  int a = 0, b = 0, c = 0;
+  last >> a >> b >> c >> type >> component;
+  CHECK(component == 2);
+  CHECK(type == 3);
+  CHECK(Index(a - 1) == m.triangles.back()[0]);
+}
+
+TEST_CASE("formats: MSMS files written by another program, and broken ones") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  s.write("x.vert",
+          "# MSMS solvent excluded surface vertices for x\n#vertex #sphere density probe_r\n    3      2  1.00  1.50\n"
+          "    0.000     0.000     0.000     0.000     0.000     1.000       0      1  2\n"
+          "    1.000     0.000     0.000     0.000     0.000     1.000       0      2  2\n"
+          "    0.000     1.000     0.000     0.000     0.000     1.000      -3      2  1\n");
+  s.write("x.face",
+          "# MSMS solvent excluded surface triangles for x\n#faces  #sphere density probe_r\n    1      2  1.00  1.50\n"
+          "     1      2      3  2     17\n");
+  SkinVertexData rd;
+  const IndexedMesh r = read_skin_mesh(s.path("x.face"), &rd);
+  CHECK(r.triangles.size() == 1);
+  CHECK(rd.atom == std::vector<std::int32_t>{0, 1, 1});
+  s.write("y.vert", "# v\n#vertex\n 1 1 1 1\n 0 0 0 0 0 1 0 1 2\n");
+  s.write("y.face", "# f\n#faces\n 1 1 1 1\n 1 2 3 2 1\n");
+  const std::string e = error_of(s.path("y.vert"));
+  CHECK(e.find("y.face:4") != std::string::npos);
+  CHECK(e.find("out of range") != std::string::npos);
+  CHECK(error_of(s.path("missing.vert")).find("missing.vert") != std::string::npos);
+  // In memory: the .vert content followed by the .face content.
+  const IndexedMesh mem = read_msms_from_bytes(slurp(s.path("x.vert")) + slurp(s.path("x.face")), "x");
+  CHECK(mem.triangles == r.triangles);
+}
+
+TEST_CASE("formats: MSMS writes both files or neither") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  fs::create_directories(s.path("blocked.vert"));  // the .vert cannot be written over a folder
+  CHECK_THROWS_AS(write_skin_mesh(s.path("blocked.vert"), sphere_mesh(), {}), InputError);
+  CHECK_FALSE(fs::exists(s.path("blocked.face")));
+  // An earlier pair stays whole when a new one cannot be written.
+  write_skin_mesh(s.path("pair.vert"), sphere_mesh(), {});
+  const std::string vert = slurp(s.path("pair.vert")), face = slurp(s.path("pair.face"));
+  fs::remove(s.path("pair.face"));
+  fs::create_directories(s.path("pair.face"));
+  CHECK_THROWS_AS(write_skin_mesh(s.path("pair.vert"), IndexedMesh{}, {}), InputError);
+  CHECK(slurp(s.path("pair.vert")) == vert);
+  // No temporary file is left behind.
+  for (const auto& entry : fs::directory_iterator(s.dir))
+    CHECK(entry.path().filename().string().find(".tmp.") == std::string::npos);
+}
+
+}  // TEST_SUITE
