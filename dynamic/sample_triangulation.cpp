@@ -207,9 +207,13 @@ std::size_t SampleTriangulation::add_ring(Index v) {
   const Vec3 x = dt_.point(v);
   const Vec3 n = mc.gradient(cell_[v], x).normalized();
   const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
-  const double d = 0.5 * std::max(rho_[v], rho_floor_);
+  // Six samples at half the local length scale around v in its tangent plane:
+  // [chosen] a regular hexagon of edge d, which the refinement then adjusts.
+  constexpr int kRingSamples = 6;
+  constexpr double kRingRadius = 0.5;  // times max(rho, the floor)
+  const double d = kRingRadius * std::max(rho_[v], rho_floor_);
   std::size_t added = 0;
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < kRingSamples; ++k) {
     const double a = k * (kPi / 3);
     Vec3 y;
     Index cell = cell_[v];
@@ -366,12 +370,6 @@ bool SampleTriangulation::refine(int max_rounds) {
   stats_.U_left = rep.u;
   stats_.nonmanifold_left = rep.bad_vertices.size();
   return rep.l_edges.empty() && rep.bad_vertices.empty() && rep.u == 0;
-}
-
-std::size_t SampleTriangulation::num_restricted_facets() const {
-  std::size_t n = 0;
-  for_each_restricted_facet([&](Index, int, const std::array<Index, 3>&) { ++n; });
-  return n;
 }
 
 geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_ids, skin::SkinVertexData* data) const {

@@ -93,14 +93,12 @@ class SampleTriangulation {
   /// [U] uses max(rho, floor) (Å) instead of rho (0: the true rho, default).
   /// Facets that a lower floor makes violate [U] are found by refine()'s scan.
   void set_rho_floor(double floor) { rho_floor_ = floor; }
-  double rho_floor() const { return rho_floor_; }
 
   /// Live sample ids, increasing.
   std::vector<Index> samples() const;
   const Vec3& position(Index v) const { return dt_.point(v); }
   double rho(Index v) const { return rho_[v]; }
   Index cell(Index v) const { return cell_[v]; }
-  bool is_seed(Index v) const { return seed_[v] != 0; }
 
   /// Refines until every restricted facet meets [U] and has no bounding
   /// vertex, every restricted edge meets [L] and every sample's restricted
@@ -124,9 +122,6 @@ class SampleTriangulation {
   /// receives the sample id of each mesh vertex; `data` (if not null) the
   /// atom, rho and mixed-cell dimension of each vertex's patch.
   geometry::IndexedMesh extract(std::vector<Index>* vertex_ids = nullptr, skin::SkinVertexData* data = nullptr) const;
-
-  /// Number of restricted facets (a full scan).
-  std::size_t num_restricted_facets() const;
 
  private:
   struct Facet {

@@ -21,7 +21,10 @@ Vec3 default_height_direction() {
 std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e_in) {
   const Vec3 e = e_in.normalized();
   const skin::MixedComplex& mc = skin.mixed_complex();
-  const double tol = 1e-9 * mc.length_scale();
+  // A candidate counts as inside its cell within this distance (times the
+  // length scale): [derived] above the rounding of the quadric's solution.
+  constexpr double kCellTolerance = 1e-9;
+  const double tol = kCellTolerance * mc.length_scale();
   std::vector<CriticalPoint> out;
   for (Index c = 0; c < mc.num_cells(); ++c) {
     const skin::MixedCell& X = mc.cell(c);

@@ -182,7 +182,8 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   for (Index s = 0; s < n; ++s) {
     if (!ms.live[s] || ms.critical[s].kind != CriticalKind::Saddle) continue;
     near.clear();
-    const double reach = opt.coincident_factor * (ms.critical[s].rho + max_rho) * (1 + 1e-9);
+    constexpr double kReachRounding = 1e-9;  // [derived] the grid query must not miss a pair at the bound
+    const double reach = opt.coincident_factor * (ms.critical[s].rho + max_rho) * (1 + kReachRounding);
     extrema.for_each_near(ms.critical[s].position, reach, [&](Index x, const Vec3&) { near.push_back(x); });
     std::sort(near.begin(), near.end());
     for (const Index x : near) {
@@ -229,7 +230,8 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   // Remaining intersections between live protecting spheres.
   double max_r = 0;
   for (double r : ms.protect_radius) max_r = std::max(max_r, r);
-  geometry::PointGrid grid(std::max(2 * max_r, 1e-6));
+  constexpr double kMinGridCell = 1e-6;  // Å; [derived] a guard for radii of zero, far below any sphere
+  geometry::PointGrid grid(std::max(2 * max_r, kMinGridCell));
   for (Index i = 0; i < n; ++i)
     if (ms.live[i]) grid.insert(i, ms.critical[i].position);
   for (Index i = 0; i < n; ++i) {

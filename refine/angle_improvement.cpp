@@ -54,6 +54,19 @@ constexpr std::size_t kShorterMoves = 3;
 /// that changes which vertices they admit in practice.
 constexpr double kBoundPad = 1e-6;
 constexpr double kBoundPadL = 1e-9;
+/// Relative rounding allowance of reach() over its closed form. [derived]
+/// above the rounding of a few products and quotients.
+constexpr double kReachRounding = 1e-12;
+/// The normal-line projection of a trial position searches within these
+/// multiples of the sandwiching balls' bracket rho - sqrt(rho² - r²): twice
+/// it, then eight times. [derived] the bracket itself (papers/skin/skin_math.md
+/// §7.2), doubled for the balls' own rounding; the wider search catches the
+/// rare trial where rho changes fast between the vertex and its target.
+constexpr double kProjectionBrackets[] = {2.0, 8.0};
+/// Relative and absolute (times L) slack of that search distance. [derived]
+/// the root finder's margin (skin::SkinSurface::project_along_line), rounded up.
+constexpr double kProjectionSlack = 1e-9;
+constexpr double kProjectionSlackL = 1e-12;
 
 /// A triangle that does not move during an attempt: corners, circumcentre,
 /// circumradius, and its surface Delaunay ball once computed.
@@ -261,7 +274,7 @@ double AngleImprover::reach(const Bounds& b) const {
   const double A = 2 * kSqrt5 * kappa_, B = 2 * kappa_;
   const double rho_v = rho_[b.v], rho_p = rho_v + 2 * b.M;
   return std::max(((2 * b.M + A * rho_p) * u + l) / (1 - A * u), ((4 * b.M + b.S + B * rho_v) * u + l) / (1 - B * u)) *
-         (1 + 1e-12);
+         (1 + kReachRounding);
 }
 
 std::vector<Vertex> AngleImprover::neighbourhood(const Bounds& b) const {
@@ -293,9 +306,9 @@ Trial AngleImprover::evaluate(const Vec2& x, Vertex v, const Vec3& n0, const Vec
   // tangent plane; twice that, then eight times.
   const double delta = rho0 - std::sqrt(std::max(rho0 * rho0 - x.squaredNorm(), 0.0));
   bool found = false;
-  for (double f : {2.0, 8.0}) {
+  for (double f : kProjectionBrackets) {
     Index cell = cell_[v];
-    if (skin_.project_along_line(q, n0, f * delta * (1 + 1e-9) + 1e-12 * L_, t.p, cell)) {
+    if (skin_.project_along_line(q, n0, f * delta * (1 + kProjectionSlack) + kProjectionSlackL * L_, t.p, cell)) {
       t.s = skin_.sample(t.p, cell);
       found = true;
       break;

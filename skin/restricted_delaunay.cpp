@@ -28,8 +28,9 @@ SurfaceBallFilter::SurfaceBallFilter(const Vec3& a, const Vec3& b, const Vec3& c
   if (!(len_ > 0)) return;
   cc_ = circumcentre(a, b, c);
   R2_ = (a - cc_).squaredNorm();
-  // |t| <= 2R plus the root finder's margin (1e-12 L), rounded up.
-  t_max_ = 2.0 * std::sqrt(R2_) * (1 + 1e-9) + 1e-11 * length_scale;
+  // |t| <= 2R plus the root finder's margin (1e-12 L), rounded up. [derived]
+  constexpr double kRelativeSlack = 1e-9, kAbsoluteSlack = 1e-11;  // the latter times the length scale
+  t_max_ = 2.0 * std::sqrt(R2_) * (1 + kRelativeSlack) + kAbsoluteSlack * length_scale;
 }
 
 bool outside_every_surface_ball(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double length_scale) {

@@ -12,6 +12,29 @@
 
 namespace skinmesh::skin {
 
+namespace {
+
+/// Relative size below which the quadratic's leading coefficient counts as
+/// zero (the equation is then solved as linear). [derived] a few units in the
+/// last place of the coefficients, which are sums of a few products.
+constexpr double kLinearThreshold = 1e-14;
+/// Step past a cell's wall when the projection walks into the next cell, and
+/// slack on the distances compared (units of the skin's length scale).
+/// [derived] above the walk's rounding, far below any feature of the skin.
+constexpr double kWallStep = 1e-12;
+/// Most cells the projection along one line crosses on each side of its
+/// start. [measured] a line within delta of the skin crosses at most a handful.
+constexpr int kMaxCellsAlongLine = 64;
+/// Newton steps of pull_back() before it gives up. [measured] it converges
+/// quadratically in a few steps from any point within rho of the skin.
+constexpr int kMaxPullBackSteps = 100;
+/// Distance to the skin (units of its length scale) that pull_back() accepts
+/// after its last step when its tolerance was not met. [derived] a few units
+/// in the last place of f / |grad f| at the skin's size.
+constexpr double kPullBackFallback = 1e-11;
+
+}  // namespace
+
 SkinSurface::SkinSurface(std::vector<geometry::WeightedPoint> points) : points_(std::move(points)) {
   if (points_.empty()) throw InputError("", 0, "no weighted points (no atoms)");
   for (const auto& p : points_)
@@ -79,7 +102,7 @@ int quadratic_roots(double a, double b, double c, double lo, double hi, double r
   double cand[2];
   int nc = 0;
   const double scale = std::max({std::abs(a), std::abs(b), 1e-300});
-  if (std::abs(a) <= 1e-14 * scale) {
+  if (std::abs(a) <= kLinearThreshold * scale) {
     if (b != 0) cand[nc++] = -c / (2 * b);
   } else {
     const double disc = b * b - a * c;
@@ -103,7 +126,7 @@ int quadratic_roots(double a, double b, double c, double lo, double hi, double r
 
 bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta, Vec3& out, Index& cell) const {
   const MixedComplex& mc = *mc_;
-  const double eta = 1e-12 * mc.length_scale();
+  const double eta = kWallStep * mc.length_scale();
   // Parametric interval [lo, hi] of the line q + t n inside cell c.
   auto interval = [&](Index c, double& lo, double& hi) {
     lo = -std::numeric_limits<double>::infinity();
@@ -144,7 +167,7 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
     double lo = lo0, hi = hi0;
     auto ex = ex0;
     double r[2];
-    for (int guard = 0; guard < 64; ++guard) {
+    for (int guard = 0; guard < kMaxCellsAlongLine; ++guard) {
       const double seg_lo = dir > 0 ? std::max(lo, 0.0) : lo;
       const double seg_hi = dir > 0 ? hi : std::min(hi, 0.0);
       if ((dir > 0 ? seg_lo : -seg_hi) - eta > std::abs(best_t)) break;
@@ -171,7 +194,7 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
 Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result, double tolerance) const {
   Vec3 x = x0;
   const double tol = tolerance * length_scale();
-  for (int it = 0; it < 100; ++it) {
+  for (int it = 0; it < kMaxPullBackSteps; ++it) {
     const SkinSample s = sample(x, cell);
     cell = s.cell;
     const double g2 = s.gradient.squaredNorm();
@@ -185,7 +208,7 @@ Vec3 SkinSurface::pull_back(const Vec3& x0, Index& cell, SkinSample* at_result, 
   }
   const SkinSample s = sample(x, cell);
   cell = s.cell;
-  if (std::abs(s.f) / s.gradient.norm() <= 1e-11 * length_scale()) {
+  if (std::abs(s.f) / s.gradient.norm() <= kPullBackFallback * length_scale()) {
     if (at_result) *at_result = s;
     return x;
   }

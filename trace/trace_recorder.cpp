@@ -37,8 +37,29 @@ using geometry::Vertex;
 /// decimal, so that JSON prints it short.
 double round_to(double x, double scale) { return std::round(x * scale) / scale; }
 
+/// Positions are written to 1e-4 Å (trace/FORMAT.md). [chosen] far below any
+/// edge of a mesh that meets [L], and short in JSON.
+constexpr double kPositionScale = 1e4;
+/// The check's smallest angle is written to 1e-6 degrees, the angle bound of
+/// [L]/[U] to 1e-4 degrees. [chosen]
+constexpr double kAngleScale = 1e6, kBoundScale = 1e4;
+/// A vertex that moved less than this (squared, Å²) is not recorded as moved.
+/// [chosen] 1e-5 Å, below the positions' written precision.
+constexpr double kMinMoveSquared = 1e-10;
+/// Integral lines are thinned to points at least this far apart (Å). [chosen]
+/// well below the lines' curvature radii (rho), so the drawn curve looks the same.
+constexpr double kLineSpacing = 0.1;
+/// Shares of the recorded steps (TraceOptions::max_steps) given to the sweep's
+/// and the refinement's operations, and to the baseline's growth steps; the
+/// rest is left for the stages recorded whole. [chosen]
+constexpr double kSweepShare = 0.6, kRefineShare = 0.35, kGrowthShare = 0.9;
+/// Bytes of the trace per sample per recorded growth step. [derived] its id
+/// and three coordinates of about ten characters each in the JSON.
+constexpr double kBytesPerGrowthSample = 45.0;
+
 json point_json(const Vec3& p) {
-  return json::array({round_to(p.x(), 1e4), round_to(p.y(), 1e4), round_to(p.z(), 1e4)});
+  return json::array(
+      {round_to(p.x(), kPositionScale), round_to(p.y(), kPositionScale), round_to(p.z(), kPositionScale)});
 }
 
 /// Per-triangle quality of trace/FORMAT.md: smallest angle (degrees), the
@@ -144,14 +165,14 @@ class History {
   void write(json& doc) const {
     std::vector<double> xyz;
     xyz.reserve(vertex_xyz_.size());
-    for (double x : vertex_xyz_) xyz.push_back(round_to(x, 1e4));
+    for (double x : vertex_xyz_) xyz.push_back(round_to(x, kPositionScale));
     doc["vertices"] = std::move(xyz);
     doc["vertex_step"] = vertex_step_;
     json moves = json::array();
     for (const Move& m : moves_) {
       moves.push_back(m.vertex);
       moves.push_back(m.step);
-      for (int k = 0; k < 3; ++k) moves.push_back(round_to(m.p[k], 1e4));
+      for (int k = 0; k < 3; ++k) moves.push_back(round_to(m.p[k], kPositionScale));
     }
     doc["moves"] = std::move(moves);
     doc["faces"] = faces_;
@@ -191,7 +212,7 @@ class History {
       grow_bounds(p);
       return 0;
     }
-    if ((p - position_[id]).squaredNorm() <= 1e-10) return 0;
+    if ((p - position_[id]).squaredNorm() <= kMinMoveSquared) return 0;
     position_[id] = p;
     moves_.push_back({rec, step, p});
     grow_bounds(p);
@@ -297,21 +318,22 @@ void record_morse(json& doc, const morse::MorseSmaleComplex& ms) {
   json critical = json::array();
   for (std::size_t i = 0; i < ms.critical.size(); ++i) {
     const morse::CriticalPoint& cp = ms.critical[i];
-    critical.push_back({{"p", point_json(cp.position)},
-                        {"index", morse_index(cp.kind)},
-                        {"live", i < ms.live.size() ? bool(ms.live[i]) : true},
-                        {"sphere", i < ms.protect_radius.size() ? round_to(ms.protect_radius[i], 1e4) : 0.0}});
+    critical.push_back(
+        {{"p", point_json(cp.position)},
+         {"index", morse_index(cp.kind)},
+         {"live", i < ms.live.size() ? bool(ms.live[i]) : true},
+         {"sphere", i < ms.protect_radius.size() ? round_to(ms.protect_radius[i], kPositionScale) : 0.0}});
   }
   json lines = json::array();
   for (const morse::IntegralLine& line : ms.lines) {
     if (line.points.size() < 2) continue;
     std::vector<double> pts;
     Vec3 last = line.points.front();
-    for (int k = 0; k < 3; ++k) pts.push_back(round_to(last[k], 1e4));
+    for (int k = 0; k < 3; ++k) pts.push_back(round_to(last[k], kPositionScale));
     for (std::size_t i = 1; i < line.points.size(); ++i) {
       const Vec3& p = line.points[i];
-      if ((p - last).norm() < 0.1 && i + 1 < line.points.size()) continue;
-      for (int k = 0; k < 3; ++k) pts.push_back(round_to(p[k], 1e4));
+      if ((p - last).norm() < kLineSpacing && i + 1 < line.points.size()) continue;
+      for (int k = 0; k < 3; ++k) pts.push_back(round_to(p[k], kPositionScale));
       last = p;
     }
     const bool live = line.saddle < ms.live.size() ? bool(ms.live[line.saddle]) : true;
@@ -348,7 +370,7 @@ void finish(const mesher::MeshResult& res, json counters, json every, std::size_
   doc["every"] = std::move(every);
   doc["operations"] = operations;
   json check = {{"ran", res.checked}, {"ok", res.ok()}, {"problems", res.check.problems}};
-  if (res.checked) check["min_angle"] = round_to(res.check.mesh.min_angle_deg, 1e6);
+  if (res.checked) check["min_angle"] = round_to(res.check.mesh.min_angle_deg, kAngleScale);
   doc["check"] = std::move(check);
   history.write(doc);
   doc["steps"] = std::move(steps);
@@ -377,8 +399,8 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     if (options.progress)
       counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
     mesher::mesh_skin(points, counting);
-    every_sweep = stride(counts.sweep, 0.6 * double(options.max_steps));
-    every_refine = stride(counts.refine, 0.35 * double(options.max_steps));
+    every_sweep = stride(counts.sweep, kSweepShare * double(options.max_steps));
+    every_refine = stride(counts.refine, kRefineShare * double(options.max_steps));
   }
 
   json doc;
@@ -534,10 +556,10 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
     if (options.progress)
       counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
     mesher::mesh_skin(points, counting);
-    // Every recorded growth step moves every sample: about 45 bytes each.
-    const double affordable =
-        double(options.growth_budget_bytes) / (45.0 * double(std::max<std::size_t>(counts.max_samples, 1)));
-    every = stride(counts.growth, std::min(0.9 * double(options.max_steps), affordable));
+    // Every recorded growth step moves every sample.
+    const double affordable = double(options.growth_budget_bytes) /
+                              (kBytesPerGrowthSample * double(std::max<std::size_t>(counts.max_samples, 1)));
+    every = stride(counts.growth, std::min(kGrowthShare * double(options.max_steps), affordable));
   }
   json doc;
   History history;
@@ -593,7 +615,7 @@ json record_trace(const std::vector<geometry::WeightedPoint>& points, const Trac
   doc["algorithm"] = mesher::algorithm_name(options.mesh.algorithm);
   doc["probe"] = options.probe >= 0 ? json(options.probe) : json(nullptr);
   doc["atoms"] = points.size();
-  doc["min_angle_bound"] = round_to(options.mesh.size.min_angle_bound_deg(), 1e4);
+  doc["min_angle_bound"] = round_to(options.mesh.size.min_angle_bound_deg(), kBoundScale);
   if (!doc.contains("height_direction")) doc["height_direction"] = nullptr;
   s.steps = doc["steps"].size();
   return doc;

@@ -17,6 +17,21 @@ namespace skinmesh::verify {
 
 namespace {
 
+/// Length scale (Å) up to which the vertex-distance tolerance is absolute;
+/// above it the tolerance grows with the skin's size (its coordinates' rounding
+/// does). [derived] the size of a large protein's skin.
+constexpr double kAbsoluteToleranceScale = 100.0;
+/// Smallest cell of the vertex grid of the restricted Delaunay test (Å): a
+/// guard for meshes without edges. [derived] far below any edge.
+constexpr double kMinGridCell = 1e-9;
+/// A surface Delaunay ball is shrunk by this relative amount before the test
+/// for vertices inside it, so that the triangle's own corners and cocircular
+/// vertices (on its sphere up to rounding) do not count. [derived] above the
+/// rounding of the ball's centre and radius.
+constexpr double kBallShrink = 1e-9;
+/// Violating triangles listed in the report (the count is complete). [chosen]
+constexpr std::size_t kMaxExamples = 16;
+
 /// Frees v's memory (clear() keeps the capacity).
 template <class T>
 void release(std::vector<T>& v) {
@@ -159,7 +174,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (std::size_t v = 0; v < nv; ++v)
       if (!seen[v]) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
   }
-  rep.vertex_distance_tolerance = opt.max_vertex_distance * std::max(1.0, skin.length_scale() / 100.0);
+  rep.vertex_distance_tolerance =
+      opt.max_vertex_distance * std::max(1.0, skin.length_scale() / kAbsoluteToleranceScale);
   Index last = kInvalidIndex;
   for (std::size_t k = 0; k < nv; ++k) {
     const Index v = order[k];
@@ -214,7 +230,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (const auto& t : mesh.triangles)
       if (valid(t)) mean_edge += (P[t[0]] - P[t[1]]).norm(), ++ne;
     mean_edge = ne ? mean_edge / ne : 1.0;
-    const geometry::FlatPointGrid grid(P, std::max(mean_edge, 1e-9));
+    const geometry::FlatPointGrid grid(P, std::max(mean_edge, kMinGridCell));
     for (std::size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
       const auto& t = mesh.triangles[ti];
       if (!valid(t)) continue;
@@ -222,12 +238,13 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
       Index c = cell[t[0]];
       bool bad = !skin::surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], m, c);
       if (!bad) {
-        const double r = (m - P[t[0]]).norm() * (1 - 1e-9);
+        const double r = (m - P[t[0]]).norm() * (1 - kBallShrink);
         bad = grid.any_near(m, r, [&](Index v, const Vec3&) { return v != t[0] && v != t[1] && v != t[2]; });
       }
       if (bad) {
         ++rep.num_rdt_violations;
-        if (rep.rdt_violation_examples.size() < 16) rep.rdt_violation_examples.push_back(static_cast<Index>(ti));
+        if (rep.rdt_violation_examples.size() < kMaxExamples)
+          rep.rdt_violation_examples.push_back(static_cast<Index>(ti));
       }
     }
     if (rep.num_rdt_violations)

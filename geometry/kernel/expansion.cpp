@@ -142,10 +142,4 @@ Sign expansion_sign(int elen, const double* e) {
   return Sign::Zero;
 }
 
-double expansion_estimate(int elen, const double* e) {
-  double s = 0.0;
-  for (int i = 0; i < elen; ++i) s += e[i];
-  return s;
-}
-
 }  // namespace skinmesh::geometry

@@ -145,7 +145,4 @@ int compress_expansion(int elen, const double* e, double* h);
 /// an expansion with stray zero components is handled too).
 Sign expansion_sign(int elen, const double* e);
 
-/// Floating-point approximation of the value of e (sum from small to large).
-double expansion_estimate(int elen, const double* e);
-
 }  // namespace skinmesh::geometry

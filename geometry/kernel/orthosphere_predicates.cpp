@@ -25,8 +25,6 @@ namespace skinmesh::geometry {
 
 namespace {
 
-thread_local OrthospherePredicateStats tl_stats;
-
 // Filter Number -----------------------------------------------------------------
 //
 // A double v with a bound e on |v - V|, V the exact real value of the same
@@ -217,8 +215,6 @@ Sign attached_sign(std::span<const WeightedPoint> x, const WeightedPoint& k) {
 
 }  // namespace
 
-OrthospherePredicateStats orthosphere_predicate_stats() { return tl_stats; }
-
 Sign focus_weight_sign_exact(std::span<const WeightedPoint> x) {
   SKINMESH_DEBUG_ASSERT(!x.empty() && x.size() <= 4);
   return size_sign<ENum>(x);
@@ -231,19 +227,15 @@ Sign orthosphere_power_sign_exact(std::span<const WeightedPoint> x, const Weight
 
 Sign focus_weight_sign(std::span<const WeightedPoint> x) {
   SKINMESH_DEBUG_ASSERT(!x.empty() && x.size() <= 4);
-  ++tl_stats.calls;
   const Sign s = size_sign<FNum>(x);
   if (s != Sign::Zero) return s;
-  ++tl_stats.exact;
   return size_sign<ENum>(x);
 }
 
 Sign orthosphere_power_sign(std::span<const WeightedPoint> x, const WeightedPoint& k) {
   SKINMESH_DEBUG_ASSERT(!x.empty() && x.size() <= 3);
-  ++tl_stats.calls;
   const Sign s = attached_sign<FNum>(x, k);
   if (s != Sign::Zero) return s;
-  ++tl_stats.exact;
   return attached_sign<ENum>(x, k);
 }
 

@@ -51,14 +51,4 @@ Sign focus_weight_sign_exact(std::span<const WeightedPoint> x);
 /// See focus_weight_sign_exact().
 Sign orthosphere_power_sign_exact(std::span<const WeightedPoint> x, const WeightedPoint& k);
 
-/// Counters of the two predicates above for the calling thread: calls, and
-/// how many of them needed the exact layer. Statistics only.
-struct OrthospherePredicateStats {
-  unsigned long long calls = 0;
-  unsigned long long exact = 0;
-};
-
-/// The calling thread's counters. Throws nothing.
-OrthospherePredicateStats orthosphere_predicate_stats();
-
 }  // namespace skinmesh::geometry

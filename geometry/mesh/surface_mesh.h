@@ -198,11 +198,6 @@ class PropertyContainer {
     for (auto& a : arrays_) a->compact(kept);
     size_ = kept.size();
   }
-  std::vector<std::string> names() const {
-    std::vector<std::string> n;
-    for (const auto& a : arrays_) n.push_back(a->name());
-    return n;
-  }
 
  private:
   std::vector<std::unique_ptr<BasePropertyArray>> arrays_;
@@ -465,8 +460,6 @@ class SurfaceMesh {
   std::size_t n_edges() const { return eprops_.size() - deleted_edges_; }
   /// Number of faces not marked deleted.
   std::size_t n_faces() const { return fprops_.size() - deleted_faces_; }
-  /// True if there is no non-deleted vertex.
-  bool is_empty() const { return n_vertices() == 0; }
   /// True if some element is marked deleted (garbage_collection() would act).
   bool has_garbage() const { return deleted_vertices_ + deleted_edges_ + deleted_faces_ > 0; }
   /// Array size including deleted vertices (every vertex handle is below it).
@@ -526,8 +519,6 @@ class SurfaceMesh {
   Face face(Edge e, unsigned i) const { return face(halfedge(e, i)); }
   /// Next outgoing half-edge around from_vertex(h), counter-clockwise: opposite(prev(h)).
   Halfedge ccw_rotated(Halfedge h) const { return opposite(prev(h)); }
-  /// Next outgoing half-edge around from_vertex(h), clockwise: next(opposite(h)).
-  Halfedge cw_rotated(Halfedge h) const { return next(opposite(h)); }
 
   /// True if h has no face (the hole is on its left).
   bool is_boundary(Halfedge h) const { return !face(h).is_valid(); }
@@ -662,8 +653,6 @@ class SurfaceMesh {
     remove_property(vprops_, p.array_);
     p.array_ = nullptr;
   }
-  /// Names of the vertex properties (built-in ones included), for debugging.
-  std::vector<std::string> vertex_property_names() const { return vprops_.names(); }
 
   // SurfaceMesh Refinement Operations (check first, then modify)
   /// True if the interior edge e = (a, b) with faces (a, b, c) and (b, a, d) can

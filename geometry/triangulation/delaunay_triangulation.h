@@ -213,10 +213,6 @@ class DelaunayTriangulation {
   }
 
   // Box -------------------------------------------------------------------------
-
-  /// The box given at construction (Å).
-  const Vec3& box_lo() const { return lo_; }
-  const Vec3& box_hi() const { return hi_; }
   /// Centre c and circumradius D = 50 L' (Å) of the bounding tetrahedron.
   const Vec3& bounding_centre() const { return centre_; }
   double bounding_radius() const { return radius_; }
