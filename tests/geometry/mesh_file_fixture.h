@@ -17,12 +17,14 @@
 
 #include "core/types.h"
 #include "geometry/mesh/indexed_mesh.h"
+#include "tests/geometry/test_meshes.h"
 
 namespace skinmesh::test {
 
 using geometry::IndexedMesh;
 
-/// A fresh folder under the system's temporary folder, removed with its content.
+/// A fresh folder under the system's temporary folder (its name begins with
+/// `prefix`), removed with its content.
 struct Scratch {
   std::filesystem::path dir;
   explicit Scratch(const std::string& prefix) {
@@ -40,6 +42,7 @@ struct Scratch {
   }
 };
 
+/// The whole content of the file `path` (empty if it cannot be read).
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream os;
@@ -50,27 +53,10 @@ inline std::string slurp(const std::string& path) {
 /// A closed mesh (a subdivided, jittered octahedron: 66 vertices, 128
 /// triangles, centred at (31.25, -7.5, 1/3)) with unit outward normals.
 inline IndexedMesh sphere_mesh() {
-  IndexedMesh m;
-  std::map<std::pair<Index, Index>, Index> mid;
-  m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int round = 0; round < 2; ++round) {
-    std::vector<std::array<Index, 3>> next;
-    auto middle = [&](Index a, Index b) {
-      const auto key = std::minmax(a, b);
-      auto [it, inserted] = mid.try_emplace(key, Index(m.positions.size()));
-      if (inserted) m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-      return it->second;
-    };
-    for (const auto& t : m.triangles) {
-      const Index ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
-      next.push_back({t[0], ab, ca});
-      next.push_back({ab, t[1], bc});
-      next.push_back({ca, bc, t[2]});
-      next.push_back({ab, bc, ca});
-    }
-    m.triangles = next;
-  }
+  IndexedMesh octahedron;
+  octahedron.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octahedron.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  IndexedMesh m = subdivided_on_sphere(std::move(octahedron), 2);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> jitter(-1e-4, 1e-4);
   for (std::size_t v = 0; v < m.positions.size(); ++v) {

@@ -18,6 +18,7 @@
 
 #include "core/errors.h"
 #include "geometry/io/mesh_io.h"
+#include "tests/geometry/mesh_file_fixture.h"
 
 namespace {
 
@@ -32,25 +33,8 @@ using skinmesh::geometry::VertexAttribute;
 using skinmesh::geometry::write_mesh;
 
 /// A scratch directory for this test run, removed at exit.
-struct ScratchDir {
-  std::filesystem::path dir;
-  ScratchDir() {
-    dir = std::filesystem::temp_directory_path() / ("skinmesh_mesh_io_test_" + std::to_string(std::random_device{}()));
-    std::filesystem::create_directories(dir);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
-};
-
-const ScratchDir& scratch() {
-  static const ScratchDir d;
+const skinmesh::test::Scratch& scratch() {
+  static const skinmesh::test::Scratch d("skinmesh_mesh_io_test_");
   return d;
 }
 

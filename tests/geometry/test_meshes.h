@@ -29,10 +29,10 @@ inline IndexedMesh icosahedron() {
   return m;
 }
 
-// Icosahedron subdivided `levels` times (1 -> 4 triangles), projected on the unit sphere.
-inline IndexedMesh sphere(int levels) {
-  IndexedMesh m = icosahedron();
-  for (Vec3& p : m.positions) p.normalize();
+// `m` (vertices on the unit sphere) subdivided `levels` times (1 -> 4
+// triangles), new vertices projected on the unit sphere, numbered in order of
+// creation.
+inline IndexedMesh subdivided_on_sphere(IndexedMesh m, int levels) {
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<Index, Index>, Index> mid;
     auto midpoint = [&](Index a, Index b) {
@@ -55,6 +55,13 @@ inline IndexedMesh sphere(int levels) {
     m.triangles = next;
   }
   return m;
+}
+
+// Icosahedron subdivided `levels` times (1 -> 4 triangles), projected on the unit sphere.
+inline IndexedMesh sphere(int levels) {
+  IndexedMesh m = icosahedron();
+  for (Vec3& p : m.positions) p.normalize();
+  return subdivided_on_sphere(std::move(m), levels);
 }
 
 // Torus with radii R = 2, r = 0.7 from an n x m grid; outward orientation
