@@ -17,6 +17,7 @@
 #include "apps/mesh_command.h"
 #include "apps/output.h"
 #include "core/errors.h"
+#include "core/read_file.h"
 #include "geometry/mesh/mesh_measures.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_mesh_io.h"
@@ -43,7 +44,7 @@ struct BatchItem {
 std::vector<std::string> batch_inputs(const MeshArgs& a) {
   std::vector<std::string> inputs = a.mol.inputs;
   if (!a.list.empty()) {
-    const std::string text = read_text_file(a.list);
+    const std::string text = read_file(a.list);
     const std::filesystem::path folder = std::filesystem::path(a.list).parent_path();
     std::size_t at = 0;
     while (at <= text.size()) {

@@ -29,21 +29,6 @@ inline void write_text_file(const std::string& path, const std::string& text) {
   geometry::write_file_atomically(path, text);
 }
 
-/// The whole file at `path`. Throws InputError(path, 0, "cannot read file
-/// (reason)") if it cannot be read.
-inline std::string read_text_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, 0, std::string("cannot read file (") + std::strerror(errno) + ")");
-  std::string text;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw InputError(path, 0, "cannot read file (read error)");
-  return text;
-}
-
 /// Throws InputError(path, 0, "cannot write file (...)") unless the folder of
 /// `path` exists and is writable: checked before a long run, so that it does
 /// not end in a write error. "-" (standard output) always passes.

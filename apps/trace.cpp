@@ -13,6 +13,7 @@
 #include "apps/cli.h"
 #include "apps/output.h"
 #include "core/errors.h"
+#include "core/read_file.h"
 #include "skin/molecule_io.h"
 #include "trace/trace_recorder.h"
 
@@ -60,7 +61,7 @@ int run_trace(TraceArgs& a) {
   std::string viewer_template;
   if (ext == ".html") {
     const std::string path = find_viewer(a.viewer);
-    viewer_template = read_text_file(path);
+    viewer_template = read_file(path);
     if (viewer_template.find(trace::kTracePlaceholder) == std::string::npos)
       throw InputError(path, 0, std::string("not a trace viewer template (no ") + trace::kTracePlaceholder + ")");
   }

@@ -24,6 +24,7 @@
 #include <zlib.h>
 
 #include "core/errors.h"
+#include "core/read_file.h"
 #include "core/text_split.h"
 #include "geometry/kernel/weighted_point.h"
 #include "skin/molecule_io_internal.h"
@@ -100,16 +101,7 @@ std::string read_text(const std::string& path) {
     if (n < 0) throw InputError(path, 0, "cannot read file (gzip: " + msg + ")");
     return text;
   }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, 0, std::string("cannot open file (") + std::strerror(errno) + ")");
-  std::array<char, 1 << 16> buf;
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) text.append(buf.data(), n);
-  const bool failed = std::ferror(f) != 0;
-  const int saved_errno = errno;
-  std::fclose(f);
-  if (failed) throw InputError(path, 0, std::string("cannot read file (") + std::strerror(saved_errno) + ")");
-  return text;
+  return read_file(path);
 }
 
 // Number Parsing

@@ -25,6 +25,7 @@
 
 #include "core/assert.h"
 #include "core/errors.h"
+#include "core/read_file.h"
 #include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry {
@@ -183,20 +184,6 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
       throw;
     }
   }
-}
-
-std::string read_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, 0, std::string("cannot open file (") + std::strerror(errno) + ")");
-  std::string data;
-  std::array<char, 1 << 16> buf;
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) data.append(buf.data(), n);
-  const bool failed = std::ferror(f) != 0;
-  const int saved_errno = errno;
-  std::fclose(f);
-  if (failed) throw InputError(path, 0, std::string("cannot read file (") + std::strerror(saved_errno) + ")");
-  return data;
 }
 
 // Mesh I/O Function Definitions

@@ -110,10 +110,6 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
 /// not be below it.
 double position_rounding(MeshFormat format, const IndexedMesh& mesh);
 
-/// The whole content of `path`, read in binary mode. Throws InputError(path, 0,
-/// "cannot open file (...)" or "cannot read file (...)").
-std::string read_file(const std::string& path);
-
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
 /// `path`, so that readers never see a partial file. On any failure the
 /// temporary file is removed and InputError(path, 0, "cannot write <what>
