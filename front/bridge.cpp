@@ -169,7 +169,7 @@ void bridge(FrontState& fs, Halfedge ab, Halfedge cd, Index c, const Rails& rail
   const int rows = static_cast<int>(rails.left.size()) + 1;
   const Vertex a = fs.mesh.from_vertex(ab), b = fs.mesh.to_vertex(ab);
   const Vertex cv = fs.mesh.from_vertex(cd), d = fs.mesh.to_vertex(cd);
-  // Ladder of `rows` rows across the gap (papers/front/open_questions.md Q6.2):
+  // Ladder of `rows` rows across the gap (papers/front/open_questions.md Q6.2 (which pair of edges; filling the gap)):
   // left rail a -> d, right rail b -> c, intermediate points pulled back onto
   // the skin.
   if (fs.tracing)

@@ -100,7 +100,7 @@ bool contact_with(FrontState& fs, Vertex v, const Corner& k, Vertex best) {
 bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
   // A new point within collision_radius · r of a vertex x other than u, v, w
   // would come too close to another part of the front
-  // (papers/front/open_questions.md Q4.3 b). Join v to x instead, hold v if x
+  // (papers/front/open_questions.md Q4.3 (overlap and snapping), case b). Join v to x instead, hold v if x
   // is held, or let the front move on and come back.
   const double r = fs.disc_radius(v);
   const Vec3 pv = fs.mesh.position(v), n = fs.normal[v];

@@ -82,7 +82,7 @@ struct RefineStats {
 /// Refines a closed triangle mesh of the skin in place so that every edge
 /// satisfies [L], every triangle [U] and (as far as flips reach) every edge is
 /// locally restricted Delaunay: Lawson flips with the surface Delaunay ball
-/// test (papers/front/open_questions.md Q9.2), then rounds of contraction of
+/// test (papers/front/open_questions.md Q9.2 (the flip criterion)), then rounds of contraction of
 /// edges that violate [L] (keeping the endpoint whose new star has the better
 /// minimum angle, Q9.3 (contraction for [L])) and insertion of the surface Delaunay centre of
 /// triangles that violate [U] (Q9.4 (insertion for [U])), each followed by local flips. [L] and [U] together
