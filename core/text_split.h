@@ -1,12 +1,29 @@
-// core/text_split.h: splitting text into lines and blank-separated fields,
+// core/text_split.h: splitting text into lines and blank-separated fields, and
+// ASCII case folding,
 // shared by the readers (geometry/io/mesh_io, skin/molecule_io). Views point into
 // the caller's text, which must outlive them.
 #pragma once
 
+#include <cctype>
+#include <string>
 #include <string_view>
 #include <vector>
 
 namespace skinmesh {
+
+/// The lower-case copy of `s` (ASCII letters only).
+inline std::string lowercase(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// The upper-case copy of `s` (ASCII letters only).
+inline std::string uppercase(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
 
 /// True for ASCII white space (space, tab, CR, LF, FF, VT).
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }

@@ -74,18 +74,6 @@ NumberStatus parse_double(std::string_view field, double& out) {
 
 // Text Helpers
 
-std::string lowercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-std::string uppercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
 std::string read_text(const std::string& path) {
   std::string text;
   if (lowercase(path).ends_with(".gz")) {
@@ -210,7 +198,6 @@ Molecule finish(const std::string& path, std::vector<Atom> atoms, NoteList& note
 
 namespace {
 
-using molecule_io_detail::lowercase;
 using molecule_io_detail::read_mmcif;
 using molecule_io_detail::read_pdb;
 using molecule_io_detail::read_pqr;

@@ -23,12 +23,6 @@ namespace skinmesh::skin::molecule_io_detail {
 
 // Shared Parts (molecule_io.cpp)
 
-/// The lower-case copy of `s` (ASCII letters only).
-std::string lowercase(std::string_view s);
-
-/// The upper-case copy of `s` (ASCII letters only).
-std::string uppercase(std::string_view s);
-
 /// Reads the whole file (gunzipped if the name ends in .gz, case-insensitive).
 /// Throws InputError(path, 0, "cannot open file (...)" or "cannot read file (...)").
 std::string read_text(const std::string& path);

@@ -180,13 +180,6 @@ IndexedMesh read_msms_from_bytes(const std::string& data, const std::string& nam
 
 namespace {
 
-/// The lower-case copy of `s` (ASCII letters only).
-std::string lowercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 /// `data`'s vertex data read from the file attributes of `path`: `atom` (an
 /// integer attribute, every value >= -1) and `rho`. Throws InputError(path, 0, ...).
 SkinVertexData vertex_data_of(const std::string& path, const std::vector<VertexAttribute>& attributes) {
@@ -242,11 +235,7 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
     geometry::write_mesh(path, mesh, opt, file_attributes(data, format));
     return;
   }
-  // The checks write_mesh() makes (an empty attribute list adds none).
-  SKINMESH_ASSERT_MSG(n <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()), "too many vertices");
-  SKINMESH_ASSERT_MSG(mesh.normals.empty() || mesh.normals.size() == n, "one normal per vertex");
-  for (const auto& t : mesh.triangles)
-    for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
+  geometry::check_writable(mesh);
   const auto [vert_path, face_path] = msms_paths(path);
   const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
   const auto [vert, face] = msms_text(mesh, data, name.substr(0, name.size() - 5));

@@ -26,6 +26,7 @@
 #include "core/assert.h"
 #include "core/errors.h"
 #include "core/read_file.h"
+#include "core/text_split.h"
 #include "geometry/io/mesh_io_internal.h"
 
 namespace skinmesh::geometry {
@@ -84,17 +85,8 @@ using mesh_io_detail::read_vtk;
 using mesh_io_detail::stl_bytes;
 using mesh_io_detail::vtk_text;
 
-/// The lower-case copy of `s` (ASCII letters only).
-std::string lowercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
+}  // namespace
 
-/// Checks the preconditions of write_mesh() (std::logic_error through
-/// SKINMESH_ASSERT_MSG): at most 2^31 - 1 vertices (PLY int indices), normals
-/// empty or one per vertex, attributes one value per vertex (integers in the
-/// int32 range) named by one word, every triangle index in range.
 void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes) {
   const std::size_t n = m.positions.size();
   SKINMESH_ASSERT_MSG(n <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()),
@@ -115,8 +107,6 @@ void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& at
   for (const auto& t : m.triangles)
     for (Index v : t) SKINMESH_ASSERT_MSG(v < n, "triangle index out of range");
 }
-
-}  // namespace
 
 namespace {
 

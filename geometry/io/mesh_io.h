@@ -44,6 +44,13 @@ std::optional<MeshFormat> mesh_format_of(const std::string& path);
 /// (expected .ply, .off, .obj, .stl or .vtk)").
 MeshFormat mesh_format_from_extension(const std::string& path);
 
+/// Checks the preconditions of write_mesh() (std::logic_error through
+/// SKINMESH_ASSERT_MSG): at most 2^31 - 1 vertices (PLY int indices), normals
+/// empty or one per vertex, attributes one value per vertex (integers in the
+/// int32 range) named by one word, every triangle index in range. For writers
+/// of other formats built on this layer (skin/skin_mesh_io's MSMS).
+void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes = {});
+
 /// Writes `mesh` and its per-vertex `attributes` to `path` in the format of its
 /// extension:
 /// - .ply: binary little-endian PLY; element vertex with x, y, z, then nx, ny, nz

@@ -13,16 +13,27 @@
 
 using namespace skinmesh;
 
+namespace {
+
+/// Uniform doubles in [0, 1) from a 64-bit linear congruential generator
+/// (Knuth's MMIX constants): the same sequence on every platform.
+struct Uniform {
+  std::uint64_t seed;
+  explicit Uniform(std::uint64_t s) : seed(s) {}
+  double operator()() {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) / double(1ull << 53);
+  }
+};
+
+}  // namespace
+
 TEST_SUITE("geometry") {
 
 TEST_CASE("coarse_ccw_angle: within 2e-5 rad of ccw_angle for tangents of any length, 0 for a zero tangent") {
   // Random unit normals and tangent pairs at random lengths (1e-9 to 1e3),
   // plus the octant boundaries (angles k * 45°), against the exact angle.
-  std::uint64_t seed = 12345;
-  auto uniform = [&] {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return double(seed >> 11) / double(1ull << 53);
-  };
+  Uniform uniform(12345);
   double worst = 0;
   for (int i = 0; i < 20000; ++i) {
     const Vec3 n = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
@@ -49,11 +60,7 @@ TEST_CASE(
   // every pair of directions the angle difference lies between the
   // pseudo-angle difference and twice it, and a certain verdict of
   // pseudo_exceeds agrees with the angles for tolerances from 1e-9 to 1.
-  std::uint64_t seed = 777;
-  auto uniform = [&] {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return double(seed >> 11) / double(1ull << 53);
-  };
+  Uniform uniform(777);
   const Vec3 n(0, 0, 1), e(1, 0, 0);
   std::vector<Vec3> dirs = {Vec3(1, 0.0, 0), Vec3(1, -0.0, 0), Vec3(-1, 0.0, 0), Vec3(-1, -0.0, 0),
                             Vec3(0.0, 1, 0), Vec3(-0.0, 1, 0), Vec3(0.0, -1, 0), Vec3(-0.0, -1, 0)};
@@ -87,11 +94,7 @@ TEST_CASE(
 }
 
 TEST_CASE("coarse_atan2: within kCoarseAtan2Error of atan2 taken in [0, 2 pi), on every octant") {
-  std::uint64_t seed = 4242;
-  auto uniform = [&] {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return double(seed >> 11) / double(1ull << 53);
-  };
+  Uniform uniform(4242);
   double worst = 0;
   for (int i = 0; i < 100000; ++i) {
     const double t = 2 * kPi * uniform(), len = std::pow(10.0, -6 + 12 * uniform());
