@@ -374,9 +374,7 @@ bool SampleTriangulation::refine(int max_rounds) {
 
 geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_ids, skin::SkinVertexData* data) const {
   geometry::IndexedMesh mesh;
-  skin::SkinVertexData ignored;
-  skin::SkinVertexData& out = data != nullptr ? *data : ignored;
-  out = skin::SkinVertexData();
+  if (data != nullptr) *data = skin::SkinVertexData();
   std::vector<Index> local(dt_.vertex_capacity(), kInvalidIndex);
   std::vector<std::array<Index, 3>> tris;
   for_each_restricted_facet([&](Index, int, const std::array<Index, 3>& tri) {
@@ -390,16 +388,13 @@ geometry::IndexedMesh SampleTriangulation::extract(std::vector<Index>* vertex_id
     local[v] = static_cast<Index>(mesh.positions.size());
     const Vec3& x = dt_.point(v);
     mesh.positions.push_back(x);
-    if (DelaunayTriangulation::is_bounding(v)) {
-      mesh.normals.push_back(Vec3::UnitZ());
-      out.atom.push_back(-1);
-      out.rho.push_back(0);
-      out.patch.push_back(0);
-    } else {
-      mesh.normals.push_back(mc.gradient(cell_[v], x).normalized());
-      out.atom.push_back(static_cast<std::int32_t>(skin_->atom_of(cell_[v], x)));
-      out.rho.push_back(rho_[v]);
-      out.patch.push_back(mc.cell(cell_[v]).dim);
+    const bool bounding = DelaunayTriangulation::is_bounding(v);
+    mesh.normals.push_back(bounding ? Vec3::UnitZ() : Vec3(mc.gradient(cell_[v], x).normalized()));
+    // The vertex data only when asked: the recorder extracts a mesh per frame without it.
+    if (data != nullptr) {
+      data->atom.push_back(bounding ? -1 : static_cast<std::int32_t>(skin_->atom_of(cell_[v], x)));
+      data->rho.push_back(bounding ? 0 : rho_[v]);
+      data->patch.push_back(bounding ? 0 : mc.cell(cell_[v]).dim);
     }
     if (vertex_ids) vertex_ids->push_back(v);
   }
