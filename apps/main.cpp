@@ -10,7 +10,7 @@
 //
 // Exit codes: 0 success; 1 bad input or a mesh that fails `check`; 2 bad
 // command line; 3 the algorithm failed (or the mesh failed its checks);
-// 4 internal error.
+// 4 internal error; 5 `mesh --timeout` reached (nothing written).
 #include <iostream>
 #include <stdexcept>
 #include <string>

@@ -2,10 +2,15 @@
 // algorithm (mesher/pipeline.h), verify it, write it and, with --stats, the
 // run's summary (mesher/summary.h). Several inputs: batch.cpp.
 #include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "apps/mesh_command.h"
 #include "apps/output.h"
@@ -26,6 +31,41 @@ std::size_t peak_memory_bytes() {
   return 0;
 }
 
+/// --timeout: while armed, ends the process with one line on stderr and exit
+/// code 5 once `seconds` have passed. It is disarmed before anything is
+/// written, so a timed-out run leaves no file behind.
+class Watchdog {
+ public:
+  explicit Watchdog(double seconds) {
+    if (!(seconds > 0)) return;
+    thread_ = std::thread([this, seconds] {
+      std::unique_lock lock(mutex_);
+      if (cv_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return disarmed_; })) return;
+      std::fprintf(stderr, "\nerror: timeout: still meshing after the limit of %g s (--timeout); nothing written\n",
+                   seconds);
+      std::fflush(stderr);
+      std::_Exit(5);
+    });
+  }
+  /// Stops the watchdog (before the output is written).
+  void disarm() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard lock(mutex_);
+      disarmed_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+  ~Watchdog() { disarm(); }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool disarmed_ = false;
+  std::thread thread_;
+};
+
 int run_mesh(MeshArgs& a) {
   // Unknown extension or unwritable folder: fail before the work.
   skin::require_mesh_format(a.out);
@@ -35,6 +75,7 @@ int run_mesh(MeshArgs& a) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  Watchdog watchdog(a.timeout);
 
   const skin::Molecule mol = load_molecule(a.mol);
   const double read_s = since(start);
@@ -43,6 +84,7 @@ int run_mesh(MeshArgs& a) {
   ProgressReporter progress(!a.mol.quiet);
   options.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
   const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  watchdog.disarm();
   progress.finish();
 
   const bool failed = !res.ok();
@@ -92,7 +134,8 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
   else if (batch_run && mesh.out_dir.empty())
     problem = "several inputs (or --list) need -O DIR, the output folder";
   else if (batch_run)
-    for (const char* name : {"--output", "--stats", "--trace", "--paranoid", "--max-steps", "--dump-partial"})
+    for (const char* name :
+         {"--output", "--stats", "--trace", "--paranoid", "--max-steps", "--dump-partial", "--timeout"})
       if (cmd.count(name) > 0) {
         problem = std::string(name) + " applies to one input, not to a batch run (-O)";
         break;
@@ -102,10 +145,11 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
     return false;
   }
   if (!batch_run) mesh.mol.input = mesh.mol.inputs.front();
-  return options_fit_algorithm(cmd, mesh.algorithm == "dynamic",
-                               {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction",
-                                "--disc-factor", "--no-angle-improvement", "--no-growth", "--growth-step"},
-                               {"--no-growth", "--growth-step"});
+  return options_fit_algorithm(
+      cmd, mesh.algorithm == "dynamic",
+      {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
+       "--no-angle-improvement", "--no-fallback", "--no-growth", "--growth-step"},
+      {"--no-growth", "--growth-step"});
 }
 
 }  // namespace
@@ -173,12 +217,21 @@ Command add_mesh_command(CLI::App& app) {
                 "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
                 "the paper's algorithm alone; papers/refine/angle_improvement.md)");
   add_threads_option(*cmd, mesh.opt.threads, "0: every core", "mesh is, byte for byte,");
+  cmd->add_option("--timeout", mesh.timeout,
+                  "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
+                  "this many seconds (nothing is written; 0: no limit)")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
   cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
   const char* debug = "Debugging the sweep (papers/front/sweep.md)";
   cmd->add_flag("--paranoid", mesh.opt.sweep.paranoid, "check for folds after every operation of the sweep")
       ->group(debug);
   cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
+  cmd->add_flag("--no-fallback{false}", mesh.opt.sweep.patch_fallback,
+                "stop with an error where the front tangles instead of re-meshing the region by restricted "
+                "Delaunay (papers/front/patch.md)")
+      ->group(debug);
   cmd->add_option("--max-steps", mesh.opt.sweep.max_steps, "stop the sweep after N departures")
       ->check(number_at_least_zero(false))
       ->group(debug);

@@ -27,6 +27,8 @@ struct MeshArgs {
   std::string out_dir, list, batch_format = "ply";
   int jobs = 1;
   bool threads_given = false;
+  /// --timeout: seconds that reading and meshing one input may take (0: no limit).
+  double timeout = 0;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height

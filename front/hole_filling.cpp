@@ -95,8 +95,9 @@ bool fill_hole_dp(FrontState& fs, const std::vector<Vertex>& poly) {
   return true;
 }
 
-Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly) {
-  std::vector<Vertex> rim;  // surviving corners of the deleted faces
+Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly, std::vector<Vertex>* rim_out) {
+  std::vector<Vertex> local_rim;
+  std::vector<Vertex>& rim = rim_out ? *rim_out : local_rim;  // surviving corners of the deleted faces
   // Deletes every face around the vertices `around`; their corners that keep
   // a face join the rim.
   auto delete_faces_around = [&](const std::vector<Vertex>& around) {
@@ -196,6 +197,15 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
   if (fs.tracing)
     fs.tracef("re-opened %zu faces around a tangled small hole of %zu vertices\n", region.size(), poly.size());
   return true;
+}
+
+void leave_hole_for_seal(FrontState& fs, const std::vector<Vertex>& poly) {
+  ++fs.stats.left_holes;
+  for (Vertex x : poly) {
+    fs.set_state(x, VState::Held);
+    fs.held_by[x] = kInvalidIndex;
+  }
+  if (fs.tracing) fs.tracef("left a tangled small hole of %zu vertices for the seal\n", poly.size());
 }
 
 }  // namespace skinmesh::front::detail

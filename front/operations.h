@@ -180,13 +180,35 @@ void close_small_hole(FrontState& fs, Vertex v);
 /// corners and create no existing edge; false if there is none.
 bool fill_hole_dp(FrontState& fs, const std::vector<Vertex>& poly);
 /// Deletes the faces incident to the vertices of `poly` and returns a
-/// boundary half-edge of the enlarged hole (invalid if it pinched).
-Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly);
+/// boundary half-edge of the enlarged hole (invalid if it pinched); the
+/// surviving corners of the deleted faces go to `rim` if given.
+Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly, std::vector<Vertex>* rim = nullptr);
 /// Deletes the faces around `poly`, grown until no corner is pinched, and puts
 /// the corners that keep a face back on the front and in the queue, so that
 /// the sweep re-meshes the region. False (nothing changed) if the region would
 /// not stop pinching or a vertex was re-opened too often.
 bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly);
+/// Leaves the tangled small hole `poly` open for the seal: its vertices are
+/// held by no critical point (as stuck ones are), so that the sweep goes on
+/// around it (papers/front/patch.md).
+void leave_hole_for_seal(FrontState& fs, const std::vector<Vertex>& poly);
+
+// ---------------------------------------------------------------------------
+// Not in the paper: the fallback where the front tangles (patch.cpp)
+
+/// Re-meshes a region around the vertices `around` (a hole that cannot be
+/// closed): the faces within a few rings of them are replaced by the
+/// restricted Delaunay triangulation of a sample of the skin inside the
+/// region (the region's own vertices, thinned, and surface Delaunay centres
+/// inserted until every patch facet meets [U]), conforming to the region's
+/// boundary loop, embedded among the kept faces around it and outward at
+/// every corner; the region grows by rings until such a patch exists.
+/// Returns false (mesh unchanged) if none does within the largest region, or
+/// if SweepOptions::patch_fallback is off. Counts patched_holes and
+/// patch_faces. If none of `around` is left (an enlargement deleted the
+/// hole's neighbourhood), the region starts from the front vertices nearest
+/// to `near` (Å).
+bool patch_hole(FrontState& fs, const std::vector<Vertex>& around, const Vec3& near);
 
 // ---------------------------------------------------------------------------
 // The front's geometry in tangent planes (front_geometry.cpp)

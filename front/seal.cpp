@@ -50,6 +50,14 @@ bool simple_ccw(const std::vector<std::array<double, 2>>& P) {
   return true;
 }
 
+/// The fallback at the seal (patch_hole), told to the observer.
+bool patch(FrontState& fs, const std::vector<Vertex>& around, const Vec3& near) {
+  const std::size_t f0 = fs.mesh.faces_size();
+  if (!patch_hole(fs, around, near)) return false;
+  fs.notify(SweepOperation::Patch, Vertex(), kInvalidIndex, f0);
+  return true;
+}
+
 }  // namespace
 
 void seal_all(FrontState& fs) {
@@ -100,7 +108,10 @@ void seal_loop(FrontState& fs, Halfedge start, int enlargements_left, bool in_sw
   Vec3 nbar = Vec3::Zero();
   for (Vertex v : poly) plane.centre += fs.mesh.position(v), nbar += fs.normal[v];
   plane.centre /= double(poly.size());
-  if (nbar.norm() == 0) throw TopologyError("seal: hole with a degenerate average normal");
+  if (nbar.norm() == 0) {
+    if (!in_sweep && patch(fs, poly, fs.mesh.position(poly.front()))) return;
+    throw TopologyError("seal: hole with a degenerate average normal");
+  }
   nbar.normalize();
   std::vector<Vec3> planes{nbar};
   {
@@ -131,16 +142,24 @@ void seal_loop(FrontState& fs, Halfedge start, int enlargements_left, bool in_sw
     if (in_sweep) {
       if (fs.tracing) fs.tracef("%s: re-opening it\n", os.str().c_str());
       if (reopen_hole(fs, poly)) return;
+      if (fs.opt.patch_fallback) {
+        leave_hole_for_seal(fs, poly);
+        return;
+      }
       os << "; re-opening it pinched the front";
     } else if (enlargements_left > 0) {
       if (fs.tracing) fs.tracef("%s: enlarging it\n", os.str().c_str());
-      const Halfedge h = enlarge_hole(fs, poly);
+      std::vector<Vertex> rim;
+      const Halfedge h = enlarge_hole(fs, poly, &rim);
       ++fs.stats.enlarged_holes;
       if (h.is_valid()) {
         seal_loop(fs, h, enlargements_left - 1);
         return;
       }
+      if (patch(fs, rim, plane.centre)) return;
       os << "; enlarging it pinched the front";
+    } else if (patch(fs, poly, plane.centre)) {
+      return;
     }
     throw TopologyError(os.str());
   }
@@ -198,6 +217,11 @@ void seal_loop(FrontState& fs, Halfedge start, int enlargements_left, bool in_sw
         }
         fs.opt.trace(os.str());
       }
+      if (in_sweep && fs.opt.patch_fallback) {
+        leave_hole_for_seal(fs, poly);
+        return;
+      }
+      if (!in_sweep && patch(fs, poly, plane.centre)) return;
       std::ostringstream os;
       os << "seal: no ear in a hole of " << k << " vertices near (" << plane.centre.transpose() << ")";
       throw TopologyError(os.str());

@@ -150,6 +150,8 @@ const char* operation_name(SweepOperation op) {
       return "small hole";
     case SweepOperation::Seal:
       return "seal";
+    case SweepOperation::Patch:
+      return "patch";
   }
   return "?";
 }

@@ -26,11 +26,12 @@ struct SweepStats;
 /// vertex, Figure 6; it may end in a contact, which joins two front parts),
 /// wings (Figure 7), hold (a front vertex stops in a protecting sphere),
 /// bridge (Figure 8) and seal (a hole closed at the end), and the project's
-/// small hole (a hole closed during the sweep, papers/front/hole_filling.md).
-enum class SweepOperation : unsigned char { Creation, Creep, Wings, Hold, Bridge, SmallHole, Seal };
+/// small hole (a hole closed during the sweep, papers/front/hole_filling.md)
+/// and patch (a tangled region re-meshed by the fallback, papers/front/patch.md).
+enum class SweepOperation : unsigned char { Creation, Creep, Wings, Hold, Bridge, SmallHole, Seal, Patch };
 
 /// Lower-case name of an operation ("creation", "creep", "wings", "hold",
-/// "bridge", "small hole", "seal").
+/// "bridge", "small hole", "seal", "patch").
 const char* operation_name(SweepOperation op);
 
 /// One operation of the sweep as an observer sees it, right after it ran
@@ -150,6 +151,17 @@ struct SweepOptions {
   /// [measured]
   int max_pinch_rounds = 4;
 
+  // The fallback where the front tangles, not in the paper (papers/front/patch.md).
+  /// A hole that the seal cannot close (tangled in every plane after its
+  /// enlargements, or without an ear), and a small hole met during the sweep
+  /// that cannot be re-opened (left open for the seal), are re-meshed: the
+  /// faces of a region around them are replaced by the restricted Delaunay
+  /// triangulation of a sample of the skin conforming to the region's
+  /// boundary, the region growing until that patch is valid. False: such a
+  /// hole stops the sweep with TopologyError (the tests of the fallback
+  /// compare both).
+  bool patch_fallback = true;
+
   // Reporting and debugging aids (papers/front/sweep.md, "Debugging aids").
   /// Called now and then with the stage name "sweep" and the fraction of the
   /// height range swept (0..1); empty: no progress reports.
@@ -191,6 +203,9 @@ struct SweepStats {
   std::size_t collisions = 0;      ///< fans that would have come within collision_radius · r of another vertex
   std::size_t released = 0;        ///< saddles whose holds were released unbridged
   std::size_t merged_minima = 0;   ///< minima left without a bowl: it would have overlapped a neighbouring bowl
+  std::size_t left_holes = 0;      ///< tangled small holes during the sweep left open for the seal (fallback)
+  std::size_t patched_holes = 0;   ///< holes whose region the fallback re-meshed (papers/front/patch.md)
+  std::size_t patch_faces = 0;     ///< faces the fallback's patches added
 };
 
 /// The closed mesh produced by the sweep, before the local refinement.

@@ -419,10 +419,17 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     steps.push_back(pending.take(stage, std::move(counters)));
   };
   auto sweep_counters = [](const front::SweepStats& s) {
-    return json{{"creations", s.creations}, {"creeps", s.creeps},     {"contacts", s.contacts},
-                {"wings", s.wings},         {"held", s.held},         {"bridges", s.bridges},
-                {"seals", s.seals},         {"deferred", s.deferred}, {"collisions", s.collisions},
-                {"stuck", s.stuck}};
+    json j{{"creations", s.creations}, {"creeps", s.creeps},     {"contacts", s.contacts},
+           {"wings", s.wings},         {"held", s.held},         {"bridges", s.bridges},
+           {"seals", s.seals},         {"deferred", s.deferred}, {"collisions", s.collisions},
+           {"stuck", s.stuck}};
+    // The fallback's counters appear once it has been used (a sweep that needs
+    // none records the same trace as one without a fallback).
+    if (s.left_holes + s.patched_holes > 0) {
+      j["left_holes"] = s.left_holes;
+      j["patched_holes"] = s.patched_holes;
+    }
+    return j;
   };
   json last_sweep_counters = json::object();
   auto refine_counters = [&] {
@@ -480,10 +487,13 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
       case front::SweepOperation::Seal:
         text = "seal: a hole closed with " + tris;
         break;
+      case front::SweepOperation::Patch:
+        text = "patch (fallback): a tangled region re-meshed by restricted Delaunay, " + tris;
+        break;
     }
     pending.add(name, text, focus, ev.critical);
     const bool key = ev.op == front::SweepOperation::Creation || ev.op == front::SweepOperation::Bridge ||
-                     ev.op == front::SweepOperation::Seal;
+                     ev.op == front::SweepOperation::Seal || ev.op == front::SweepOperation::Patch;
     last_sweep_counters = sweep_counters(ev.stats);
     if (key || pending.n >= every_sweep) record("sweep", ev.mesh, last_sweep_counters);
   };
