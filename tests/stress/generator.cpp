@@ -747,6 +747,195 @@ void duplicates(Suite& s) {
 }
 
 /// Appends a rotated and translated twin of every second case of each family.
+// The fallback's families: membranes, cages in shells, dense packings, channels ------------------------
+
+/// Height directions per geometry of the fallback's families. [measured]
+/// The height direction decides where the fronts meet: a molecule that meshes
+/// in one direction may tangle in another.
+constexpr int kDirectionsPerGeometry = 6;
+
+/// Adds `c` swept in kDirectionsPerGeometry random directions ("/dK"); every
+/// third of them is also rotated and translated.
+void add_directions(Suite& s, const StressCase& base) {
+  for (int k = 0; k < kDirectionsPerGeometry; ++k) {
+    StressCase c = base;
+    c.name += "/d" + std::to_string(k);
+    c.seed = case_seed(s.seed, c.name);
+    Rng rng(c.seed);
+    c.direction = rng.unit_vector();
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "; height direction (%.3f, %.3f, %.3f)", c.direction.x(), c.direction.y(),
+                  c.direction.z());
+    c.note += buf;
+    if (k % 3 == 2) c = rotated_translated(c, rng);
+    s.cases.push_back(std::move(c));
+  }
+}
+
+/// A patch of a lipid bilayer: n x n lipids per leaflet, 8 Å apart (jittered),
+/// each a head group of four atoms and two zigzag tails of `tail` carbons
+/// (1.27 Å steps, slightly tilted); the leaflets' tails meet in the middle.
+std::vector<StressAtom> bilayer(int n, int tail, Rng& rng) {
+  std::vector<StressAtom> atoms;
+  const double spacing = 8.0, step = 1.27;
+  const struct {
+    double dx, dy, dz, r;
+  } head[] = {{0, 0, 3.0, 1.8}, {1.5, 0.5, 1.6, 1.9}, {-1.2, 0.8, 0.4, 1.52}, {0.3, -0.9, -0.9, 1.52}};
+  for (const double side : {1.0, -1.0})
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double x0 = i * spacing + rng.uniform(-1, 1), y0 = j * spacing + rng.uniform(-1, 1);
+        const double ztop = side * (tail * step + 6.0) + rng.uniform(-0.8, 0.8);
+        for (const auto& h : head) atoms.push_back({Vec3(x0 + h.dx, y0 + h.dy, ztop + side * h.dz), h.r});
+        for (const double ox : {-2.2, 2.2}) {
+          const double tx = rng.uniform(-0.15, 0.15), ty = rng.uniform(-0.15, 0.15);
+          double z = ztop - side * 1.5;
+          for (int c = 0; c < tail; ++c, z -= side * step)
+            atoms.push_back({Vec3(x0 + ox + (c % 2 ? 0.42 : -0.42) + tx * c, y0 + ty * c, z), 1.7});
+        }
+      }
+  return atoms;
+}
+
+void membranes(Suite& s) {
+  for (const int n : {2, 3})
+    for (const double p : kProbes) {
+      StressCase c = s.begin("membrane", "bilayer" + std::to_string(n) + "x" + std::to_string(n));
+      Rng rng(c.seed);
+      c.probe = p;
+      c.atoms = bilayer(n, 10, rng);
+      c.note = "two leaflets of " + std::to_string(n * n) + " lipid-like chains";
+      c.name += "/p" + num(p);
+      add_directions(s, c);
+    }
+}
+
+/// The 12 vertices of an icosahedron on the unit sphere.
+std::vector<Vec3> icosahedron() {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> v;
+  for (const double a : {-1.0, 1.0})
+    for (const double b : {-g, g}) {
+      v.push_back(Vec3(0, a, b).normalized());
+      v.push_back(Vec3(a, b, 0).normalized());
+      v.push_back(Vec3(b, 0, a).normalized());
+    }
+  return v;
+}
+
+/// Points of a class-I geodesic sphere of frequency f and radius rs:
+/// 10 f² + 2 of them (each icosahedron face split into f² triangles, projected).
+std::vector<Vec3> geodesic_sphere(int f, double rs) {
+  const std::vector<Vec3> v = icosahedron();
+  double edge = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t j = i + 1; j < v.size(); ++j) edge = std::min(edge, (v[i] - v[j]).norm());
+  auto is_edge = [&](std::size_t i, std::size_t j) { return std::abs((v[i] - v[j]).norm() - edge) < 1e-9; };
+  std::vector<Vec3> pts;
+  auto add = [&](const Vec3& x) {
+    for (const Vec3& q : pts)
+      if ((q - x).norm() < 1e-9 * rs) return;
+    pts.push_back(x);
+  };
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t j = i + 1; j < v.size(); ++j)
+      for (std::size_t k = j + 1; k < v.size(); ++k) {
+        if (!is_edge(i, j) || !is_edge(j, k) || !is_edge(i, k)) continue;
+        for (int a = 0; a <= f; ++a)
+          for (int b = 0; a + b <= f; ++b) add(rs * (a * v[i] + b * v[j] + (f - a - b) * v[k]).normalized());
+      }
+  return pts;
+}
+
+/// The 60 vertices of a truncated icosahedron (a C60 cage) of circumradius rc:
+/// the cyclic permutations of (0, ±1, ±3g), (±1, ±(2 + g), ±2g), (±g, ±2, ±g³).
+std::vector<Vec3> truncated_icosahedron(double rc) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> pts;
+  for (const Vec3& b : {Vec3(0, 1, 3 * g), Vec3(1, 2 + g, 2 * g), Vec3(g, 2, g * g * g)})
+    for (int perm = 0; perm < 3; ++perm) {
+      const Vec3 q(b[perm], b[(perm + 1) % 3], b[(perm + 2) % 3]);
+      for (int signs = 0; signs < 8; ++signs) {
+        const Vec3 x(signs & 1 ? -q.x() : q.x(), signs & 2 ? -q.y() : q.y(), signs & 4 ? -q.z() : q.z());
+        bool seen = false;
+        for (const Vec3& y : pts) seen |= (x - y).norm() < 1e-12;
+        if (!seen) pts.push_back(x);
+      }
+    }
+  for (Vec3& x : pts) x *= rc / x.norm();
+  return pts;
+}
+
+void cages(Suite& s) {
+  const struct {
+    const char* name;
+    double cage_radius;
+    int frequency;
+    double shell_radius;
+  } configs[] = {{"c60-in-geodesic6", 8.7, 6, 20.0}, {"c60-in-geodesic5", 6.5, 5, 16.0}};
+  for (const auto& cfg : configs)
+    for (const double p : kProbes) {
+      StressCase c = s.begin("cage", cfg.name);
+      c.probe = p;
+      for (const Vec3& x : truncated_icosahedron(cfg.cage_radius)) c.atoms.push_back({x, 1.7});
+      for (const Vec3& x : geodesic_sphere(cfg.frequency, cfg.shell_radius)) c.atoms.push_back({x, 1.7});
+      c.note = "a C60-like cage of radius " + num(cfg.cage_radius) + " Å inside a geodesic shell of radius " +
+               num(cfg.shell_radius) + " Å";
+      c.name += "/p" + num(p);
+      add_directions(s, c);
+    }
+}
+
+/// n atoms uniform in a ball whose radius gives a van der Waals packing
+/// fraction `fraction`, with no clash removed (a low-resolution model's
+/// overlapping atoms); radii uniform in [1.5, 2.0] Å.
+std::vector<StressAtom> dense_packing(int n, double fraction, Rng& rng) {
+  const double rb = std::cbrt(n * 1.75 * 1.75 * 1.75 / fraction);
+  std::vector<StressAtom> atoms;
+  while (static_cast<int>(atoms.size()) < n) {
+    const Vec3 x(rng.uniform(-rb, rb), rng.uniform(-rb, rb), rng.uniform(-rb, rb));
+    if (x.norm() <= rb) atoms.push_back({x, rng.uniform(1.5, 2.0)});
+  }
+  return atoms;
+}
+
+void packings(Suite& s) {
+  for (const int n : {200, 400})
+    for (const double p : kProbes) {
+      StressCase c = s.begin("packing", "dense" + std::to_string(n));
+      Rng rng(c.seed);
+      c.probe = p;
+      c.atoms = dense_packing(n, 0.65, rng);
+      c.note = std::to_string(n) + " atoms at packing fraction 0.65, clashes kept";
+      c.name += "/p" + num(p);
+      add_directions(s, c);
+    }
+}
+
+void channels(Suite& s) {
+  const struct {
+    const char* name;
+    int per_ring, rings;
+    double ring_radius, rise;
+  } configs[] = {{"narrow", 8, 10, 4.6, 2.6}, {"wide", 11, 14, 6.4, 2.8}};
+  for (const auto& cfg : configs)
+    for (const double p : kProbes) {
+      StressCase c = s.begin("channel", cfg.name);
+      Rng rng(c.seed);
+      c.probe = p;
+      for (int k = 0; k < cfg.rings; ++k)
+        for (int i = 0; i < cfg.per_ring; ++i) {
+          const double phi = 2 * kPi * (i + 0.5 * (k % 2)) / cfg.per_ring;
+          const double rr = cfg.ring_radius + rng.uniform(-0.2, 0.2);
+          c.atoms.push_back({Vec3(rr * std::cos(phi), rr * std::sin(phi), k * cfg.rise), rng.uniform(1.6, 1.8)});
+        }
+      c.note = "a tube of " + std::to_string(cfg.rings) + " rings of " + std::to_string(cfg.per_ring) +
+               " atoms, radius " + num(cfg.ring_radius) + " Å: a channel or a pore";
+      c.name += "/p" + num(p);
+      add_directions(s, c);
+    }
+}
+
 void add_twins(Suite& s) {
   const std::size_t n = s.cases.size();
   std::string family;
@@ -778,10 +967,15 @@ std::vector<StressCase> generate_suite(std::uint64_t suite_seed) {
   thresholds(s);
   duplicates(s);
   add_twins(s);
+  // The fallback's families bring their own directions and transforms.
+  membranes(s);
+  cages(s);
+  packings(s);
+  channels(s);
   // Keep each family together: twins after their family's base cases.
   std::stable_sort(s.cases.begin(), s.cases.end(), [](const StressCase& a, const StressCase& b) {
-    static const std::vector<std::string> order = {"cluster", "protein", "lattice",   "shell",
-                                                   "ring",    "helix",   "threshold", "duplicate"};
+    static const std::vector<std::string> order = {"cluster",   "protein",   "lattice",  "shell", "ring",    "helix",
+                                                   "threshold", "duplicate", "membrane", "cage",  "packing", "channel"};
     auto rank = [](const std::string& f) { return std::find(order.begin(), order.end(), f) - order.begin(); };
     return rank(a.family) < rank(b.family);
   });

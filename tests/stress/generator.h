@@ -73,7 +73,8 @@ struct StressAtom {
 struct StressCase {
   /// Unique name, "family/parameters/pPROBE[/rt]".
   std::string name;
-  /// The family: cluster, protein, lattice, shell, ring, helix, threshold, duplicate.
+  /// The family: cluster, protein, lattice, shell, ring, helix, threshold, duplicate,
+  /// membrane, cage, packing, channel.
   std::string family;
   /// Seed of the case's own generator (see case_seed()); with the suite seed
   /// and the name it reproduces the case.
@@ -88,11 +89,13 @@ struct StressCase {
   bool singular = false;
   /// Rotated by a random rotation and translated by up to 1e6 Å.
   bool transformed = false;
+  /// Height direction of the sweep (unit); zero: the pipeline's default.
+  Vec3 direction = Vec3::Zero();
   /// One line on what the case tests (thresholds, spacings in Å).
   std::string note;
 };
 
-/// The default suite (about 330 cases) of seed `suite_seed`, in family order.
+/// The default suite (about 520 cases) of seed `suite_seed`, in family order.
 std::vector<StressCase> generate_suite(std::uint64_t suite_seed);
 
 /// `count` further random cases (clusters, pseudo-proteins, rings, threshold
