@@ -212,7 +212,8 @@ void bridge(FrontState& fs, Halfedge ab, Halfedge cd, Index c, const Rails& rail
     // front vertex; the grid makes this local (a scan of all vertices made the
     // sweep quadratic in the bridge count).
     std::vector<Index> near;
-    fs.front_grid->for_each_near(centre, reach, fs.mesh.positions().vector(), [&](Index xi, const Vec3& q) {
+    const auto [lo, hi] = FrontState::local_scales(fs.ms.critical[c].rho, reach);
+    fs.front_grid->for_each_near(centre, reach, lo, hi, fs.mesh.positions().vector(), [&](Index xi, const Vec3& q) {
       if ((q - centre).norm() < reach) near.push_back(xi);
     });
     std::sort(near.begin(), near.end());  // the order of the scan it replaces

@@ -39,7 +39,9 @@ bool try_contact(FrontState& fs, Vertex v, const Corner& k) {
   double best_d = std::numeric_limits<double>::infinity();
   // Every vertex whose state is not Interior is in front_grid (set_state).
   const auto& positions = fs.mesh.positions().vector();
-  fs.front_grid->for_each_near(pv, fs.opt.contact_radius * r, positions, [&](Index xi, const Vec3& px) {
+  const double reach = fs.opt.contact_radius * r;
+  const auto [lo, hi] = FrontState::local_scales(fs.rho[v], reach);
+  fs.front_grid->for_each_near(pv, reach, lo, hi, positions, [&](Index xi, const Vec3& px) {
     const Vertex x(xi);
     if (x == v || fs.state[x] == VState::Interior || fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x) ||
         !fs.mesh.is_boundary(x))
@@ -107,19 +109,21 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
   // The first fan point (in fan order) with such a vertex; of its vertices,
   // the nearest, ties to the lower index (independent of the grid's order).
   Vertex hit;
+  // The points within collision_radius · r of a fan point are within
+  // (1 + collision_radius) r of v: the vertex grid has them in v's level.
   for (int i = 1; i < m && !hit.is_valid(); ++i) {
     const Vec3 q = pv + r * rotate(k.dw, n, i * k.angle / m);
     double hit_d = std::numeric_limits<double>::infinity();
-    fs.vertex_grid->for_each_near(q, fs.opt.collision_radius * r, fs.mesh.positions().vector(),
-                                  [&](Index xi, const Vec3& px) {
-                                    const Vertex x(xi);
-                                    if (x == v || x == k.u || x == k.w || fs.mesh.is_deleted(x)) return;
-                                    if (fs.mesh.is_isolated(x) || fs.normal[x].dot(n) <= fs.opt.min_normal_cosine)
-                                      return;
-                                    // a front vertex, or an interior one: the fan would cover meshed surface
-                                    const double d = (px - q).squaredNorm();
-                                    if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
-                                  });
+    fs.vertex_grid->for_each_near_at(q, fs.opt.collision_radius * r, fs.rho[v], fs.mesh.positions().vector(),
+                                     [&](Index xi, const Vec3& px) {
+                                       const Vertex x(xi);
+                                       if (x == v || x == k.u || x == k.w || fs.mesh.is_deleted(x)) return;
+                                       if (fs.mesh.is_isolated(x) || fs.normal[x].dot(n) <= fs.opt.min_normal_cosine)
+                                         return;
+                                       // a front vertex, or an interior one: the fan would cover meshed surface
+                                       const double d = (px - q).squaredNorm();
+                                       if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
+                                     });
   }
   if (!hit.is_valid()) return false;
   ++fs.stats.collisions;

@@ -44,26 +44,46 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   resolved.assign(nc, 0);
   held.resize(nc);
   double rmax = 0;
-  for (std::size_t i = 0; i < nc; ++i) rmax = std::max(rmax, ms.protect_radius[i]);
-  // Cells of four protecting radii: the hold query (rmax + r) then probes 1-2
-  // cells per axis; the critical points are sparse, so a probe of an empty
-  // cell costs more than reading a few more points ([measured]
-  // papers/bench/profile.md, "After": the grids' cell sizes).
-  hold_grid = std::make_unique<geometry::PointGrid>(std::max(4 * rmax, kMinGridCell));
-  for (std::size_t i = 0; i < nc; ++i)
-    if (ms.live[i] && ms.critical[i].kind != CriticalKind::Minimum)
-      hold_grid->insert(static_cast<Index>(i), ms.critical[i].position);
+  for (std::size_t i = 0; i < nc; ++i) {
+    rmax = std::max(rmax, ms.protect_radius[i]);
+    if (ms.critical[i].rho > 0) protect_factor = std::max(protect_factor, ms.protect_radius[i] / ms.critical[i].rho);
+  }
+  // A hold query at a vertex of scale rho reaches hold_reach · rho
+  // (for_each_hold_near): each critical point goes into the levels of the
+  // queries that can reach it, so that a query reads its own level alone, in
+  // cells of twice its reach at the level's largest rho (1-2 cells per axis;
+  // the critical points are sparse, so a probe of an empty cell costs more
+  // than reading a few more points: [measured] papers/bench/profile.md,
+  // "After": the grids' cell sizes).
+  hold_reach = protect_factor < 1 ? (protect_factor + opt.disc_factor) / (1 - protect_factor) * (1 + 1e-9) : 0;
+  hold_grid = std::make_unique<geometry::LeveledPointGrid>(std::max(2 * hold_reach, kMinGridCell), kGridOctaves,
+                                                           /*erasable=*/false);
+  critical_positions.resize(nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    critical_positions[i] = ms.critical[i].position;
+    if (!ms.live[i] || ms.critical[i].kind == CriticalKind::Minimum) continue;
+    const double rho_c = ms.critical[i].rho;
+    if (hold_reach > 0 && hold_reach < 1)  // queries from rho_p with |rho_c - rho_p| <= hold_reach rho_p
+      hold_grid->insert_for_queries(static_cast<Index>(i), ms.critical[i].position, rho_c / (1 + hold_reach),
+                                    rho_c / (1 - hold_reach));
+    else
+      hold_grid->insert_for_queries(static_cast<Index>(i), ms.critical[i].position, 0,
+                                    std::numeric_limits<double>::infinity());
+  }
   max_hold_radius = rmax;
   for (const auto& wp : skin.points()) rho_max = std::max(rho_max, std::sqrt(std::max(wp.w, 0.0) / 2));
-  // The front grid's cells are four disc radii at the largest scale: the
-  // contact query (1.5 r) then probes 1-2 cells per axis, and the front is a
-  // curve, so most probed cells would be empty at a finer size. The vertex
-  // grid's are one disc radius: the fan-collision query (0.5 r) reads a
-  // quarter of the points per cell ([measured] papers/bench/profile.md,
-  // "After": the grids' cell sizes).
-  vertex_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(opt.disc_factor * rho_max, kMinGridCell),
-                                                              /*erasable=*/false);
-  front_grid = std::make_unique<geometry::ErasablePointGrid>(std::max(4 * opt.disc_factor * rho_max, kMinGridCell));
+  // Per level of rho, the front grid's cells are four disc radii at the
+  // level's largest rho: the contact query (1.5 r) then probes 1-2 cells per
+  // axis, and the front is a curve, so most probed cells would be empty at a
+  // finer size. The vertex grid's are one disc radius: the fan-collision query
+  // (0.5 r) reads a quarter of the points per cell ([measured]
+  // papers/bench/profile.md, "After": the grids' cell sizes).
+  // The fan-collision query at v reads the vertices within collision_reach ·
+  // rho(v) of v (FrontState::collision_reach): each vertex goes into the
+  // levels of the queries that can reach it (new_vertex).
+  collision_reach = (1 + opt.collision_radius) * opt.disc_factor * (1 + 1e-9);
+  vertex_grid = std::make_unique<geometry::LeveledPointGrid>(opt.disc_factor, kGridOctaves, /*erasable=*/false);
+  front_grid = std::make_unique<geometry::LeveledPointGrid>(4 * opt.disc_factor, kGridOctaves);
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
   // factor for the scales below the atoms' that the front has met (new_vertex).
@@ -100,7 +120,10 @@ Vertex new_vertex(FrontState& fs, const Vec3& p, Index cell) {
   const skin::SkinSample s = fs.skin.sample(p, cell);
   if (s.rho > 0) fs.rho_min_seen = std::min(fs.rho_min_seen, s.rho);
   const Vertex v = fs.mesh.add_vertex(p);
-  fs.vertex_grid->insert(v.idx(), p);
+  if (fs.collision_reach < 1)
+    fs.vertex_grid->insert_for_queries(v.idx(), p, s.rho / (1 + fs.collision_reach), s.rho / (1 - fs.collision_reach));
+  else
+    fs.vertex_grid->insert_for_queries(v.idx(), p, 0, std::numeric_limits<double>::infinity());
   fs.normal[v] = s.gradient.normalized();
   fs.rho[v] = s.rho;
   fs.cell[v] = s.cell;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <queue>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "front/sweep.h"
@@ -41,6 +42,11 @@ inline constexpr double kWedgeTolerance = 1e-6;
 /// Smallest cell of the sweep's point grids (Å): a guard for skins whose
 /// largest radius is zero. [derived] far below any tangent-disc radius.
 inline constexpr double kMinGridCell = 1e-6;
+/// Octaves of rho per level of the sweep's grids (geometry::LeveledPointGrid).
+/// [measured] two: a query's rho range (within ±28–58 % of its own) then
+/// spans one or two levels, and a cell is at most four times its points'
+/// scale.
+inline constexpr int kGridOctaves = 2;
 /// The vertex budget's floor, and its factor over the vertices that separate
 /// spheres of the atoms would need (FrontState's constructor, new_vertex).
 /// [measured] generous: the budget is a runaway guard, not a limit a correct
@@ -141,13 +147,23 @@ struct FrontState {
   std::vector<char> resolved;             ///< saddle bridged or released (holds no more)
   std::vector<std::vector<Vertex>> held;  ///< vertices held per critical point
 
-  // Grids that keep the queries local.
-  std::unique_ptr<geometry::PointGrid> hold_grid;            ///< live saddles and maxima
-  std::unique_ptr<geometry::ErasablePointGrid> vertex_grid;  ///< every vertex: the fan-collision net
+  // Grids that keep the queries local: one level per octave of rho, so that
+  // a query reads points of its own scale only (local_scales() bounds it).
+  std::unique_ptr<geometry::LeveledPointGrid> hold_grid;    ///< live saddles and maxima, by their rho
+  std::vector<Vec3> critical_positions;                     ///< positions of the critical points (hold_grid's)
+  std::unique_ptr<geometry::LeveledPointGrid> vertex_grid;  ///< every vertex: the fan-collision net
   /// The vertices whose state is not Interior (the front, free or held): the
   /// contact search reads only these (set_state keeps it).
-  std::unique_ptr<geometry::ErasablePointGrid> front_grid;
+  std::unique_ptr<geometry::LeveledPointGrid> front_grid;
   double max_hold_radius = 0;
+  /// The largest protecting radius over rho of a critical point
+  /// (morse::MorseSmaleOptions::protect_factor).
+  double protect_factor = 0;
+  /// The hold query's reach over the querying vertex's rho, (f + c_r) / (1 - f)
+  /// (0 if f >= 1: then every critical point is in every level).
+  double hold_reach = 0;
+  /// The fan-collision query's reach over rho(v), (1 + collision_radius) c_r.
+  double collision_reach = 0;
 
   // Counters, limits and progress.
   long steps = 0;               ///< departures so far (for max_steps)
@@ -166,7 +182,7 @@ struct FrontState {
       if (s == VState::Interior)
         front_grid->erase(v.idx());
       else
-        front_grid->insert(v.idx(), mesh.position(v));
+        front_grid->insert(v.idx(), mesh.position(v), rho[v]);
     }
     state[v] = s;
   }
@@ -175,6 +191,27 @@ struct FrontState {
   /// The critical point holding x, or kInvalidIndex (x free, interior, or
   /// stuck: held by no critical point).
   Index holder_of(Vertex x) const { return state[x] == VState::Held ? held_by[x] : kInvalidIndex; }
+  /// The range [lo, hi] (Å) of rho at the skin points within distance `reach`
+  /// of a skin point of local length scale `rho`: rho is 1-Lipschitz
+  /// (papers/skin/skin_math.md §4.3), so |rho(x) - rho| <= |x - q|; padded by
+  /// a relative 1e-9 for rounding. The scale range of the grids' queries.
+  static std::pair<double, double> local_scales(double rho, double reach) {
+    const double slack = 1e-9 * (rho + reach);
+    return {rho - reach - slack, rho + reach + slack};
+  }
+  /// The live saddles and maxima c whose protecting sphere comes within `r`
+  /// of the skin point p of local length scale `rho_p` (|p - c| < r_p(c) + r),
+  /// r its disc radius: calls fn(c, position) for a superset of them. With
+  /// r_p = f rho(c) and rho 1-Lipschitz, |p - c| < (f rho_p + r) / (1 - f) and
+  /// |rho(c) - rho_p| <= |p - c| for them.
+  template <class Fn>
+  void for_each_hold_near(const Vec3& p, double rho_p, double r, Fn&& fn) const {
+    // r = disc_factor · rho_p here, so the reach is hold_reach · rho_p.
+    const double reach = hold_reach > 0 && hold_reach < 1
+                             ? (protect_factor * rho_p + r) / (1 - protect_factor) * (1 + 1e-9)
+                             : max_hold_radius + r;
+    hold_grid->for_each_near_at(p, std::min(reach, max_hold_radius + r), rho_p, critical_positions, fn);
+  }
   /// The tangent-disc radius r = disc_factor · rho at v (Å), Figure 6.
   double disc_radius(Vertex v) const { return opt.disc_factor * rho[v]; }
   Face add_triangle(Vertex a, Vertex b, Vertex c) { return mesh.add_triangle(a, b, c); }

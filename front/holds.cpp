@@ -22,7 +22,7 @@ Index hold_region(const FrontState& fs, Vertex v) {
   const double r = fs.disc_radius(v);
   Index best = kInvalidIndex;
   double best_d = std::numeric_limits<double>::infinity();
-  fs.hold_grid->for_each_near(p, fs.max_hold_radius + r, [&](Index c, const Vec3& q) {
+  fs.for_each_hold_near(p, fs.rho[v], r, [&](Index c, const Vec3& q) {
     if (fs.resolved[c]) return;
     const double d = (p - q).norm();
     // The nearest, ties to the lower index (independent of the grid's order).

@@ -529,10 +529,12 @@ bool patch_hole(FrontState& fs, const std::vector<Vertex>& around, const Vec3& n
     // boundary vertices nearest to where it was, within growing distances.
     const double r = fs.opt.disc_factor * std::max(fs.skin.sample(near).rho, kMinGridCell);
     for (double reach = 2 * r; seeds.empty() && reach < 64 * r; reach *= 2)
-      fs.front_grid->for_each_near(near, reach, fs.mesh.positions().vector(), [&](Index xi, const Vec3&) {
-        const Vertex x(xi);
-        if (!fs.mesh.is_deleted(x) && !fs.mesh.is_isolated(x) && fs.mesh.is_boundary(x)) seeds.push_back(x);
-      });
+      fs.front_grid->for_each_near(near, reach, 0.0, std::numeric_limits<double>::infinity(),
+                                   fs.mesh.positions().vector(), [&](Index xi, const Vec3&) {
+                                     const Vertex x(xi);
+                                     if (!fs.mesh.is_deleted(x) && !fs.mesh.is_isolated(x) && fs.mesh.is_boundary(x))
+                                       seeds.push_back(x);
+                                   });
     std::sort(seeds.begin(), seeds.end());
   }
   if (seeds.empty()) return false;

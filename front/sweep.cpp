@@ -33,12 +33,16 @@ void create_initial_front(FrontState& fs) {
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return fs.ms.critical[a].position.dot(fs.e) < fs.ms.critical[b].position.dot(fs.e);
   });
-  // rho never exceeds rho_max, the largest sphere radius sqrt(w/2) (as for vertex_grid).
   for (Index c : minima) {
     const morse::CriticalPoint& cp = fs.ms.critical[c];
     const double r = fs.opt.disc_factor * cp.rho;
     bool overlaps = false;
-    fs.vertex_grid->for_each_near(cp.position, r + fs.opt.disc_factor * fs.rho_max, fs.mesh.positions().vector(),
+    // A vertex x overlaps if |x - c| < r + c_r rho(x); rho being 1-Lipschitz,
+    // rho(x) <= rho(c) + |x - c|, so such an x lies within
+    // (r + c_r rho(c)) / (1 - c_r) = 2 r / (1 - c_r) of c.
+    const double reach = 2 * r / (1 - fs.opt.disc_factor) * (1 + 1e-9);
+    const auto [lo, hi] = FrontState::local_scales(cp.rho, reach);
+    fs.vertex_grid->for_each_near(cp.position, reach, lo, hi, fs.mesh.positions().vector(),
                                   [&](Index xi, const Vec3& q) {
                                     if ((q - cp.position).norm() < r + fs.disc_radius(Vertex(xi))) overlaps = true;
                                   });
@@ -50,7 +54,7 @@ void create_initial_front(FrontState& fs) {
     }
     ++fs.stats.merged_minima;
     if (fs.tracing) fs.tracef("creation: no bowl at minimum %u, it would overlap a bowl already made\n", c);
-    fs.hold_grid->for_each_near(cp.position, r + fs.max_hold_radius, [&](Index s, const Vec3& q) {
+    fs.for_each_hold_near(cp.position, cp.rho, r, [&](Index s, const Vec3& q) {
       if (fs.ms.critical[s].kind == CriticalKind::Saddle && (q - cp.position).norm() < r + fs.ms.protect_radius[s])
         fs.resolved[s] = 1;
     });

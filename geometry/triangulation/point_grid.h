@@ -3,7 +3,8 @@
 // lookup, front proximity), ErasablePointGrid, a hash grid whose points can
 // also be removed (the sweep's free front), and FlatPointGrid, a grid over a
 // fixed point set stored in flat arrays (the verifier's restricted-Delaunay
-// test).
+// test), and LeveledPointGrid, an erasable hash grid per octave of the
+// points' scales (the sweep's vertices, front and protecting spheres).
 #pragma once
 
 #include <algorithm>
@@ -214,6 +215,173 @@ class ErasablePointGrid {
   bool erasable_ = true;
   double max_abs_ = 0;  ///< largest |coordinate| inserted (Å)
   double pad_ = 0;      ///< bound on |stored - true position| (Å)
+};
+
+/// Points that each carry a scale (Å), in one hash grid per band of
+/// `octaves` octaves of scales: a point of scale s lives at level
+/// k = floor(floor(log2 s) / octaves), in cells of side
+/// cell_per_scale · 2^((k+1) octaves), so that a cell is as large as the
+/// scales of its level and not as the largest scale of the whole set. A query names the
+/// range of scales its points can have (for the sweep: the local length scale
+/// rho is 1-Lipschitz, so the points within r of a skin point q have
+/// rho(q) - r <= rho <= rho(q) + r) and visits only those levels; in each it
+/// reads the cells meeting its box, or the level's occupied cells when they
+/// are fewer. Costs thus follow the local scale: one region of large rho does
+/// not make the queries elsewhere read many points. Storage as in
+/// ErasablePointGrid (16-byte entries, contiguous per cell, removal by moving
+/// the cell's last entry; exact confirmation on the caller's positions), so a
+/// query reports exactly the points of its scale range that a scan reports.
+/// Used for the sweep's vertices, its free front and its protecting spheres.
+class LeveledPointGrid {
+ public:
+  /// Levels are clamped to [kMinLevel, kMaxLevel]: scales from about 1e-12
+  /// to 4e6 Å get their own level, smaller or larger ones share the end levels.
+  static constexpr int kMinLevel = -40, kMaxLevel = 22;
+
+  /// Pre: cell_per_scale > 0. With erasable = false the grid keeps no table
+  /// from ids to places and erase() must not be called.
+  /// Pre: octaves >= 1.
+  explicit LeveledPointGrid(double cell_per_scale, int octaves, bool erasable = true)
+      : factor_(cell_per_scale), octaves_(octaves), erasable_(erasable), level_cells_(kMaxLevel - kMinLevel + 1) {}
+
+  /// Adds point `id` at position p (finite) with scale `scale` (Å; any value:
+  /// non-positive or tiny ones go to the lowest level). Pre: id is not in the
+  /// grid; the positions passed to the queries hold p at index id.
+  void insert(Index id, const Vec3& p, double scale) { insert_at(level_of(scale), id, p); }
+  /// Adds point `id` at position p to every level whose scales meet
+  /// [scale_lo, scale_hi] (Å): the levels of the queries that can reach it, so
+  /// that such a query reads its own level alone (for_each_near_at). Pre: the
+  /// grid is not erasable (a point may have several entries).
+  void insert_for_queries(Index id, const Vec3& p, double scale_lo, double scale_hi) {
+    SKINMESH_ASSERT_MSG(!erasable_, "insert_for_queries() on an erasable grid");
+    const int last = level_of(scale_hi);
+    for (int level = level_of(scale_lo); level <= last; ++level) insert_at(level, id, p);
+  }
+  /// Calls fn(id, position) for every point inserted by insert_for_queries()
+  /// for a range of scales that holds `scale` and whose position lies within
+  /// distance r of q (as for_each_near). Reads one level.
+  template <class Fn>
+  void for_each_near_at(const Vec3& q, double r, double scale, std::span<const Vec3> positions, Fn&& fn) const {
+    const int level = level_of(scale);
+    if (level >= lowest_ && level <= highest_) visit_level(level, q, r, positions, fn);
+  }
+  /// Removes point `id`; does nothing if it is not in the grid. Pre: erasable.
+  void erase(Index id) {
+    SKINMESH_ASSERT_MSG(erasable_, "erase() on a grid made without erasure");
+    if (!contains(id)) return;
+    const Where w = where_[id];
+    std::vector<Entry>& cell = cells_[w.cell];
+    cell[w.slot] = cell.back();
+    where_[cell[w.slot].id].slot = w.slot;
+    cell.pop_back();
+    where_[id] = {kNone, 0};
+  }
+  /// True if point `id` is in the grid. Pre: erasable.
+  bool contains(Index id) const {
+    SKINMESH_ASSERT_MSG(erasable_, "contains() on a grid made without erasure");
+    return id < where_.size() && where_[id].cell != kNone;
+  }
+
+  /// Calls fn(id, position) for every point whose scale lies in
+  /// [scale_lo, scale_hi] (Å; its level's range meets it) and whose position
+  /// (positions[id]) lies within distance r of q, |position - q|² <= r² in
+  /// double precision. Points of other scales may be reported too, and a point
+  /// added by insert_for_queries() once per level it is in.
+  template <class Fn>
+  void for_each_near(const Vec3& q, double r, double scale_lo, double scale_hi, std::span<const Vec3> positions,
+                     Fn&& fn) const {
+    const int first = std::max(lowest_, scale_lo > 0 ? level_of(scale_lo) : kMinLevel);
+    const int last = std::min(highest_, level_of(scale_hi));
+    for (int level = first; level <= last; ++level) visit_level(level, q, r, positions, fn);
+  }
+
+  /// The level of a point of scale `scale`.
+  int level_of(double scale) const {
+    if (!(scale > 0) || !std::isfinite(scale)) return scale > 0 ? kMaxLevel : kMinLevel;
+    const int e = std::ilogb(scale);
+    const int k = e >= 0 ? e / octaves_ : -((-e + octaves_ - 1) / octaves_);  // floor(e / octaves)
+    return std::clamp(k, kMinLevel, kMaxLevel);
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = KeyIndex::kNone;
+  struct Entry {
+    float p[3];
+    Index id;
+  };
+  struct Where {
+    std::uint32_t cell, slot;
+  };
+  double side(int level) const { return std::ldexp(factor_, (level + 1) * octaves_); }
+  void insert_at(int level, Index id, const Vec3& p) {
+    const double inv = 1 / side(level);
+    const std::array<std::int64_t, 3> c{static_cast<std::int64_t>(std::floor(p.x() * inv)),
+                                        static_cast<std::int64_t>(std::floor(p.y() * inv)),
+                                        static_cast<std::int64_t>(std::floor(p.z() * inv))};
+    const auto [number, added] = keys_.find_or_add(key(level, c));
+    if (added) {
+      cells_.emplace_back();
+      level_cells_[level - kMinLevel].push_back(number);
+    }
+    if (erasable_) {
+      if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
+      where_[id] = {number, static_cast<std::uint32_t>(cells_[number].size())};
+    }
+    cells_[number].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
+    max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
+    pad_ = 1.05e-7 * max_abs_ + 1e-300;  // as ErasablePointGrid
+    lowest_ = std::min(lowest_, level), highest_ = std::max(highest_, level);
+  }
+  /// The points of one level within r of q: the cells meeting the query's
+  /// box, or the level's occupied cells when they are fewer.
+  template <class Fn>
+  void visit_level(int level, const Vec3& q, double r, std::span<const Vec3> positions, Fn&& fn) const {
+    const std::vector<std::uint32_t>& occupied = level_cells_[level - kMinLevel];
+    if (occupied.empty()) return;
+    const double r2 = r * r;
+    const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
+    auto visit = [&](std::uint32_t c) {
+      for (const Entry& e : cells_[c]) {
+        const double dx = double(e.p[0]) - q.x(), dy = double(e.p[1]) - q.y(), dz = double(e.p[2]) - q.z();
+        if (dx * dx + dy * dy + dz * dz > rp2) continue;
+        const Vec3& p = positions[e.id];
+        if ((p - q).squaredNorm() <= r2) fn(e.id, p);
+      }
+    };
+    const double inv = 1 / side(level);
+    std::int64_t lo[3], hi[3];
+    double box = 1;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = static_cast<std::int64_t>(std::floor((q[k] - rp) * inv));
+      hi[k] = static_cast<std::int64_t>(std::floor((q[k] + rp) * inv));
+      box *= double(hi[k] - lo[k] + 1);
+    }
+    if (box > double(occupied.size())) {  // fewer occupied cells than cells in the box: read them all
+      for (std::uint32_t c : occupied) visit(c);
+      return;
+    }
+    for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+      for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
+          const std::uint32_t c = keys_.find(key(level, {i, j, k}));
+          if (c != kNone) visit(c);
+        }
+  }
+  static std::uint64_t key(int level, const std::array<std::int64_t, 3>& c) {
+    // 6 bits of level, 19 bits per axis (cells beyond ±2^18 wrap, which only costs speed): 63 in all.
+    const std::uint64_t m = (1u << 19) - 1;
+    return static_cast<std::uint64_t>(level - kMinLevel) | ((static_cast<std::uint64_t>(c[0]) & m) << 6) |
+           ((static_cast<std::uint64_t>(c[1]) & m) << 25) | ((static_cast<std::uint64_t>(c[2]) & m) << 44);
+  }
+  double factor_;
+  int octaves_;
+  bool erasable_ = true;
+  KeyIndex keys_;
+  std::vector<std::vector<Entry>> cells_;                 ///< per cell number: its points
+  std::vector<std::vector<std::uint32_t>> level_cells_;   ///< per level: its cell numbers
+  std::vector<Where> where_;                              ///< per id (empty unless erasable_)
+  int lowest_ = kMaxLevel + 1, highest_ = kMinLevel - 1;  ///< levels with points so far
+  double max_abs_ = 0, pad_ = 0;
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the

@@ -163,6 +163,73 @@ TEST_CASE("point_grid: ErasablePointGrid queries equal a scan of the points pres
       }
 }
 
+TEST_CASE("point_grid: LeveledPointGrid queries equal a scan of the points present whose scale is in range") {
+  // Random clouds with scales over twelve octaves (and some zero, tiny or
+  // huge), near the origin and far from it; ids inserted and erased in random
+  // order. A range query reports every present point within r whose scale lies
+  // in its range (and may report others); a query at one scale reports exactly
+  // the points inserted for a range of scales that holds it.
+  std::mt19937_64 rng(20261124);
+  std::uniform_real_distribution<double> u(-12, 12), ur(0, 3), octave(-8, 4);
+  for (const Vec3& shift : {Vec3(0, 0, 0), Vec3(1e5, -3e4, 7e3)})
+    for (int octaves : {1, 2, 3}) {
+      std::vector<Vec3> pts = cloud(rng, 0, 400);
+      for (Vec3& p : pts) p = p.allFinite() ? Vec3(p + shift) : shift;
+      std::vector<double> scale(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        scale[i] = i % 50 == 0 ? 0.0 : i % 50 == 1 ? 1e-300 : i % 50 == 2 ? 1e300 : std::exp2(octave(rng));
+      LeveledPointGrid grid(0.5, octaves);
+      std::vector<char> present(pts.size(), 0);
+      for (int batch = 0; batch < 4; ++batch) {
+        for (int op = 0; op < 300; ++op) {
+          const Index id = Index(rng() % pts.size());
+          if (present[id] && rng() % 3 != 0) {
+            grid.erase(id);
+            present[id] = 0;
+          } else if (!present[id]) {
+            grid.insert(id, pts[id], scale[id]);
+            present[id] = 1;
+          }
+        }
+        for (std::size_t i = 0; i < pts.size(); ++i) CHECK(grid.contains(Index(i)) == bool(present[i]));
+        for (int t = 0; t < 40; ++t) {
+          const Vec3 q = Vec3(u(rng), u(rng), u(rng)) + shift;
+          const double r = t % 4 == 0 ? (pts[rng() % pts.size()] - q).norm() : ur(rng);
+          const double lo = std::exp2(octave(rng)), hi = lo * std::exp2(3 * ur(rng));
+          std::vector<Index> got;
+          grid.for_each_near(q, r, lo, hi, pts, [&](Index id, const Vec3& p) {
+            CHECK(p == pts[id]);
+            CHECK((p - q).squaredNorm() <= r * r);
+            CHECK(present[id]);
+            got.push_back(id);
+          });
+          std::sort(got.begin(), got.end());
+          CHECK(std::adjacent_find(got.begin(), got.end()) == got.end());
+          for (Index id : scan(pts, q, r))
+            if (present[id] && scale[id] >= lo && scale[id] <= hi)
+              CHECK(std::binary_search(got.begin(), got.end(), id));
+        }
+      }
+      // Points inserted for the queries of a range of scales.
+      LeveledPointGrid fixed(0.5, octaves, /*erasable=*/false);
+      std::vector<double> qlo(pts.size()), qhi(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        qlo[i] = scale[i] / 1.5, qhi[i] = scale[i] * 1.5;
+        fixed.insert_for_queries(Index(i), pts[i], qlo[i], qhi[i]);
+      }
+      for (int t = 0; t < 200; ++t) {
+        const Vec3 q = Vec3(u(rng), u(rng), u(rng)) + shift;
+        const double r = ur(rng), at = std::exp2(octave(rng));
+        std::vector<Index> got;
+        fixed.for_each_near_at(q, r, at, pts, [&](Index id, const Vec3&) { got.push_back(id); });
+        std::sort(got.begin(), got.end());
+        CHECK(std::adjacent_find(got.begin(), got.end()) == got.end());
+        for (Index id : scan(pts, q, r))
+          if (at >= qlo[id] && at <= qhi[id]) CHECK(std::binary_search(got.begin(), got.end(), id));
+      }
+    }
+}
+
 TEST_CASE("key_index: keys numbered densely in first-insertion order, across growth; absent keys not found") {
   // 20,000 random keys below 2^63 (with repeats and the largest admissible
   // key), from a table sized for 10: every number is the key's rank of first
