@@ -36,13 +36,14 @@ std::size_t peak_memory_bytes() {
 /// written, so a timed-out run leaves no file behind.
 class Watchdog {
  public:
-  explicit Watchdog(double seconds) {
+  /// `after_progress`: progress lines may be on stderr (a new line ends them first).
+  Watchdog(double seconds, bool after_progress) {
     if (!(seconds > 0)) return;
-    thread_ = std::thread([this, seconds] {
+    thread_ = std::thread([this, seconds, after_progress] {
       std::unique_lock lock(mutex_);
       if (cv_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return disarmed_; })) return;
-      std::fprintf(stderr, "\nerror: timeout: still meshing after the limit of %g s (--timeout); nothing written\n",
-                   seconds);
+      std::fprintf(stderr, "%serror: timeout: still meshing after the limit of %g s (--timeout); nothing written\n",
+                   after_progress ? "\n" : "", seconds);
       std::fflush(stderr);
       std::_Exit(5);
     });
@@ -75,7 +76,7 @@ int run_mesh(MeshArgs& a) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  Watchdog watchdog(a.timeout);
+  Watchdog watchdog(a.timeout, !a.mol.quiet);
 
   const skin::Molecule mol = load_molecule(a.mol);
   const double read_s = since(start);

@@ -30,10 +30,13 @@ namespace {
 
 using geometry::DelaunayTriangulation;
 
-/// Rings of faces around the hole, per growth level of the region.
-/// [measured] the cage-in-shell holes close at 2–3 rings; 12 rings is about
-/// 2 rho, far beyond any tangle the stress inputs make.
-constexpr int kRingsPerLevel[] = {1, 2, 3, 4, 6, 8, 12};
+/// The largest number of rings of faces around the hole that the region grows
+/// to when no local growth is asked for (1, 2, 3, 4, 6, 9, then stop), and the
+/// attempts in all. [measured] the cage-in-shell holes close after a few
+/// local growths of a one-ring region; 12 rings are about 2 rho, far beyond
+/// any tangle the stress inputs make.
+constexpr int kMaxRings = 12;
+constexpr int kMaxAttempts = 24;
 /// Rings of kept vertices around the region that are fixed samples: they make
 /// the Delaunay triangulation near the loop that of the kept mesh's side too.
 /// [measured]
@@ -43,9 +46,9 @@ constexpr int kGuardRings = 2;
 /// [derived] 0.55 r > 0.52 r, the shortest edge [L] allows with the default
 /// constants (2 C/Q rho = 0.097 rho over r = 0.185 rho).
 constexpr double kThinning = 0.55;
-/// Refinement rounds per level, and the insertions allowed per free sample of
-/// the region (plus a floor): the bound that keeps the fallback from running
-/// on. [measured]
+/// Refinement rounds per attempt, and the insertions allowed per free sample
+/// or loop edge of the region (plus a floor): the bounds that keep the
+/// fallback from running on. [measured]
 constexpr int kMaxRounds = 40;
 constexpr std::size_t kInsertionsPerSample = 8, kInsertionFloor = 256;
 /// Bisection steps of the surface Delaunay centre on its dual Voronoi edge
@@ -74,7 +77,10 @@ std::uint64_t edge_key(Index a, Index b) { return (static_cast<std::uint64_t>(a)
 /// The region's patch problem at one growth level.
 class Patcher {
  public:
-  Patcher(FrontState& fs, std::vector<Face> region) : fs_(fs), region_(std::move(region)) {}
+  /// `hull_lo`, `hull_hi`: a box holding every atom's unshrunk ball (Å),
+  /// outside which f > 0.
+  Patcher(FrontState& fs, std::vector<Face> region, const Vec3& hull_lo, const Vec3& hull_hi)
+      : fs_(fs), region_(std::move(region)), hull_lo_(hull_lo), hull_hi_(hull_hi) {}
 
   /// True if the region's patch was found; then apply() glues it in.
   bool solve();
@@ -117,8 +123,7 @@ class Patcher {
   std::vector<Vertex> grow_at_, loose_;
   std::size_t free_count_ = 0;
   std::string why_;
-  double lo_rho_ = std::numeric_limits<double>::infinity();
-  Vec3 hull_lo_, hull_hi_;
+  const Vec3 hull_lo_, hull_hi_;
 };
 
 bool Patcher::collect_samples() {
@@ -159,7 +164,6 @@ bool Patcher::collect_samples() {
     s.loop = loop;
     sample_of_vertex_.emplace(x.idx(), static_cast<Index>(samples_.size()));
     samples_.push_back(s);
-    lo_rho_ = std::min(lo_rho_, s.rho);
   };
   for (Vertex x : loop_vertices) add_fixed(x, true);
   // The loop's directed edges: a kept face's half-edge whose twin is open
@@ -213,7 +217,6 @@ Index Patcher::add_free(const Vec3& p, Index cell, double rho, const Vec3& n) {
   s.p = p, s.cell = cell, s.rho = rho, s.normal = n;
   samples_.push_back(s);
   ++free_count_;
-  lo_rho_ = std::min(lo_rho_, rho);
   return static_cast<Index>(samples_.size() - 1);
 }
 
@@ -379,17 +382,12 @@ bool Patcher::solve() {
     why_ = "the region pinches or its boundary leaves it";
     return false;
   }
-  // The Delaunay box: the samples' box, padded by its own size.
+  // The Delaunay box: the samples' box, padded by its own size and the
+  // largest rho among them.
   Eigen::AlignedBox3d box;
-  for (const Sample& s : samples_) box.extend(s.p);
-  const Vec3 pad = Vec3::Constant(box.diagonal().norm() + fs_.rho_max);
-  hull_lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());
-  hull_hi_ = -hull_lo_;
-  for (const auto& wp : fs_.skin.points()) {
-    const double r = std::sqrt(std::max(wp.w, 0.0));
-    hull_lo_ = hull_lo_.cwiseMin(wp.z - Vec3::Constant(r));
-    hull_hi_ = hull_hi_.cwiseMax(wp.z + Vec3::Constant(r));
-  }
+  double rho_high = 0;
+  for (const Sample& s : samples_) box.extend(s.p), rho_high = std::max(rho_high, s.rho);
+  const Vec3 pad = Vec3::Constant(box.diagonal().norm() + rho_high);
   dt_ = std::make_unique<DelaunayTriangulation>(box.min() - pad, box.max() + pad);
   dt_sample_.assign(DelaunayTriangulation::kNumBounding, kInvalidIndex);
   auto insert = [&](Index s) {
@@ -538,13 +536,18 @@ bool patch_hole(FrontState& fs, const std::vector<Vertex>& around, const Vec3& n
     std::sort(seeds.begin(), seeds.end());
   }
   if (seeds.empty()) return false;
+  Vec3 hull_lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hull_hi = -hull_lo;
+  for (const auto& wp : fs.skin.points()) {
+    const double r = std::sqrt(std::max(wp.w, 0.0));
+    hull_lo = hull_lo.cwiseMin(wp.z - Vec3::Constant(r));
+    hull_hi = hull_hi.cwiseMax(wp.z + Vec3::Constant(r));
+  }
   // The region: the faces around the hole, grown where the last attempt's
   // restricted facets reached past it, else by one more ring.
-  constexpr int kMaxAttempts = 24;  // [measured] see kRingsPerLevel
   std::vector<Face> region = faces_around(fs.mesh, seeds, 1);
   int rings = 1;
   for (int attempt = 0; attempt < kMaxAttempts && !region.empty(); ++attempt) {
-    Patcher patcher(fs, region);
+    Patcher patcher(fs, region, hull_lo, hull_hi);
     if (patcher.solve()) {
       const std::size_t added = patcher.apply();
       ++fs.stats.patched_holes;
@@ -561,7 +564,7 @@ bool patch_hole(FrontState& fs, const std::vector<Vertex>& around, const Vec3& n
       more = faces_around(fs.mesh, grow, 1);
     } else {
       rings = rings < 4 ? rings + 1 : rings * 3 / 2;
-      if (rings > kRingsPerLevel[std::size(kRingsPerLevel) - 1]) break;
+      if (rings > kMaxRings) break;
       more = faces_around(fs.mesh, seeds, rings);
     }
     const std::size_t before = region.size();
@@ -570,7 +573,7 @@ bool patch_hole(FrontState& fs, const std::vector<Vertex>& around, const Vec3& n
     region.erase(std::unique(region.begin(), region.end()), region.end());
     if (region.size() == before) {  // nothing new where it reached: one more ring
       rings = rings < 4 ? rings + 1 : rings * 3 / 2;
-      if (rings > kRingsPerLevel[std::size(kRingsPerLevel) - 1]) break;
+      if (rings > kMaxRings) break;
       more = faces_around(fs.mesh, seeds, rings);
       region.insert(region.end(), more.begin(), more.end());
       std::sort(region.begin(), region.end());

@@ -242,7 +242,10 @@ class LeveledPointGrid {
   /// from ids to places and erase() must not be called.
   /// Pre: octaves >= 1.
   explicit LeveledPointGrid(double cell_per_scale, int octaves, bool erasable = true)
-      : factor_(cell_per_scale), octaves_(octaves), erasable_(erasable), level_cells_(kMaxLevel - kMinLevel + 1) {}
+      : factor_(cell_per_scale), octaves_(octaves), erasable_(erasable), level_cells_(kMaxLevel - kMinLevel + 1) {
+    for (int level = kMinLevel; level <= kMaxLevel; ++level)
+      inverse_side_[level - kMinLevel] = 1 / std::ldexp(factor_, (level + 1) * octaves_);
+  }
 
   /// Adds point `id` at position p (finite) with scale `scale` (Å; any value:
   /// non-positive or tiny ones go to the lowest level). Pre: id is not in the
@@ -312,9 +315,8 @@ class LeveledPointGrid {
   struct Where {
     std::uint32_t cell, slot;
   };
-  double side(int level) const { return std::ldexp(factor_, (level + 1) * octaves_); }
   void insert_at(int level, Index id, const Vec3& p) {
-    const double inv = 1 / side(level);
+    const double inv = inverse_side_[level - kMinLevel];
     const std::array<std::int64_t, 3> c{static_cast<std::int64_t>(std::floor(p.x() * inv)),
                                         static_cast<std::int64_t>(std::floor(p.y() * inv)),
                                         static_cast<std::int64_t>(std::floor(p.z() * inv))};
@@ -328,8 +330,10 @@ class LeveledPointGrid {
       where_[id] = {number, static_cast<std::uint32_t>(cells_[number].size())};
     }
     cells_[number].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
-    max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
-    pad_ = 1.05e-7 * max_abs_ + 1e-300;  // as ErasablePointGrid
+    if (const double m = p.cwiseAbs().maxCoeff(); m > max_abs_) {
+      max_abs_ = m;
+      pad_ = 1.05e-7 * max_abs_ + 1e-300;  // as ErasablePointGrid
+    }
     lowest_ = std::min(lowest_, level), highest_ = std::max(highest_, level);
   }
   /// The points of one level within r of q: the cells meeting the query's
@@ -348,7 +352,7 @@ class LeveledPointGrid {
         if ((p - q).squaredNorm() <= r2) fn(e.id, p);
       }
     };
-    const double inv = 1 / side(level);
+    const double inv = inverse_side_[level - kMinLevel];
     std::int64_t lo[3], hi[3];
     double box = 1;
     for (int k = 0; k < 3; ++k) {
@@ -376,12 +380,13 @@ class LeveledPointGrid {
   double factor_;
   int octaves_;
   bool erasable_ = true;
+  std::array<double, kMaxLevel - kMinLevel + 1> inverse_side_{};  ///< per level: 1 / its cell side
   KeyIndex keys_;
   std::vector<std::vector<Entry>> cells_;                 ///< per cell number: its points
   std::vector<std::vector<std::uint32_t>> level_cells_;   ///< per level: its cell numbers
   std::vector<Where> where_;                              ///< per id (empty unless erasable_)
   int lowest_ = kMaxLevel + 1, highest_ = kMinLevel - 1;  ///< levels with points so far
-  double max_abs_ = 0, pad_ = 0;
+  double max_abs_ = 0, pad_ = 1e-300;
 };
 
 /// Uniform grid of cubic cells over a fixed set of points, built once: the

@@ -112,6 +112,33 @@ TEST_CASE("bad values, unknown commands and missing files: one line each, docume
   CHECK_FALSE(fs::exists(s.dir / "out.ply"));
 }
 
+TEST_CASE("--timeout: a run past the limit ends with exit 5, one line, and no file; in time it writes the mesh") {
+  Scratch s;
+  // Crambin at probe 0 meshes in about a second; 20 ms is not enough.
+  const std::string crambin = quoted(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const Run late = run(s, "mesh " + crambin + " --probe 0 -o out.ply --stats s.json --quiet --timeout 0.02");
+  CHECK(late.exit_code == 5);
+  CHECK(lines(late.err) == 1);
+  CHECK(late.err.find("timeout") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "out.ply"));
+  CHECK_FALSE(fs::exists(s.dir / "s.json"));
+  const Run in_time = run(s, "mesh " + kAtom + " -o out.ply --quiet --timeout 600");
+  CHECK(in_time.exit_code == 0);
+  CHECK(fs::exists(s.dir / "out.ply"));
+  const Run batch = run(s, "mesh " + kAtom + " " + kAtom + " -O outdir --timeout 5");
+  CHECK(batch.exit_code == 2);
+  CHECK(lines(batch.err) == 1);
+  CHECK(batch.err.find("--timeout") != std::string::npos);
+}
+
+TEST_CASE("--no-fallback applies to the sweep only") {
+  Scratch s;
+  CHECK(run(s, "mesh " + kAtom + " -o out.ply --quiet --no-fallback").exit_code == 0);
+  const Run dyn = run(s, "mesh " + kAtom + " -o out2.ply --algorithm dynamic --no-fallback");
+  CHECK(dyn.exit_code == 2);
+  CHECK(lines(dyn.err) == 1);
+}
+
 TEST_CASE("--algorithm dynamic: a checked mesh, its statistics, and options of the other algorithm refused") {
   Scratch s;
   const Run r = run(s, "mesh " + kAtom + " -o d.ply --algorithm dynamic --no-growth --stats - --quiet");
