@@ -1,10 +1,9 @@
 // geometry/triangulation/point_grid.h: uniform grids over points for fixed-radius neighbour
 // queries: PointGrid, a hash grid that grows point by point (critical-point
-// lookup, front proximity), ErasablePointGrid, a hash grid whose points can
-// also be removed (the sweep's free front), and FlatPointGrid, a grid over a
-// fixed point set stored in flat arrays (the verifier's restricted-Delaunay
-// test), and LeveledPointGrid, an erasable hash grid per octave of the
-// points' scales (the sweep's vertices, front and protecting spheres).
+// lookup, front proximity), LeveledPointGrid, a hash grid per band of the
+// points' scales whose points can also be removed (the sweep's vertices,
+// front and protecting spheres), and FlatPointGrid, a grid over a fixed point
+// set stored in flat arrays (the verifier's restricted-Delaunay test).
 #pragma once
 
 #include <algorithm>
@@ -75,7 +74,7 @@ class CellIndex {
 
 /// Uniform grid of cubic cells of side `cell_size` (Å) hashing point indices.
 /// Points can be added after construction; removal is not supported (callers
-/// filter stale entries, or use ErasablePointGrid). Queries visit the cells
+/// filter stale entries, or use LeveledPointGrid). Queries visit the cells
 /// overlapping the query box in (x, y, z) order, and, within a cell, the
 /// points in insertion order.
 ///
@@ -131,92 +130,6 @@ class PointGrid {
   std::vector<Entry> entries_;
 };
 
-/// Uniform grid of cubic cells of side `cell_size` (Å) over a changing set of
-/// points: points are added and removed by id. Each cell keeps its points in
-/// a contiguous array of 16-byte entries (the position in single precision
-/// and the id); removal moves the cell's last point into the hole. A query
-/// reads a cell's entries sequentially, filters them with a distance bound
-/// padded by the single-precision rounding, and confirms each survivor with
-/// the exact test on the caller's double-precision positions, so it reports
-/// exactly the points a scan of those positions reports. The visiting order
-/// is deterministic but not the insertion order: callers choose among the
-/// points by their own rule (nearest, ties to the lower id). Used for the
-/// sweep's vertices and its free front (the collision safety net).
-class ErasablePointGrid {
- public:
-  /// Pre: cell_size > 0. With erasable = false the grid keeps no table from
-  /// ids to places (8 bytes per id) and erase() must not be called: for a set
-  /// that only grows (the sweep's vertices).
-  explicit ErasablePointGrid(double cell_size, bool erasable = true) : index_(cell_size), erasable_(erasable) {}
-
-  /// Adds point `id` at position p (finite). Pre: id is not in the grid; the
-  /// positions passed to the queries hold p at index id.
-  void insert(Index id, const Vec3& p) {
-    const std::uint32_t c = index_.find_or_add(index_.cell_of(p));
-    if (c == cells_.size()) cells_.emplace_back();
-    if (erasable_) {
-      if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
-      where_[id] = {c, static_cast<std::uint32_t>(cells_[c].size())};
-    }
-    cells_[c].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
-    max_abs_ = std::max(max_abs_, p.cwiseAbs().maxCoeff());
-    // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies within
-    // sqrt(3) 2^-24 max_abs_ of the true one (padded).
-    pad_ = 1.05e-7 * max_abs_ + 1e-300;
-  }
-  /// Removes point `id`; does nothing if it is not in the grid. Pre: the grid
-  /// is erasable.
-  void erase(Index id) {
-    SKINMESH_ASSERT_MSG(erasable_, "erase() on a grid made without erasure");
-    if (!contains(id)) return;
-    const Where w = where_[id];
-    std::vector<Entry>& cell = cells_[w.cell];
-    cell[w.slot] = cell.back();
-    where_[cell[w.slot].id].slot = w.slot;
-    cell.pop_back();
-    where_[id] = {kNone, 0};
-  }
-  /// True if point `id` is in the grid. Pre: the grid is erasable.
-  bool contains(Index id) const {
-    SKINMESH_ASSERT_MSG(erasable_, "contains() on a grid made without erasure");
-    return id < where_.size() && where_[id].cell != kNone;
-  }
-
-  /// Calls fn(id, position) for every point whose position (positions[id], Å)
-  /// lies within distance r of q, |position - q|² <= r² in double precision.
-  template <class Fn>
-  void for_each_near(const Vec3& q, double r, std::span<const Vec3> positions, Fn&& fn) const {
-    const double r2 = r * r;
-    const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
-    index_.for_each_cell_near(q, rp, [&](std::uint32_t c) {
-      for (const Entry& e : cells_[c]) {
-        const double dx = double(e.p[0]) - q.x(), dy = double(e.p[1]) - q.y(), dz = double(e.p[2]) - q.z();
-        if (dx * dx + dy * dy + dz * dz > rp2) continue;
-        const Vec3& p = positions[e.id];
-        if ((p - q).squaredNorm() <= r2) fn(e.id, p);
-      }
-    });
-  }
-
-  double cell_size() const { return index_.cell_size(); }
-
- private:
-  static constexpr std::uint32_t kNone = detail::CellIndex::kNone;
-  struct Entry {
-    float p[3];
-    Index id;
-  };
-  struct Where {
-    std::uint32_t cell, slot;  ///< cell number (kNone: absent) and place in it
-  };
-  detail::CellIndex index_;
-  std::vector<std::vector<Entry>> cells_;  ///< per cell number: its points
-  std::vector<Where> where_;               ///< per id (empty unless erasable_)
-  bool erasable_ = true;
-  double max_abs_ = 0;  ///< largest |coordinate| inserted (Å)
-  double pad_ = 0;      ///< bound on |stored - true position| (Å)
-};
-
 /// Points that each carry a scale (Å), in one hash grid per band of
 /// `octaves` octaves of scales: a point of scale s lives at level
 /// k = floor(floor(log2 s) / octaves), in cells of side
@@ -227,10 +140,15 @@ class ErasablePointGrid {
 /// rho(q) - r <= rho <= rho(q) + r) and visits only those levels; in each it
 /// reads the cells meeting its box, or the level's occupied cells when they
 /// are fewer. Costs thus follow the local scale: one region of large rho does
-/// not make the queries elsewhere read many points. Storage as in
-/// ErasablePointGrid (16-byte entries, contiguous per cell, removal by moving
-/// the cell's last entry; exact confirmation on the caller's positions), so a
-/// query reports exactly the points of its scale range that a scan reports.
+/// not make the queries elsewhere read many points. Each cell keeps its points
+/// in a contiguous array of 16-byte entries (the position in single precision
+/// and the id); removal moves the cell's last point into the hole. A query
+/// reads a cell's entries sequentially, filters them with a distance bound
+/// padded by the single-precision rounding, and confirms each survivor with
+/// the exact test on the caller's double-precision positions, so it reports
+/// exactly the points of its scale range that a scan reports. The visiting
+/// order is deterministic but not the insertion order: callers choose among
+/// the points by their own rule (nearest, ties to the lower id).
 /// Used for the sweep's vertices, its free front and its protecting spheres.
 class LeveledPointGrid {
  public:
@@ -332,7 +250,9 @@ class LeveledPointGrid {
     cells_[number].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
     if (const double m = p.cwiseAbs().maxCoeff(); m > max_abs_) {
       max_abs_ = m;
-      pad_ = 1.05e-7 * max_abs_ + 1e-300;  // as ErasablePointGrid
+      // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies
+      // within sqrt(3) 2^-24 max_abs_ of the true one (padded).
+      pad_ = 1.05e-7 * max_abs_ + 1e-300;
     }
     lowest_ = std::min(lowest_, level), highest_ = std::max(highest_, level);
   }

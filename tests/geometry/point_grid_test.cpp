@@ -1,7 +1,7 @@
-// tests/geometry/point_grid_test.cpp: geometry/triangulation/point_grid — FlatPointGrid and
-// PointGrid report exactly the points a linear scan with the same distance
-// test reports, on random clouds (clustered, flat, with duplicates and
-// non-finite points) and random query balls, including balls outside the cloud.
+// tests/geometry/point_grid_test.cpp: geometry/triangulation/point_grid — FlatPointGrid,
+// PointGrid and LeveledPointGrid report exactly the points a linear scan with the same distance
+// test reports (LeveledPointGrid: at least those of the scales asked for), on random clouds (clustered, flat, with
+// duplicates and non-finite points) and random query balls, including balls outside the cloud.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -115,54 +115,6 @@ TEST_CASE("point_grid: PointGrid visits a cell's points in insertion order, acro
   }
 }
 
-TEST_CASE("point_grid: ErasablePointGrid queries equal a scan of the points present, through inserts and erasures") {
-  // Random clouds, near the origin and far from it (where single precision
-  // resolves only ~1e-3 Å, so the exact recheck decides), ids inserted and
-  // erased in random order (some erased twice, some re-inserted); after each
-  // batch, random balls report exactly the present points a linear scan
-  // reports. Some radii are the exact distance to a point (the boundary case
-  // of <=).
-  std::mt19937_64 rng(20261123);
-  std::uniform_real_distribution<double> u(-12, 12), ur(0, 3);
-  for (const Vec3& shift : {Vec3(0, 0, 0), Vec3(1e5, -3e4, 7e3)})
-    for (int kind = 0; kind < 3; ++kind)
-      for (double cell : {0.4, 1.5, 5.0}) {
-        std::vector<Vec3> pts = cloud(rng, kind, 500);
-        for (Vec3& p : pts) p = p.allFinite() ? Vec3(p + shift) : shift;  // callers insert finite points
-        ErasablePointGrid grid(cell);
-        std::vector<char> present(pts.size(), 0);
-        for (int batch = 0; batch < 6; ++batch) {
-          for (int op = 0; op < 300; ++op) {
-            const Index id = Index(rng() % pts.size());
-            if (present[id] && rng() % 3 != 0) {
-              grid.erase(id);
-              present[id] = 0;
-              grid.erase(id);  // a second erasure does nothing
-            } else if (!present[id]) {
-              grid.insert(id, pts[id]);
-              present[id] = 1;
-            }
-          }
-          for (std::size_t i = 0; i < pts.size(); ++i) CHECK(grid.contains(Index(i)) == bool(present[i]));
-          for (int t = 0; t < 40; ++t) {
-            const Vec3 q = Vec3(u(rng), u(rng), u(rng)) + shift;
-            double r = ur(rng);
-            if (t % 4 == 0) r = (pts[rng() % pts.size()] - q).norm();  // a point on the sphere, or just off it
-            std::vector<Index> want;
-            for (Index id : scan(pts, q, r))
-              if (present[id]) want.push_back(id);
-            std::vector<Index> got;
-            grid.for_each_near(q, r, pts, [&](Index id, const Vec3& p) {
-              CHECK(p == pts[id]);
-              got.push_back(id);
-            });
-            std::sort(got.begin(), got.end());
-            CHECK(got == want);
-          }
-        }
-      }
-}
-
 TEST_CASE("point_grid: LeveledPointGrid queries equal a scan of the points present whose scale is in range") {
   // Random clouds with scales over twelve octaves (and some zero, tiny or
   // huge), near the origin and far from it; ids inserted and erased in random
@@ -195,7 +147,10 @@ TEST_CASE("point_grid: LeveledPointGrid queries equal a scan of the points prese
         for (int t = 0; t < 40; ++t) {
           const Vec3 q = Vec3(u(rng), u(rng), u(rng)) + shift;
           const double r = t % 4 == 0 ? (pts[rng() % pts.size()] - q).norm() : ur(rng);
-          const double lo = std::exp2(octave(rng)), hi = lo * std::exp2(3 * ur(rng));
+          // Every fifth query takes every scale: then exactly the present points a scan reports.
+          const bool all = t % 5 == 0;
+          const double lo = all ? 0.0 : std::exp2(octave(rng));
+          const double hi = all ? std::numeric_limits<double>::infinity() : lo * std::exp2(3 * ur(rng));
           std::vector<Index> got;
           grid.for_each_near(q, r, lo, hi, pts, [&](Index id, const Vec3& p) {
             CHECK(p == pts[id]);
@@ -205,9 +160,11 @@ TEST_CASE("point_grid: LeveledPointGrid queries equal a scan of the points prese
           });
           std::sort(got.begin(), got.end());
           CHECK(std::adjacent_find(got.begin(), got.end()) == got.end());
+          std::vector<Index> want;
           for (Index id : scan(pts, q, r))
-            if (present[id] && scale[id] >= lo && scale[id] <= hi)
-              CHECK(std::binary_search(got.begin(), got.end(), id));
+            if (present[id] && scale[id] >= lo && scale[id] <= hi) want.push_back(id);
+          for (Index id : want) CHECK(std::binary_search(got.begin(), got.end(), id));
+          if (all) CHECK(got == want);
         }
       }
       // Points inserted for the queries of a range of scales.
