@@ -25,6 +25,13 @@ constexpr double kWallStep = 1e-12;
 /// Most cells the projection along one line crosses on each side of its
 /// start. [measured] a line within delta of the skin crosses at most a handful.
 constexpr int kMaxCellsAlongLine = 64;
+/// A line through an edge or a vertex of a mixed cell meets it in one point,
+/// and locate() may report a point within its tolerance of a wall in either
+/// cell: the walk then steps past the wall again, each time 16 times farther,
+/// at most this often (up to 16^8 wall steps, 4e-3 L). [derived] locate()'s
+/// tolerance is 1e-9 L (skin/mixed_complex.h).
+constexpr int kMaxWallRetries = 8;
+constexpr double kWallRetryGrowth = 16;
 /// Newton steps of pull_back() before it gives up. [measured] it converges
 /// quadratically in a few steps from any point within rho of the skin.
 constexpr int kMaxPullBackSteps = 100;
@@ -183,6 +190,14 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
       if (next == kInvalidIndex) break;
       c = mc.locate(q + (t_exit + dir * eta) * n, next);
       ex = interval(c, lo, hi);
+      // No progress (a cell the line meets in one point, or the cell it left):
+      // step past the wall again, farther (kMaxWallRetries).
+      double step = eta;
+      for (int retry = 0; retry < kMaxWallRetries && (dir > 0 ? !(hi > t_exit) : !(lo < t_exit)); ++retry) {
+        step *= kWallRetryGrowth;
+        c = mc.locate(q + (t_exit + dir * step) * n, c);
+        ex = interval(c, lo, hi);
+      }
     }
   }
   if (best_c == kInvalidIndex) return false;

@@ -6,8 +6,11 @@
 
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "skin/dual_complex.h"
+#include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 #include "tests/skin/skin_test_util.h"
 #include "tests/skin/skin_vectors.h"
@@ -201,6 +204,35 @@ TEST_CASE("projection along the normal line lands on the skin within the bracket
     }
   }
   CHECK(projected > 300);
+}
+
+TEST_CASE("project_along_line: a line through an edge of a mixed cell still finds its root") {
+  // The dual line of a mesh triangle of the cage in a geodesic shell at probe 0
+  // (tests/data/regression/cage_geodesic5_probe0_line_through_cell_edge.xyzr,
+  // in the local frame of mesh_skin) leaves its first cell into a cell that it
+  // meets in one point; the walk went back and forth between the two until its
+  // cell budget ran out, and no surface Delaunay centre was found. f changes
+  // sign 0.0026 Å below the start (sampled: +7.7e-3 at t = 0, -2.7e-2 at
+  // t = -0.0117).
+  const std::string path =
+      std::string(SKINMESH_TEST_DATA) + "/regression/cage_geodesic5_probe0_line_through_cell_edge.xyzr";
+  std::vector<geometry::WeightedPoint> points = skin::weighted_points(skin::read_molecule(path), 0.0);
+  points = skin::translated(points, skin::local_frame_centre(points));
+  const SkinSurface skin(points);
+  const Vec3 q(4.9267913540708461, 3.4613728420537, -3.5063251743084254);
+  const Vec3 n(-0.30979860095648515, 0.6781556855155576, -0.66643056131027534);
+  const double delta = 2 * 0.11688530107101675;
+  CHECK(skin.sample(q).f > 0);
+  CHECK(skin.sample(q - 0.0117 * n).f < 0);
+  Vec3 p;
+  Index cell = kInvalidIndex;
+  REQUIRE(skin.project_along_line(q, n, delta, p, cell));
+  const double t = (p - q).dot(n);
+  CHECK(t < 0);
+  CHECK(t > -0.0117);
+  CHECK((p - (q + t * n)).norm() <= 1e-12);
+  const auto sp = skin.sample(p, cell);
+  CHECK(std::abs(sp.f) / sp.gradient.norm() <= 1e-12 * skin.length_scale());
 }
 
 TEST_CASE("dual complex K0 predicts the skin topology") {
