@@ -86,9 +86,10 @@ void seal_all(FrontState& fs) {
       continue;
     }
     rescanned = false;
-    const std::size_t f0 = fs.mesh.faces_size();
+    const std::size_t f0 = fs.mesh.faces_size(), seals = fs.stats.seals;
     seal_loop(fs, start, fs.opt.max_hole_enlargements);
-    fs.notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
+    // A hole the fallback re-meshed was told to the observer as a patch.
+    if (fs.stats.seals > seals) fs.notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
   }
 }
 

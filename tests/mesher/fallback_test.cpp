@@ -6,6 +6,7 @@
 // Delaunay, angles above 21.5°).
 #include <doctest/doctest.h>
 
+#include <map>
 #include <string>
 
 #include "core/errors.h"
@@ -33,7 +34,13 @@ TEST_CASE("fallback: a C60-like cage inside a geodesic shell, whose seal tangles
     options.sweep.patch_fallback = false;
     CHECK_THROWS_AS(mesher::mesh_skin(mol, options), TopologyError);
     options.sweep.patch_fallback = true;
+    // Observers (the trace's recorder among them) see every patch, and seals
+    // only for the holes the seal itself closed.
+    std::map<front::SweepOperation, std::size_t> seen;
+    options.sweep.observer = [&seen](const front::SweepEvent& ev) { ++seen[ev.op]; };
     const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    CHECK(seen[front::SweepOperation::Patch] == res.sweep.patched_holes);
+    CHECK(seen[front::SweepOperation::Seal] + seen[front::SweepOperation::SmallHole] == res.sweep.seals);
     CHECK(res.sweep.patched_holes >= 1);
     CHECK(res.sweep.patch_faces > 0);
     CHECK(res.expected_topology.components() == 4);
