@@ -7,7 +7,7 @@
 For every input, probe and direction (N unit vectors drawn uniformly from random.Random(S)), runs
 `skinmesh mesh IN --probe P --direction X,Y,Z -o TMP.ply --stats TMP.json` (the built-in check included: exit 0
 means every check passed) and prints one Markdown row: the input, the probe, the direction, the exit code, the
-triangle count, the fallback's patches and holes left for the seal, the seconds, and the last line of stderr on a
+triangle count, the fallback's patches and its openings left for the seal plus folds, the seconds, and the last line of stderr on a
 failure. With --no-fallback-too the runs that used the fallback are repeated with --no-fallback, to show that
 they fail without it. Ends with one summary line per input and probe: "ok N/M, fallback in K, failing without it
 F/K".
@@ -51,7 +51,7 @@ def run(binary, inp, probe, d, tmp, extra=()):
             j = json.load(f)
         tris = j.get("triangles", 0)
         ops = j.get("operations", {})
-        patched, left = ops.get("patched_holes", 0), ops.get("left_holes", 0)
+        patched, left = ops.get("patched_holes", 0), ops.get("left_holes", 0) + ops.get("folds", 0)
     err = (r.stderr.strip().splitlines() or [""])[-1][:160] if r.returncode else ""
     return r.returncode, tris, patched, left, seconds, err
 

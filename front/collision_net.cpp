@@ -137,6 +137,18 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
     defer(fs, v, r);
     return true;
   }
+  // Deferred too often. A fan reaching a front vertex is built: the fronts
+  // meet there and the small holes close what is left between them. A fan
+  // reaching an interior vertex would lay triangles over meshed surface, and
+  // every later fan of that front would do the same: one front passing
+  // through another is how a component comes out swept twice. With the
+  // fallback, v is left for the seal instead (papers/front/collision_net.md).
+  if (fs.opt.patch_fallback && fs.state[hit] == VState::Interior) {
+    if (fs.tracing)
+      fs.tracef("collision: v%u would cover meshed surface at v%u: left for the seal\n", v.idx(), hit.idx());
+    leave_hole_for_seal(fs, {v});
+    return true;
+  }
   return false;
 }
 

@@ -15,6 +15,19 @@
 
 namespace skinmesh::front::detail {
 
+CreepVerdict leave_fold(FrontState& fs, Vertex v) {
+  // The fold is already in the mesh around v: building on it would carry it
+  // into the rest of the sweep. Its faces go, the rim back to the front (as a
+  // tangled small hole's do); where that is no longer allowed, v is left for
+  // the seal, whose fallback re-meshes the region (papers/front/patch.md).
+  ++fs.stats.folds;
+  if (fs.tracing) fs.tracef("creep: the mesh folds at v%u: the fallback takes it\n", v.idx());
+  const std::vector<Vertex> around{v};
+  if (reopen_hole(fs, around)) return CreepVerdict::Reopened;
+  leave_hole_for_seal(fs, around);
+  return CreepVerdict::Stuck;
+}
+
 CreepPlan plan_creep(FrontState& fs, Vertex v) {
   const double r = fs.disc_radius(v);
   // Copies: new vertices grow the property arrays and would invalidate references.
@@ -44,6 +57,7 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
     k = corner(fs, v);
     test_m = 0;
     if (!std::isfinite(k.angle)) {
+      if (fs.opt.patch_fallback) return decided(leave_fold(fs, v));
       std::ostringstream os;
       os << "creep: undefined front angle at vertex " << v.idx() << " (" << pv.transpose()
          << "): a front neighbour coincides with it in the tangent plane";
@@ -138,7 +152,11 @@ CreepPlan plan_creep(FrontState& fs, Vertex v) {
   }
   // Fold check (papers/front/open_questions.md Q4.1 (the fan and its orientation)): the tangent angles of
   // the triangles at v plus the hole angle make a full turn.
-  if (const double excess = fold_excess(fs, v); std::abs(excess) > fs.opt.fold_tolerance_deg * kDegree) {
+  const std::size_t fold_check = fs.fold_checks++;
+  if (const double excess = fold_excess(fs, v); std::abs(excess) > fs.opt.fold_tolerance_deg * kDegree ||
+                                                std::find(fs.opt.injected_folds.begin(), fs.opt.injected_folds.end(),
+                                                          fold_check) != fs.opt.injected_folds.end()) {
+    if (fs.opt.patch_fallback) return decided(leave_fold(fs, v));
     std::ostringstream os;
     os << "creep: the mesh folds at vertex " << v.idx() << " (" << pv.transpose() << "): triangles and hole cover "
        << (2 * kPi + excess) / kDegree << "°";

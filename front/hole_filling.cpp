@@ -205,7 +205,7 @@ void leave_hole_for_seal(FrontState& fs, const std::vector<Vertex>& poly) {
     fs.set_state(x, VState::Held);
     fs.held_by[x] = kInvalidIndex;
   }
-  if (fs.tracing) fs.tracef("left a tangled small hole of %zu vertices for the seal\n", poly.size());
+  if (fs.tracing) fs.tracef("left an opening of %zu vertices for the seal\n", poly.size());
 }
 
 }  // namespace skinmesh::front::detail

@@ -34,7 +34,8 @@ enum class CreepVerdict {
   Hold,       ///< v joins the hold of a neighbouring held vertex
   Defer,      ///< v is re-queued a little higher, so that the front moves on around it
   Stuck,      ///< no fan fits: v is left for the seal
-  Collision,  ///< the fan would come too close to another vertex: v was held, joined or deferred (fan_collision)
+  Collision,  ///< the fan would come too close to another vertex: v was held, joined, deferred or left for the seal
+  Reopened,   ///< the mesh folds at v: the faces around it went back to the front (fallback)
 };
 
 /// The plan of a creep at v: the verdict, the corner of the front at v, the
@@ -159,9 +160,16 @@ bool try_contact(FrontState& fs, Vertex v, const Corner& k);
 bool contact_with(FrontState& fs, Vertex v, const Corner& k, Vertex x);
 /// The fan of m triangles at v (corner k) would bring a new point within
 /// collision_radius · r of another vertex x: v is held (x held), joined to x
-/// (contact) or deferred, and true is returned; false if the fan is clear or
-/// v has been deferred too often (the fan is built anyway).
+/// (contact) or deferred, and true is returned; deferred too often, v is left
+/// for the seal if x is an interior vertex and the fallback is on (true);
+/// false if the fan is clear or is built anyway.
 bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m);
+/// The mesh folds at departure vertex v (its tangent angles and hole angle do
+/// not make 360°, or its front angle is undefined), and the fallback is on:
+/// the faces around v are re-opened (reopen_hole; verdict Reopened), or, if
+/// that is no longer allowed there, v is left for the seal
+/// (leave_hole_for_seal; verdict Stuck). papers/front/patch.md.
+CreepVerdict leave_fold(FrontState& fs, Vertex v);
 
 // Not in the paper: hole filling (hole_filling.cpp, seal.cpp)
 
@@ -188,9 +196,9 @@ Halfedge enlarge_hole(FrontState& fs, const std::vector<Vertex>& poly, std::vect
 /// the sweep re-meshes the region. False (nothing changed) if the region would
 /// not stop pinching or a vertex was re-opened too often.
 bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly);
-/// Leaves the tangled small hole `poly` open for the seal: its vertices are
-/// held by no critical point (as stuck ones are), so that the sweep goes on
-/// around it (papers/front/patch.md).
+/// Leaves the tangled small hole `poly` (or a departure vertex the fallback
+/// stops) open for the seal: its vertices are held by no critical point (as
+/// stuck ones are), so that the sweep goes on around it (papers/front/patch.md).
 void leave_hole_for_seal(FrontState& fs, const std::vector<Vertex>& poly);
 
 // ---------------------------------------------------------------------------

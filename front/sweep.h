@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh/surface_mesh.h"
 #include "morse/morse_smale_complex.h"
@@ -161,6 +162,10 @@ struct SweepOptions {
   /// hole stops the sweep with TopologyError (the tests of the fallback
   /// compare both).
   bool patch_fallback = true;
+  /// Testing aid for the fallback: the fold checks of creep() with these
+  /// ordinal numbers (0 = the first fold check of the sweep) report a fold
+  /// as if the mesh folded at the departure vertex. Empty in every real run.
+  std::vector<std::size_t> injected_folds;
 
   // Reporting and debugging aids (papers/front/sweep.md, "Debugging aids").
   /// Called now and then with the stage name "sweep" and the fraction of the
@@ -203,9 +208,15 @@ struct SweepStats {
   std::size_t collisions = 0;      ///< fans that would have come within collision_radius · r of another vertex
   std::size_t released = 0;        ///< saddles whose holds were released unbridged
   std::size_t merged_minima = 0;   ///< minima left without a bowl: it would have overlapped a neighbouring bowl
-  std::size_t left_holes = 0;      ///< tangled small holes during the sweep left open for the seal (fallback)
-  std::size_t patched_holes = 0;   ///< holes whose region the fallback re-meshed (papers/front/patch.md)
-  std::size_t patch_faces = 0;     ///< faces the fallback's patches added
+  /// Openings the sweep left for the seal (fallback): tangled small holes that
+  /// could not be re-opened, folds at a departure vertex, fans that would
+  /// have covered meshed surface.
+  std::size_t left_holes = 0;
+  /// Folds met at a departure vertex and taken by the fallback: the faces
+  /// around it re-opened, or the vertex left for the seal (left_holes).
+  std::size_t folds = 0;
+  std::size_t patched_holes = 0;  ///< holes whose region the fallback re-meshed (papers/front/patch.md)
+  std::size_t patch_faces = 0;    ///< faces the fallback's patches added
 };
 
 /// The closed mesh produced by the sweep, before the local refinement.

@@ -72,6 +72,7 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
                      {"stuck", s.stuck},
                      {"enlarged_holes", s.enlarged_holes},
                      {"left_holes", s.left_holes},
+                     {"folds", s.folds},
                      {"patched_holes", s.patched_holes},
                      {"patch_faces", s.patch_faces},
                      {"reopened_holes", s.reopened_holes},

@@ -425,9 +425,10 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
            {"stuck", s.stuck}};
     // The fallback's counters appear once it has been used (a sweep that needs
     // none records the same trace as one without a fallback).
-    if (s.left_holes + s.patched_holes > 0) {
+    if (s.left_holes + s.patched_holes + s.folds > 0) {
       j["left_holes"] = s.left_holes;
       j["patched_holes"] = s.patched_holes;
+      j["folds"] = s.folds;
     }
     return j;
   };

@@ -8,6 +8,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/errors.h"
 #include "mesher/pipeline.h"
@@ -44,6 +45,39 @@ TEST_CASE("fallback: a C60-like cage inside a geodesic shell, whose seal tangles
     CHECK(res.sweep.patched_holes >= 1);
     CHECK(res.sweep.patch_faces > 0);
     CHECK(res.expected_topology.components() == 4);
+    REQUIRE(res.checked);
+    test::check_every_property(res.check);
+  }
+}
+
+TEST_CASE("fallback: folds at departure vertices anywhere in the sweep are re-opened or left for the seal") {
+  // No input of ours folds at a departure vertex, so folds are injected
+  // (SweepOptions::injected_folds): fold checks spread over the whole sweep,
+  // then a run of consecutive ones that re-open one region until its vertices
+  // may not be re-opened again, so that the last ones are left for the seal.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  mesher::MeshOptions options;
+  options.probe_radius = 1.4;
+  const mesher::MeshResult plain = mesher::mesh_skin(mol, options);
+  REQUIRE(plain.sweep.folds == 0);
+  const std::size_t creeps = plain.sweep.creeps;
+  REQUIRE(creeps > 1000);
+  struct Injection {
+    const char* what;
+    std::vector<std::size_t> checks;
+  };
+  std::vector<std::size_t> run;
+  for (std::size_t i = 0; i < 40; ++i) run.push_back(creeps / 3 + i);
+  for (const Injection& inj : {Injection{"spread", {0, 7, creeps / 10, creeps / 2, creeps - creeps / 10}},
+                               Injection{"a run in one place", run}}) {
+    CAPTURE(inj.what);
+    options.sweep.injected_folds = inj.checks;
+    options.sweep.patch_fallback = false;
+    CHECK_THROWS_WITH_AS(mesher::mesh_skin(mol, options), doctest::Contains("folds"), TopologyError);
+    options.sweep.patch_fallback = true;
+    const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    CHECK(res.sweep.folds >= inj.checks.size() / 2);
+    if (inj.checks.size() > 10) CHECK(res.sweep.left_holes >= 1);
     REQUIRE(res.checked);
     test::check_every_property(res.check);
   }

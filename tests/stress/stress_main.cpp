@@ -164,7 +164,7 @@ struct RunResult {
   std::vector<std::string> problems;
   std::string crash;  ///< Crash: how the process ended
   double seconds = 0;
-  std::size_t patched = 0, left = 0;  ///< the fallback's patches and holes left for the seal
+  std::size_t patched = 0, left = 0, folds = 0;  ///< the fallback's patches, openings left for the seal, folds
 };
 
 /// Escapes newlines and tabs so that a message fits one protocol line.
@@ -216,6 +216,7 @@ void run_case(const StressCase& c, Emit emit) {
     emit("check_ok", res.check.ok() ? "1" : "0");
     emit("patched", std::to_string(res.sweep.patched_holes));
     emit("left", std::to_string(res.sweep.left_holes));
+    emit("folds", std::to_string(res.sweep.folds));
     emit("triangles", std::to_string(res.mesh.triangles.size()));
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3f", res.check.mesh.min_angle_deg);
@@ -271,6 +272,8 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
     r.patched = std::stoull(value);
   else if (key == "left")
     r.left = std::stoull(value);
+  else if (key == "folds")
+    r.folds = std::stoull(value);
   else if (key == "min_angle")
     r.min_angle = std::stod(value);
   else if (key == "components") {
@@ -590,9 +593,10 @@ int main(int argc, char** argv) {
     judge(rep, opt.cost_bound_us);
     const StressCase& c = cases[i];
     const std::string verdict = rep.passed ? (c.singular ? "pass*" : "PASS") : (c.singular ? "FAIL*" : "FAIL");
-    const std::string fallback = rep.run.patched + rep.run.left > 0 ? " fallback=" + std::to_string(rep.run.patched) +
-                                                                          "p" + std::to_string(rep.run.left) + "l"
-                                                                    : "";
+    const std::string fallback = rep.run.patched + rep.run.left + rep.run.folds > 0
+                                     ? " fallback=" + std::to_string(rep.run.patched) + "p" +
+                                           std::to_string(rep.run.left) + "l" + std::to_string(rep.run.folds) + "f"
+                                     : "";
     std::printf("%-5s %-50s n=%-3zu p=%-3g exp=%-9s %-8s tris=%-7zu min=%5.1f %6.2fs %5.1fus/tri  %s%s\n",
                 verdict.c_str(), c.name.c_str(), c.atoms.size(), c.probe,
                 rep.expected ? rep.expected->text().c_str() : "?", rep.source.c_str(), rep.run.triangles,
@@ -676,22 +680,23 @@ int main(int argc, char** argv) {
       "neither the all-closed nor the all-open brute-force nerve\n",
       near_compared, near_other);
   for (const std::string& d : near_notes) std::printf("  near %s\n", d.c_str());
-  std::size_t fallback_cases = 0, patches = 0, left_holes = 0;
+  std::size_t fallback_cases = 0, patches = 0, left_holes = 0, folds = 0;
   double worst_us = 0;
   std::string worst_case;
   for (const CaseReport& rep : reports) {
-    fallback_cases += rep.run.patched + rep.run.left > 0;
-    patches += rep.run.patched, left_holes += rep.run.left;
+    fallback_cases += rep.run.patched + rep.run.left + rep.run.folds > 0;
+    patches += rep.run.patched, left_holes += rep.run.left, folds += rep.run.folds;
     if (rep.run.triangles == 0) continue;
     const double us = 1e6 * rep.run.seconds / static_cast<double>(rep.run.triangles);
     if (us > worst_us) worst_us = us, worst_case = rep.c->name;
   }
-  std::printf("fallback (papers/front/patch.md): used in %zu cases, %zu patches, %zu holes left for the seal\n",
-              fallback_cases, patches, left_holes);
+  std::printf(
+      "fallback (papers/front/patch.md): used in %zu cases, %zu patches, %zu openings left for the seal, %zu folds\n",
+      fallback_cases, patches, left_holes, folds);
   for (const CaseReport& rep : reports)
-    if (rep.run.patched + rep.run.left > 0)
-      std::printf("  %s: %zu patches, %zu left%s\n", rep.c->name.c_str(), rep.run.patched, rep.run.left,
-                  rep.passed ? "" : " (FAILED)");
+    if (rep.run.patched + rep.run.left + rep.run.folds > 0)
+      std::printf("  %s: %zu patches, %zu left, %zu folds%s\n", rep.c->name.c_str(), rep.run.patched, rep.run.left,
+                  rep.run.folds, rep.passed ? "" : " (FAILED)");
   std::printf("cost: at most %.1f µs per triangle (%s), bound %g µs + %g s\n", worst_us, worst_case.c_str(),
               opt.cost_bound_us, kCostFloorSeconds);
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
