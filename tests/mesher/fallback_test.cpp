@@ -50,6 +50,24 @@ TEST_CASE("fallback: a C60-like cage inside a geodesic shell, whose seal tangles
   }
 }
 
+TEST_CASE("fallback: an all-atom lipid bilayer at probe 0, where a fan would cover meshed surface") {
+  // 2 x 16 lipids with their hydrogens (bench/lipid_bilayer.py --lipids 4
+  // --seed 1), probe 0: one fan, deferred max_deferrals times, still reaches an
+  // interior vertex. Built anyway (the fallback off) it lays triangles over
+  // the mesh; with the fallback its vertex is left for the seal, which closes
+  // the opening.
+  const std::string path =
+      std::string(SKINMESH_TEST_DATA) + "/regression/bilayer_allatom_probe0_fan_over_meshed_surface.xyzr";
+  const skin::Molecule mol = skin::read_molecule(path);
+  mesher::MeshOptions options;
+  options.probe_radius = 0;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  CHECK(res.sweep.left_holes >= 1);
+  CHECK(res.sweep.folds == 0);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+}
+
 TEST_CASE("fallback: folds at departure vertices anywhere in the sweep are re-opened or left for the seal") {
   // No input of ours folds at a departure vertex, so folds are injected
   // (SweepOptions::injected_folds): fold checks spread over the whole sweep,
