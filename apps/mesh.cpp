@@ -230,8 +230,8 @@ Command add_mesh_command(CLI::App& app) {
       ->group(debug);
   cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
   cmd->add_flag("--no-fallback{false}", mesh.opt.sweep.patch_fallback,
-                "stop with an error where the front tangles instead of re-meshing the region by restricted "
-                "Delaunay (papers/front/patch.md)")
+                "stop with an error where the front tangles or folds instead of re-meshing the region by "
+                "restricted Delaunay or leaving it for the seal (papers/front/patch.md)")
       ->group(debug);
   cmd->add_option("--max-steps", mesh.opt.sweep.max_steps, "stop the sweep after N departures")
       ->check(number_at_least_zero(false))
