@@ -149,7 +149,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
   return options_fit_algorithm(
       cmd, mesh.algorithm == "dynamic",
       {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
-       "--no-angle-improvement", "--no-fallback", "--no-growth", "--growth-step"},
+       "--no-angle-improvement", "--no-fallback", "--force-patch-every", "--no-growth", "--growth-step"},
       {"--no-growth", "--growth-step"});
 }
 
@@ -232,6 +232,9 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--no-fallback{false}", mesh.opt.sweep.patch_fallback,
                 "stop with an error where the front tangles or folds instead of re-meshing the region by "
                 "restricted Delaunay or leaving it for the seal (papers/front/patch.md)")
+      ->group(debug);
+  cmd->add_option("--force-patch-every", mesh.opt.sweep.force_patch_every,
+                  "testing aid: re-mesh every N-th hole of the seal by the fallback's patch (papers/front/patch.md)")
       ->group(debug);
   cmd->add_option("--max-steps", mesh.opt.sweep.max_steps, "stop the sweep after N departures")
       ->check(number_at_least_zero(false))

@@ -168,6 +168,7 @@ struct FrontState {
   // Counters, limits and progress.
   long steps = 0;               ///< departures so far (for max_steps)
   std::size_t fold_checks = 0;  ///< creep()'s fold checks so far (SweepOptions::injected_folds)
+  std::size_t seal_holes = 0;   ///< holes met by the seal so far (SweepOptions::force_patch_every)
   double h_min = 0, h_max = 0;  ///< height range of the critical points (progress)
   double next_progress = 0;     ///< next fraction to report
   const bool tracing = static_cast<bool>(opt.trace);

@@ -138,6 +138,10 @@ bool Patcher::collect_samples() {
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   std::vector<Vertex> loop_vertices, interior;
+  // Every pinched corner and every vertex the open side reaches outside the
+  // region is where the region must grow (grow_at): all of them at once, so
+  // that one growth clears them.
+  grow_at_.clear();
   for (Vertex x : corners) {
     int runs = 0, slots = 0, kept = 0;
     bool prev = false, first = false;
@@ -153,10 +157,11 @@ bool Patcher::collect_samples() {
     if (kept == 0) {
       interior.push_back(x);
     } else {
-      if (runs != 1) return false;  // pinched
+      if (runs != 1) grow_at_.push_back(x);  // pinched
       loop_vertices.push_back(x);
     }
   }
+  if (!grow_at_.empty()) return false;
   auto add_fixed = [&](Vertex x, bool loop) {
     if (sample_of_vertex_.count(x.idx())) return;
     Sample s;
@@ -175,10 +180,13 @@ bool Patcher::collect_samples() {
       const Halfedge t = mesh.opposite(h);
       if (!(mesh.is_boundary(t) || in_region(mesh.face(t)))) continue;
       const Vertex y = mesh.to_vertex(h);
-      if (!sample_of_vertex_.count(y.idx())) return false;  // the open side reaches a vertex outside the region
+      if (!sample_of_vertex_.count(y.idx())) {  // the open side reaches a vertex outside the region
+        grow_at_.push_back(y);
+        continue;
+      }
       loop_.push_back({sample_of_vertex_[y.idx()], sample_of_vertex_[x.idx()]});
     }
-  if (loop_.empty()) return false;
+  if (!grow_at_.empty() || loop_.empty()) return false;
   // Guards: the kept vertices kGuardRings rings around the loop.
   std::vector<Vertex> ring = loop_vertices;
   for (int r = 0; r < kGuardRings; ++r) {
@@ -188,7 +196,7 @@ bool Patcher::collect_samples() {
         if (in_region(f)) continue;
         kept_near_.push_back(f);
         for (Vertex y : mesh.vertices(f))
-          if (!sample_of_vertex_.count(y.idx())) {
+          if (!sample_of_vertex_.count(y.idx()) && std::find(next.begin(), next.end(), y) == next.end()) {
             add_fixed(y, false);
             next.push_back(y);
           }

@@ -99,6 +99,15 @@ void seal_loop(FrontState& fs, Halfedge start, int enlargements_left, bool in_sw
   std::vector<Halfedge> loop = fs.mesh.boundary_loop(start);
   std::vector<Vertex> poly;
   for (Halfedge h : loop) poly.push_back(fs.mesh.to_vertex(h));
+  if (!in_sweep && enlargements_left == fs.opt.max_hole_enlargements) {
+    const std::size_t hole = fs.seal_holes++;
+    if (fs.opt.force_patch_every > 0 && hole % fs.opt.force_patch_every == 0) {
+      Vec3 centre = Vec3::Zero();
+      for (Vertex v : poly) centre += fs.mesh.position(v);
+      if (patch(fs, poly, centre / double(poly.size()))) return;
+      if (fs.tracing) fs.tracef("patch: forced patch failed at hole %zu of %zu vertices\n", hole, poly.size());
+    }
+  }
   if (poly.size() <= static_cast<std::size_t>(fs.opt.dp_max_hole_vertices) && fill_hole_dp(fs, poly)) return;
   // Plane of projection: the first of (the average vertex normal, the normal
   // of the best-fit plane, each vertex normal) in which the hole is a simple,

@@ -166,6 +166,12 @@ struct SweepOptions {
   /// ordinal numbers (0 = the first fold check of the sweep) report a fold
   /// as if the mesh folded at the departure vertex. Empty in every real run.
   std::vector<std::size_t> injected_folds;
+  /// Testing aid for the fallback: if N > 0, every N-th hole the seal meets
+  /// (the first, the (N+1)-th, …; the small holes of the sweep not counted)
+  /// goes straight to the patch, as if every way of closing it had failed; a
+  /// hole whose patch fails is traced ("patch: forced patch failed") and then
+  /// sealed as usual. 0 in every real run.
+  std::size_t force_patch_every = 0;
 
   // Reporting and debugging aids (papers/front/sweep.md, "Debugging aids").
   /// Called now and then with the stage name "sweep" and the fraction of the

@@ -101,4 +101,26 @@ TEST_CASE("fallback: folds at departure vertices anywhere in the sweep are re-op
   }
 }
 
+TEST_CASE("fallback: every hole of the seal re-meshed by the patch") {
+  // The patch is the seal's last resort; forced on every hole
+  // (SweepOptions::force_patch_every = 1), each must be re-meshed (no
+  // "forced patch failed" in the trace) and the mesh pass every check.
+  for (const char* name : {"crambin_1crn.pdb", "gramicidinA_1grm_model1.pdb"}) {
+    CAPTURE(name);
+    const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + name);
+    mesher::MeshOptions options;
+    options.probe_radius = 1.4;
+    options.sweep.force_patch_every = 1;
+    std::size_t failed = 0;
+    options.sweep.trace = [&failed](const std::string& line) {
+      failed += line.find("forced patch failed") != std::string::npos;
+    };
+    const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    CHECK(failed == 0);
+    CHECK(res.sweep.patched_holes >= 5);
+    REQUIRE(res.checked);
+    test::check_every_property(res.check);
+  }
+}
+
 }  // TEST_SUITE
