@@ -358,7 +358,9 @@ TEST_CASE("plan_creep: a fan that would fold over a held neighbour joins its hol
   CHECK(plan_creep(s, v).verdict == CreepVerdict::Defer);
 }
 
-TEST_CASE("plan_creep: a fan point near another vertex is a Collision (deferred), or built anyway without deferrals") {
+TEST_CASE(
+    "plan_creep: a fan point near another vertex is a Collision (deferred); without deferrals, the vertex is left for "
+    "the seal (fallback) or the fan built anyway (no fallback)") {
   // On a fresh bowl, the fan's points at a rim vertex come within 1.75 r of
   // the bowl's centre (interior, so no contact can be made with it).
   Fixture fx(one_sphere());
@@ -374,8 +376,21 @@ TEST_CASE("plan_creep: a fan point near another vertex is a Collision (deferred)
     CHECK(s.state[v] == VState::Front);
     CHECK(s.mesh.n_faces() == 6);
   }
+  fx.opt.max_deferrals = 0;
   {
-    fx.opt.max_deferrals = 0;
+    // The bowl's centre is interior: the fan would cover meshed surface.
+    FrontState s(fx.skin, fx.ms, fx.opt);
+    const Vertex v = bowl_rim(s, fx)[3];
+    const CreepPlan plan = plan_creep(s, v);
+    CHECK(plan.verdict == CreepVerdict::Collision);
+    CHECK(s.stats.collisions == 1);
+    CHECK(s.stats.left_holes == 1);
+    CHECK(s.state[v] == VState::Held);
+    CHECK(s.holder_of(v) == kInvalidIndex);
+    CHECK(s.mesh.n_faces() == 6);
+  }
+  {
+    fx.opt.patch_fallback = false;
     FrontState s(fx.skin, fx.ms, fx.opt);
     const Vertex v = bowl_rim(s, fx)[3];
     const CreepPlan plan = plan_creep(s, v);
