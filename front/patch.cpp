@@ -461,6 +461,7 @@ bool Patcher::solve() {
       why_ = buf;
       return false;
     }
+    const std::size_t inserted_before = inserted;
     for (const auto& [x, cell] : centres) {
       const skin::SkinSample at = fs_.skin.sample(x, cell);
       const Index s = add_free(x, at.cell, at.rho, at.gradient.normalized());
@@ -472,6 +473,12 @@ bool Patcher::solve() {
         continue;
       }
       ++inserted;
+    }
+    // Every centre was a sample already: the next round would be this one
+    // again (the rounds are deterministic), so stop here.
+    if (inserted == inserted_before) {
+      why_ = "no refinement left after " + std::to_string(round) + " rounds (every centre is a sample already)";
+      return false;
     }
   }
   why_ = "too many refinement rounds";
