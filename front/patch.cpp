@@ -196,7 +196,7 @@ bool Patcher::collect_samples() {
         if (in_region(f)) continue;
         kept_near_.push_back(f);
         for (Vertex y : mesh.vertices(f))
-          if (!sample_of_vertex_.count(y.idx()) && std::find(next.begin(), next.end(), y) == next.end()) {
+          if (!sample_of_vertex_.count(y.idx())) {
             add_fixed(y, false);
             next.push_back(y);
           }
