@@ -106,7 +106,9 @@ class Patch:
             idx.append(i)
         return idx
 
-    def methyl(self, centre, rng):
+    def methyl(self, centre):
+        """A methyl carbon 1.49 Å from `centre` in a random direction, with its three hydrogens."""
+        rng = self.rng
         d = unit((rng.gauss(0, 1), rng.gauss(0, 1), rng.gauss(0, 1)))
         c = self.add(add(centre, scale(d, 1.49)), "C")
         for _ in range(3):
@@ -125,7 +127,7 @@ class Patch:
         for _ in range(2):
             self.add(add(phosphorus, (rng.uniform(-1, 1), rng.uniform(-1, 1), -0.3 * toward)), "O")
         for _ in range(3):
-            self.methyl(self.atoms[head[-1]][0], rng)
+            self.methyl(self.atoms[head[-1]][0])
         length = rng.choice([16, 18])
         tail_h = lambda k: 2 if k < length - 1 else 3
         self.chain([i2, i0, i1], ["C"] * length, toward, tail_h)

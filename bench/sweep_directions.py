@@ -7,8 +7,8 @@
 For every input, probe and direction (N unit vectors drawn uniformly from random.Random(S)), runs
 `skinmesh mesh IN --probe P --direction X,Y,Z -o TMP.ply --stats TMP.json` (the built-in check included: exit 0
 means every check passed) and prints one Markdown row: the input, the probe, the direction, the exit code, the
-triangle count, the fallback's patches and its openings left for the seal plus folds, the seconds, and the last line of stderr on a
-failure. With --no-fallback-too the runs that used the fallback are repeated with --no-fallback, to show that
+triangle count, the fallback's patches, its openings left for the seal plus its folds, the seconds, and the last
+line of stderr on a failure. With --no-fallback-too the runs that used the fallback are repeated with --no-fallback, to show that
 they fail without it. Ends with one summary line per input and probe: "ok N/M, fallback in K, failing without it
 F/K".
 """
