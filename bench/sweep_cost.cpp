@@ -16,6 +16,7 @@
 
 #include "bench/bench_common.h"
 #include "mesher/pipeline.h"
+#include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::bench {
@@ -91,6 +92,14 @@ void BM_SweepCost(benchmark::State& state, const char* file, double probe, doubl
 
 void BM_SweepCostLattice(benchmark::State& state, double gap) { run_sweep_cost(state, fcc_near_threshold(gap)); }
 
+/// The dense low-resolution-like dimer that bench/lowres_dimer.py builds from
+/// src kinase at configure time (two copies pressed together, clashes kept,
+/// coordinates with 0.3 Å of noise): issue #25's 4.2 Å dimer, whose sweep at
+/// probe 0 once ran for more than 15 minutes.
+void BM_SweepCostDimer(benchmark::State& state, double probe) {
+  run_sweep_cost(state, bench::weighted_points(skin::read_molecule(SKINMESH_BENCH_DIMER), probe));
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_SweepCost, ligand_probe1 .4, "ligand_1hpv_amprenavir.pdb", 1.4, 0.0)
@@ -114,6 +123,8 @@ BENCHMARK_CAPTURE(BM_SweepCost, crambin_probe0_bead120, "crambin_1crn.pdb", 0.0,
 BENCHMARK_CAPTURE(BM_SweepCost, hivprotease_probe0, "hivprotease_xk263_1hvr.pdb", 0.0, 0.0)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SweepCostDimer, lowres_dimer_probe1 .4, 1.4)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_SweepCostDimer, lowres_dimer_probe0, 0.0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepCostLattice, fcc2_gap1e - 3, 1e-3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepCostLattice, fcc2_gap1e - 4, 1e-4)->Unit(benchmark::kMillisecond)->UseRealTime();
 

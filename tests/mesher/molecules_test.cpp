@@ -111,6 +111,18 @@ TEST_CASE("regression: two minima whose bowls overlap, maltoporin at probe 0") {
 TEST_CASE("regression: a hole tangled in every projection, random atoms with probe 0") {
   mesh_and_check(kRegression + "random_probe0_tangled_hole.xyzr", 0.0);
 }
+TEST_CASE("regression: a dense low-resolution-like dimer, clashes kept, at probes 0 and 1.4") {
+  // Issue #25's 4.2 Å crystal dimer, whose sweep at probe 0 ran on in the
+  // contact search: two crambins pressed together (6 % of one copy within
+  // 3.5 Å of the other) with 0.3 Å of coordinate noise, written by
+  // `python3 bench/lowres_dimer.py data/crambin_1crn.pdb` (654 atoms).
+  const std::string path = kRegression + "crambin_lowres_dimer_probe0_clashing_interface.pdb";
+  REQUIRE(skin::read_molecule(path).atoms.size() == 654);
+  for (const double probe : {0.0, 1.4}) {
+    CAPTURE(probe);
+    mesh_and_check(path, probe);
+  }
+}
 TEST_CASE("regression: cocircular slivers of a rotated cubic lattice, vertices off the skin") {
   // The computed foci of sliver tetrahedra on the square faces broke the
   // order of their Voronoi edges; the mixed cells around them overlapped and
