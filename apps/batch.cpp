@@ -102,6 +102,8 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
     }
     skin::write_skin_mesh(item.output, res.mesh, res.vertex_data);
     if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
+    if (!res.static_fallback.empty() && item.message.empty())
+      item.message = res.static_fallback + "; meshed by the static baseline instead";
   } catch (const InputError& e) {
     item.exit_code = 1, item.status = "bad input", item.message = e.what();
   } catch (const TopologyError& e) {

@@ -87,6 +87,10 @@ int run_mesh(MeshArgs& a) {
   const mesher::MeshResult res = mesher::mesh_skin(mol, options);
   watchdog.disarm();
   progress.finish();
+  if (!res.static_fallback.empty() && !a.mol.quiet)
+    std::cerr << "note: " << res.static_fallback
+              << "; the whole skin was meshed by the static restricted Delaunay baseline instead (--no-fallback to "
+                 "stop with the error)\n";
 
   const bool failed = !res.ok();
   if (failed && !a.force) {
@@ -163,6 +167,7 @@ mesher::MeshOptions mesh_options(const MeshArgs& a) {
   options.check = !a.no_check;
   options.improve_angles = !a.no_angle_improvement;
   options.dynamic.growth = !a.no_growth;
+  options.static_fallback = a.opt.sweep.patch_fallback;  // --no-fallback: neither the patch nor the static re-mesh
   options.observers.memory_released = release_free_memory;
   return options;
 }
@@ -231,7 +236,8 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
   cmd->add_flag("--no-fallback{false}", mesh.opt.sweep.patch_fallback,
                 "stop with an error where the front tangles or folds instead of re-meshing the region by "
-                "restricted Delaunay or leaving it for the seal (papers/front/patch.md)")
+                "restricted Delaunay or leaving it for the seal (papers/front/patch.md), and where the sweep fails "
+                "instead of meshing the whole skin with the static baseline (papers/mesher/pipeline.md)")
       ->group(debug);
   cmd->add_option("--force-patch-every", mesh.opt.sweep.force_patch_every,
                   "testing aid: re-mesh every N-th hole of the seal by the fallback's patch (papers/front/patch.md)")

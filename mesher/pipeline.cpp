@@ -83,6 +83,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
   try {
     MeshResult res = mesh_skin_local(skin::translated(input_points, centre), options);
     res.frame_centre = centre;
+    res.static_fallback = in_frame(res.static_fallback, centre);
     for (Vec3& p : res.mesh.positions) p += centre;
     return res;
   } catch (const TopologyError& e) {
@@ -172,6 +173,40 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   clock.end("output");
 }
 
+/// Stage 5: the skin-aware check of res.mesh, timed on `clock`.
+void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
+  clock.begin("check");
+  verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
+  if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
+  if (check_options.threads == verify::SkinCheckOptions{}.threads)
+    check_options.threads = thread_count(options.threads);
+  res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
+  res.checked = true;
+  clock.end("check");
+}
+
+/// The whole-skin fallback: res's sweep results are replaced by the static
+/// baseline's mesh of `skin` (its stages timed on `clock`), and `why` is
+/// recorded. The baseline samples the final skin and refines the restricted
+/// Delaunay triangulation of the sample until [L], [U] and the restricted
+/// Delaunay property hold, which needs neither the Morse–Smale complex nor a
+/// front (papers/mesher/pipeline.md, "The whole-skin fallback").
+void remesh_static(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res,
+                   std::string why) {
+  MeshResult fresh;
+  fresh.algorithm = Algorithm::Dynamic;
+  fresh.static_fallback = std::move(why);
+  fresh.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+  dynamic::DynamicOptions static_options = options.dynamic;
+  static_options.growth = false;
+  static_options.observer = nullptr;
+  const geometry::PredicateStats predicates_before = geometry::predicate_stats();
+  fresh.mesh = dynamic::mesh_dynamic(skin, options.size, static_options, clock, fresh.dynamic, fresh.vertex_data);
+  fresh.dynamic.predicates = predicates_since(predicates_before);
+  res = std::move(fresh);
+  if (options.observers.memory_released) options.observers.memory_released();
+}
+
 MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
   MeshResult res;
   res.algorithm = options.algorithm;
@@ -183,6 +218,16 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   clock.begin("skin");
   const skin::SkinSurface skin(points);
   skin::require_non_singular(skin);
+  // The whole-skin fallback's stages are timed on their own clock and listed
+  // after the others as "fallback <stage>".
+  StageClock::Progress fallback_progress;
+  if (options.progress)
+    fallback_progress = [&options](const std::string& stage, double f) { options.progress("fallback " + stage, f); };
+  StageClock fallback_clock(fallback_progress);
+  // The sweep's debugging stops (max_steps, the paranoid fold check, the
+  // partial dump) are errors the user asked to see.
+  const bool may_fall_back = !dynamic && options.static_fallback && options.sweep.max_steps < 0 &&
+                             !options.sweep.paranoid && options.sweep.dump_path.empty();
   if (dynamic) {
     res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
     clock.end("skin");
@@ -191,21 +236,35 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     if (options.observers.memory_released) options.observers.memory_released();
   } else {
     clock.end("skin");
-    run_sweep(skin, options, clock, res);
+    std::string failure;
+    try {
+      run_sweep(skin, options, clock, res);
+    } catch (const TopologyError& e) {
+      if (!may_fall_back) throw;
+      failure = std::string("topology: ") + e.what();
+    } catch (const GeometryError& e) {
+      if (!may_fall_back) throw;
+      failure = std::string("geometry: ") + e.what();
+    }
+    if (!failure.empty()) {
+      clock.end("abandoned");  // the time the failed stages took
+      remesh_static(skin, options, fallback_clock, res, "the sweep failed: " + failure);
+    }
   }
 
-  // 5. The check.
+  // 5. The check. A refined sweep mesh that fails it is replaced (without
+  // the refinement [L], [U] and the restricted Delaunay property may fail by
+  // design, and the user asked for that mesh).
   if (options.check) {
-    clock.begin("check");
-    verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
-    if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
-    if (check_options.threads == verify::SkinCheckOptions{}.threads)
-      check_options.threads = thread_count(options.threads);
-    res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
-    res.checked = true;
-    clock.end("check");
+    run_check(skin, options, res.static_fallback.empty() ? clock : fallback_clock, res);
+    if (!res.check.ok() && may_fall_back && options.refine && res.static_fallback.empty()) {
+      const std::string first = res.check.problems.empty() ? "" : ": " + res.check.problems.front();
+      remesh_static(skin, options, fallback_clock, res, "the sweep's mesh failed its check" + first);
+      run_check(skin, options, fallback_clock, res);
+    }
   }
   res.seconds = clock.seconds();
+  for (const auto& [stage, t] : fallback_clock.seconds()) res.seconds.emplace_back("fallback " + stage, t);
   return res;
 }
 

@@ -106,6 +106,19 @@ struct MeshOptions {
   /// Algorithm::Dynamic: growth or the static variant, the sample's spacing,
   /// the growth schedule, its observer.
   dynamic::DynamicOptions dynamic;
+  /// Algorithm::Sweep's last resort (papers/mesher/pipeline.md, "The
+  /// whole-skin fallback"): when stages 2–4b throw TopologyError or
+  /// GeometryError (the local fallback, sweep.patch_fallback, could not
+  /// repair the front), or when the sweep's refined mesh fails its check, the
+  /// whole skin is meshed again by the restricted Delaunay refinement of a
+  /// sample of the final skin (the baseline's static variant, with
+  /// `dynamic`'s other options), which carries its own guarantee;
+  /// MeshResult::static_fallback then says why. Default off, so that the
+  /// library's callers (the tests, the stress suite, the benchmarks) see the
+  /// sweep's own failures: the error is thrown, or the failing mesh
+  /// returned. The command line, batch runs and Python turn it on
+  /// (`--no-fallback` turns it off there).
+  bool static_fallback = false;
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
   verify::SkinCheckOptions checks;
@@ -128,8 +141,12 @@ struct MeshOptions {
 
 /// What the pipeline produced and measured.
 struct MeshResult {
-  /// The algorithm that made the mesh.
+  /// The algorithm that made the mesh: Algorithm::Dynamic also when the
+  /// sweep was asked for and the whole-skin fallback replaced it.
   Algorithm algorithm = Algorithm::Sweep;
+  /// Why the sweep's result was replaced by the whole-skin fallback
+  /// (MeshOptions::static_fallback), in one line; empty if it was not.
+  std::string static_fallback;
   /// The mesh: positions (Å, on the skin), triangles counter-clockwise about
   /// the outward normal, unit outward normals per vertex.
   geometry::IndexedMesh mesh;
@@ -175,7 +192,11 @@ struct MeshResult {
 /// std::invalid_argument for options out of range (a tangent-disc factor
 /// outside the window of C and Q, a baseline option outside
 /// dynamic::validate's ranges). A mesh that fails its check is returned
-/// with the report (ok() false), never silently. Every stage works in the
+/// with the report (ok() false), never silently. With
+/// options.static_fallback the sweep's TopologyError and
+/// GeometryError, and a refined sweep mesh that fails its check, are not
+/// returned: the skin is meshed again by the static baseline
+/// (MeshResult::static_fallback says why). Every stage works in the
 /// local frame of the points (skin::local_frame_centre at the origin); when
 /// that centre is not the origin, an error that names positions says so.
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options = {});

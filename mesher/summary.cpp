@@ -159,6 +159,8 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
       {"minima", res.critical.minima}, {"saddles", res.critical.saddles}, {"maxima", res.critical.maxima}};
   j["live_critical_points"] = {{"minima", res.live.minima}, {"saddles", res.live.saddles}, {"maxima", res.live.maxima}};
   j["algorithm"] = algorithm_name(res.algorithm);
+  // The whole-skin fallback: the sweep was asked for, the static baseline made the mesh.
+  if (!res.static_fallback.empty()) j["static_fallback"] = res.static_fallback;
   j["threads"] = thread_count(options.threads);
   if (res.algorithm == Algorithm::Dynamic)
     add_dynamic_counts(options, res.dynamic, j);

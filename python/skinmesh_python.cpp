@@ -117,6 +117,9 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
   options.probe_radius = probe;
   options.check = check;
   options.threads = threads;
+  // As on the command line: where the sweep fails, the static baseline meshes
+  // the skin, and stats["static_fallback"] says why.
+  options.static_fallback = true;
   mesher::SummaryContext context;
   if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__"))
     context.input = py::str(py::module_::import("os").attr("fspath")(source));

@@ -388,6 +388,10 @@ void finish(const mesher::MeshResult& res, json counters, json every, std::size_
 json record_sweep(const std::vector<geometry::WeightedPoint>& points, const TraceOptions& options,
                   TraceSummary& summary) {
   mesher::MeshOptions run = options.mesh;
+  // The trace is the sweep's: where it fails, the error is the answer (the
+  // static baseline, the whole-skin fallback, is traced with --algorithm
+  // dynamic --no-growth).
+  run.static_fallback = false;
   OperationCounts counts;
   long every_sweep = options.every, every_refine = options.every;
   if (options.every <= 0) {

@@ -12,7 +12,10 @@
 
 #include "core/errors.h"
 #include "mesher/pipeline.h"
+#include "mesher/summary.h"
+#include "skin/dual_complex.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
 #include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
@@ -47,6 +50,54 @@ TEST_CASE("fallback: a C60-like cage inside a geodesic shell, whose seal tangles
     CHECK(res.expected_topology.components() == 4);
     REQUIRE(res.checked);
     test::check_every_property(res.check);
+  }
+}
+
+TEST_CASE("whole-skin fallback: the static baseline meshes the skin where the sweep fails") {
+  // The cage in a shell in a direction whose seal tangles: with the local
+  // fallback off the sweep throws, and MeshOptions::static_fallback meshes
+  // the whole skin by restricted Delaunay refinement instead, saying why.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_TEST_DATA) +
+                                                 "/regression/cage_in_geodesic_shell_probe1.4_tangled_seal.xyzr");
+  mesher::MeshOptions options;
+  options.height_direction = Vec3(-0.437678, -0.505737, 0.743416).normalized();
+  options.sweep.patch_fallback = false;
+  CHECK_THROWS_AS(mesher::mesh_skin(mol, options), TopologyError);
+  options.static_fallback = true;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  CHECK(res.algorithm == mesher::Algorithm::Dynamic);
+  CHECK(res.static_fallback.find("the sweep failed: topology: seal") == 0);
+  CHECK(res.sweep.creeps == 0);  // the sweep's counts are not the mesh's
+  CHECK(res.dynamic.converged);
+  CHECK(res.dynamic.births > 0);
+  CHECK(res.expected_topology.components() == 4);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+  bool timed = false;
+  for (const auto& [stage, t] : res.seconds) timed |= stage == "fallback refine";
+  CHECK(timed);
+  // --stats and Python's stats say which mesher made the mesh, and why.
+  const auto summary = mesher::run_summary(res, options, mesher::SummaryContext{});
+  CHECK(summary.at("algorithm") == "dynamic");
+  CHECK(summary.at("static_fallback") == res.static_fallback);
+
+  SUBCASE("a sweep mesh that fails its check is replaced, and the replacement checked again") {
+    // An expected topology the skin does not have (one component more):
+    // every mesh fails; the one returned is the baseline's, with its report.
+    mesher::MeshOptions wrong;
+    skin::SkinTopology t =
+        skin::dual_complex_topology(skin::SkinSurface(skin::weighted_points(mol, 1.4)).mixed_complex());
+    ++t.betti0;
+    wrong.checks.expected_topology = t;
+    wrong.static_fallback = true;
+    const mesher::MeshResult r = mesher::mesh_skin(mol, wrong);
+    CHECK(r.algorithm == mesher::Algorithm::Dynamic);
+    CHECK(r.static_fallback.find("the sweep's mesh failed its check") == 0);
+    REQUIRE(r.checked);
+    CHECK_FALSE(r.check.ok());
+    bool rechecked = false;
+    for (const auto& [stage, sec] : r.seconds) rechecked |= stage == "fallback check";
+    CHECK(rechecked);
   }
 }
 
