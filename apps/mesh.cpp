@@ -153,7 +153,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
   return options_fit_algorithm(
       cmd, mesh.algorithm == "dynamic",
       {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
-       "--no-angle-improvement", "--no-fallback", "--force-patch-every", "--no-growth", "--growth-step"},
+       "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--no-growth", "--growth-step"},
       {"--no-growth", "--growth-step"});
 }
 
@@ -167,7 +167,8 @@ mesher::MeshOptions mesh_options(const MeshArgs& a) {
   options.check = !a.no_check;
   options.improve_angles = !a.no_angle_improvement;
   options.dynamic.growth = !a.no_growth;
-  options.static_fallback = a.opt.sweep.patch_fallback;  // --no-fallback: neither the patch nor the static re-mesh
+  options.sweep.patch_fallback = !a.no_fallback && !a.no_patch;
+  options.static_fallback = !a.no_fallback;
   options.observers.memory_released = release_free_memory;
   return options;
 }
@@ -234,10 +235,14 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--paranoid", mesh.opt.sweep.paranoid, "check for folds after every operation of the sweep")
       ->group(debug);
   cmd->add_flag("--trace", mesh.trace, "print every decision of the sweep on stderr")->group(debug);
-  cmd->add_flag("--no-fallback{false}", mesh.opt.sweep.patch_fallback,
+  cmd->add_flag("--no-fallback", mesh.no_fallback,
                 "stop with an error where the front tangles or folds instead of re-meshing the region by "
                 "restricted Delaunay or leaving it for the seal (papers/front/patch.md), and where the sweep fails "
                 "instead of meshing the whole skin with the static baseline (papers/mesher/pipeline.md)")
+      ->group(debug);
+  cmd->add_flag("--no-patch", mesh.no_patch,
+                "testing aid: where the front tangles, no local patch; the whole skin is meshed by the static "
+                "baseline where the sweep then fails (papers/mesher/pipeline.md)")
       ->group(debug);
   cmd->add_option("--force-patch-every", mesh.opt.sweep.force_patch_every,
                   "testing aid: re-mesh every N-th hole of the seal by the fallback's patch (papers/front/patch.md)")

@@ -20,6 +20,9 @@ struct MeshArgs {
   /// step); the rest are set by mesh_options().
   mesher::MeshOptions opt;
   bool no_check = false, force = false, trace = false, no_angle_improvement = false;
+  /// --no-fallback: neither the patch nor the whole-skin fallback; --no-patch:
+  /// the whole-skin fallback without the patch (a testing aid).
+  bool no_fallback = false, no_patch = false;
   /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
   std::string algorithm = "sweep";
   bool no_growth = false;

@@ -247,8 +247,10 @@ PYBIND11_MODULE(skinmesh, m) {
         "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
         "whether it passed. threads=0: every core; the mesh is the same for every count. stats['surface'] holds the "
         "mesh's area (Å²) and enclosed volume (Å³), per component and in all; analytic=True adds "
-        "stats['surface']['analytic'], the same of the exact skin (see measures()). Raises InputError for a "
-        "bad file, array or option, TopologyError or GeometryError if the algorithm fails.");
+        "stats['surface']['analytic'], the same of the exact skin (see measures()). Where the sweep fails, the "
+        "whole skin is meshed by the static dynamic-skin baseline instead: stats['algorithm'] is then 'dynamic' "
+        "and stats['static_fallback'] says why. Raises InputError for a bad file, array or option, TopologyError "
+        "or GeometryError if the algorithm fails.");
   m.def(
       "measures",
       [](const py::object& source, double probe, int threads) {

@@ -139,6 +139,30 @@ TEST_CASE("--no-fallback applies to the sweep only") {
   CHECK(lines(dyn.err) == 1);
 }
 
+TEST_CASE("where the sweep fails, the whole skin is meshed by the static baseline, and the run says so") {
+  // The cage in the shell in a direction whose seal tangles; --no-patch takes
+  // the local fallback away, so the sweep fails and the static baseline
+  // meshes the skin: exit 0, a note on stderr, the reason in --stats, a mesh
+  // that `check` accepts. --no-fallback stops with the sweep's error instead.
+  Scratch s;
+  const std::string cage =
+      quoted(std::string(SKINMESH_TEST_DATA) + "/regression/cage_in_geodesic_shell_probe1.4_tangled_seal.xyzr");
+  const std::string args = "mesh " + cage + " --direction -0.437678,-0.505737,0.743416 --quiet";
+  const Run stop = run(s, args + " -o a.ply --no-fallback");
+  CHECK(stop.exit_code == 3);
+  CHECK(stop.err.find("seal") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "a.ply"));
+  const Run fell =
+      run(s, "mesh " + cage + " --direction -0.437678,-0.505737,0.743416 -o b.ply --stats b.json --no-patch");
+  CHECK(fell.exit_code == 0);
+  CHECK(fell.err.find("note: the sweep failed: topology: seal") != std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "b.json"));
+  CHECK(j.at("algorithm") == "dynamic");
+  CHECK(j.at("static_fallback").get<std::string>().find("the sweep failed") == 0);
+  CHECK(j.at("checks_passed") == true);
+  CHECK(run(s, "check " + cage + " b.ply --quiet").exit_code == 0);
+}
+
 TEST_CASE("--algorithm dynamic: a checked mesh, its statistics, and options of the other algorithm refused") {
   Scratch s;
   const Run r = run(s, "mesh " + kAtom + " -o d.ply --algorithm dynamic --no-growth --stats - --quiet");
