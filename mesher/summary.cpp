@@ -18,10 +18,11 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-/// The counts of the baseline's run (Algorithm::Dynamic).
-void add_dynamic_counts(const MeshOptions& options, const dynamic::DynamicStats& d, json& j) {
+/// The counts of the baseline's run (Algorithm::Dynamic); `growth`: whether
+/// it grew the skin (never in the whole-skin fallback, the static variant).
+void add_dynamic_counts(bool growth, const dynamic::DynamicStats& d, json& j) {
   const dynamic::SampleStats& st = d.samples;
-  j["growth"] = options.dynamic.growth;
+  j["growth"] = growth;
   j["operations"] = {{"growth_steps", d.steps},
                      {"start_level", d.start_level},
                      {"sphere_patches_seeded", d.births},
@@ -163,7 +164,7 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (!res.static_fallback.empty()) j["static_fallback"] = res.static_fallback;
   j["threads"] = thread_count(options.threads);
   if (res.algorithm == Algorithm::Dynamic)
-    add_dynamic_counts(options, res.dynamic, j);
+    add_dynamic_counts(options.dynamic.growth && res.static_fallback.empty(), res.dynamic, j);
   else
     add_sweep_counts(options, res, j);
   json seconds = json::object();

@@ -80,6 +80,7 @@ TEST_CASE("whole-skin fallback: the static baseline meshes the skin where the sw
   const auto summary = mesher::run_summary(res, options, mesher::SummaryContext{});
   CHECK(summary.at("algorithm") == "dynamic");
   CHECK(summary.at("static_fallback") == res.static_fallback);
+  CHECK(summary.at("growth") == false);  // the static variant, whatever options.dynamic.growth says
 
   SUBCASE("a sweep mesh that fails its check is replaced, and the replacement checked again") {
     // An expected topology the skin does not have (one component more):
