@@ -1,6 +1,7 @@
 // apps/mesh.cpp: `skinmesh mesh IN -o OUT` — mesh the skin with either
 // algorithm (mesher/pipeline.h), verify it, write it and, with --stats, the
 // run's summary (mesher/summary.h). Several inputs: batch.cpp.
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -11,6 +12,8 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "apps/mesh_command.h"
 #include "apps/output.h"
@@ -22,7 +25,8 @@ namespace skinmesh::app {
 
 namespace {
 
-/// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
+/// Peak resident memory of this process (bytes) since the start or the last
+/// reset, from /proc/self/status (0 if unknown).
 std::size_t peak_memory_bytes() {
   std::ifstream is("/proc/self/status");
   std::string line;
@@ -30,6 +34,39 @@ std::size_t peak_memory_bytes() {
     if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
   return 0;
 }
+
+/// The peak resident memory of each stage (`--stats` "peak_memory_bytes_per_stage"): at a stage's end the
+/// process's high-water mark is read and reset (writing 5 to /proc/self/clear_refs, Linux 4.0 and later), so
+/// that the next stage's mark is its own. Where the reset is refused, no stage is recorded and only the
+/// process's peak is reported. A stage that ends twice keeps the larger mark.
+class StagePeaks {
+ public:
+  StagePeaks() : enabled_(reset()) {}
+  /// Records the mark of `stage` (ended now) and starts the next stage's.
+  void end(const std::string& stage) {
+    if (!enabled_) return;
+    const std::size_t bytes = peak_memory_bytes();
+    overall_ = std::max(overall_, bytes);
+    auto it = std::find_if(stages_.begin(), stages_.end(), [&](const auto& e) { return e.first == stage; });
+    if (it == stages_.end())
+      stages_.emplace_back(stage, bytes);
+    else
+      it->second = std::max(it->second, bytes);
+    reset();
+  }
+  /// The process's peak so far (bytes): the largest mark of the stages and the current one.
+  std::size_t overall() const { return std::max(overall_, peak_memory_bytes()); }
+  const std::vector<std::pair<std::string, std::size_t>>& stages() const { return stages_; }
+
+ private:
+  static bool reset() {
+    std::ofstream os("/proc/self/clear_refs");
+    return static_cast<bool>(os << "5" << std::flush);
+  }
+  bool enabled_;
+  std::size_t overall_ = 0;
+  std::vector<std::pair<std::string, std::size_t>> stages_;
+};
 
 /// --timeout: while armed, ends the process with one line on stderr and exit
 /// code 5 once `seconds` have passed. It is disarmed before anything is
@@ -78,12 +115,17 @@ int run_mesh(MeshArgs& a) {
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   Watchdog watchdog(a.timeout, !a.mol.quiet);
 
+  StagePeaks peaks;
   const skin::Molecule mol = load_molecule(a.mol);
   const double read_s = since(start);
+  peaks.end("read");
   mesher::MeshOptions options = mesh_options(a);
   if (a.trace) options.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   ProgressReporter progress(!a.mol.quiet);
-  options.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
+  options.progress = [&progress, &peaks](const std::string& stage, double f) {
+    progress.report(stage, f);
+    if (f == 1.0) peaks.end(stage);  // StageClock::end() reports exactly 1
+  };
   const mesher::MeshResult res = mesher::mesh_skin(mol, options);
   watchdog.disarm();
   progress.finish();
@@ -102,6 +144,7 @@ int run_mesh(MeshArgs& a) {
   const auto write_start = Clock::now();
   skin::write_skin_mesh(a.out, res.mesh, res.vertex_data);
   const double write_s = since(write_start);
+  peaks.end("write");
   const double total = since(start);
   if (!a.stats.empty()) {
     const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
@@ -113,7 +156,8 @@ int run_mesh(MeshArgs& a) {
     context.read_seconds = read_s;
     context.write_seconds = write_s;
     context.total_seconds = total;
-    context.peak_memory_bytes = peak_memory_bytes();
+    context.peak_memory_bytes = peaks.overall();
+    context.stage_peak_memory_bytes = peaks.stages();
     write_text_file(a.stats, mesher::run_summary(res, options, context).dump(2) + "\n");
   }
   if (!a.mol.quiet)

@@ -175,6 +175,11 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (context.total_seconds >= 0) seconds["total"] = context.total_seconds;
   j["seconds"] = seconds;
   if (context.peak_memory_bytes > 0) j["peak_memory_bytes"] = context.peak_memory_bytes;
+  if (!context.stage_peak_memory_bytes.empty()) {
+    json per_stage = json::object();
+    for (const auto& [stage, bytes] : context.stage_peak_memory_bytes) per_stage[stage] = bytes;
+    j["peak_memory_bytes_per_stage"] = per_stage;
+  }
   return j;
 }
 

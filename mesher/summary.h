@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +31,9 @@ struct SummaryContext {
   double read_seconds = -1, write_seconds = -1, total_seconds = -1;
   /// Peak resident memory of the process (bytes); 0: absent.
   std::size_t peak_memory_bytes = 0;
+  /// Peak resident memory of each stage (bytes), in the order they ended
+  /// ("read", the pipeline's stages, "write"); empty: absent.
+  std::vector<std::pair<std::string, std::size_t>> stage_peak_memory_bytes;
 };
 
 /// The summary of a run: input, output, atoms, probe radius, vertices,
@@ -39,8 +43,8 @@ struct SummaryContext {
 /// ("checked", "problems", and when checked "min_angle_deg",
 /// "max_angle_deg", "checks_passed"), critical points, the algorithm, the
 /// threads, the operation counts of the algorithm that ran, "seconds" per
-/// stage (the exact integration's as "analytic") and the peak memory. Keys
-/// keep this order.
+/// stage (the exact integration's as "analytic") and the peak memory, of the
+/// process and per stage. Keys keep this order.
 nlohmann::ordered_json run_summary(const MeshResult& result, const MeshOptions& options, const SummaryContext& context);
 
 }  // namespace skinmesh::mesher

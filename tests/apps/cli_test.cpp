@@ -4,6 +4,7 @@
 // JSON that parses whatever the paths contain.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -343,6 +344,30 @@ TEST_CASE("--stats reports the area and enclosed volume of the mesh, per compone
   CHECK(double(exact.at("volume_A3")) == doctest::Approx(4 * M_PI * 27 / 3).epsilon(1e-12));
   CHECK(double(surface.at("mesh_relative_difference").at("area")) ==
         doctest::Approx(area / (4 * M_PI * 9) - 1).epsilon(1e-9));
+}
+
+TEST_CASE("--stats: the peak memory of the process and of each stage") {
+  // Crambin at probe 0 (about 0.3 M triangles): each stage's mark is its own
+  // (the high-water mark is reset between stages), none above the process's.
+  Scratch s;
+  const std::string crambin = quoted(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  REQUIRE(run(s, "mesh " + crambin + " --probe 0 -o c.ply --stats s.json --quiet").exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "s.json"));
+  const std::size_t peak = j.at("peak_memory_bytes");
+  CHECK(peak > 0);
+  const nlohmann::json& per_stage = j.at("peak_memory_bytes_per_stage");
+  std::size_t largest = 0;
+  for (const char* stage : {"read", "skin", "morse", "sweep", "refine", "angles", "output", "check", "write"}) {
+    CAPTURE(stage);
+    REQUIRE(per_stage.contains(stage));
+    const std::size_t bytes = per_stage.at(stage);
+    CHECK(bytes > 0);
+    CHECK(bytes <= peak);
+    largest = std::max(largest, bytes);
+  }
+  CHECK(largest == peak);  // the process's peak is some stage's
+  // Reading a 327-atom file needs far less than the sweep of 0.3 M triangles.
+  CHECK(std::size_t(per_stage.at("read")) < std::size_t(per_stage.at("sweep")));
 }
 
 TEST_CASE("--stats: a molecule's mesh area and volume lie close to the exact skin's, at both probes") {
