@@ -2,6 +2,7 @@
 // algorithm (mesher/pipeline.h), verify it, write it and, with --stats, the
 // run's summary (mesher/summary.h). Several inputs: batch.cpp.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -15,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include "apps/mesh_command.h"
 #include "apps/output.h"
 #include "mesher/summary.h"
@@ -25,8 +28,7 @@ namespace skinmesh::app {
 
 namespace {
 
-/// Peak resident memory of this process (bytes) since the start or the last
-/// reset, from /proc/self/status (0 if unknown).
+/// Peak resident memory of this process (bytes), from /proc/self/status (0 if unknown).
 std::size_t peak_memory_bytes() {
   std::ifstream is("/proc/self/status");
   std::string line;
@@ -35,37 +37,62 @@ std::size_t peak_memory_bytes() {
   return 0;
 }
 
-/// The peak resident memory of each stage (`--stats` "peak_memory_bytes_per_stage"): at a stage's end the
-/// process's high-water mark is read and reset (writing 5 to /proc/self/clear_refs, Linux 4.0 and later), so
-/// that the next stage's mark is its own. Where the reset is refused, no stage is recorded and only the
-/// process's peak is reported. A stage that ends twice keeps the larger mark.
+/// Resident memory of this process now (bytes), from /proc/self/statm (0 if unknown).
+std::size_t resident_bytes() {
+  std::ifstream is("/proc/self/statm");
+  std::size_t pages = 0, resident = 0;
+  if (!(is >> pages >> resident)) return 0;
+  return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+
+/// The peak resident memory of each stage (`--stats` "peak_memory_bytes_per_stage"), sampled: a thread reads
+/// the resident size every kSampleMs, and a stage's peak is the largest sample between its start and its end
+/// (with the sizes at both ends). The kernel's own high-water mark is left alone (resetting it would make
+/// `/usr/bin/time` and other outside tools report the last stage's peak as the process's), so a spike shorter
+/// than the period may be missed; the process's peak ("peak_memory_bytes") is the kernel's exact one. A stage
+/// that ends twice keeps the larger peak.
 class StagePeaks {
  public:
-  StagePeaks() : enabled_(reset()) {}
-  /// Records the mark of `stage` (ended now) and starts the next stage's.
+  StagePeaks() : current_max_(resident_bytes()) {
+    sampler_ = std::thread([this] {
+      std::unique_lock lock(mutex_);
+      while (!cv_.wait_for(lock, std::chrono::milliseconds(kSampleMs), [this] { return stop_; }))
+        raise(resident_bytes());
+    });
+  }
+  ~StagePeaks() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    cv_.notify_one();
+    sampler_.join();
+  }
+  /// Records the peak of `stage` (ended now) and starts the next stage's.
   void end(const std::string& stage) {
-    if (!enabled_) return;
-    const std::size_t bytes = peak_memory_bytes();
-    overall_ = std::max(overall_, bytes);
+    const std::size_t now = resident_bytes();
+    const std::size_t bytes = std::max(current_max_.exchange(now), now);
     auto it = std::find_if(stages_.begin(), stages_.end(), [&](const auto& e) { return e.first == stage; });
     if (it == stages_.end())
       stages_.emplace_back(stage, bytes);
     else
       it->second = std::max(it->second, bytes);
-    reset();
   }
-  /// The process's peak so far (bytes): the largest mark of the stages and the current one.
-  std::size_t overall() const { return std::max(overall_, peak_memory_bytes()); }
   const std::vector<std::pair<std::string, std::size_t>>& stages() const { return stages_; }
 
  private:
-  static bool reset() {
-    std::ofstream os("/proc/self/clear_refs");
-    return static_cast<bool>(os << "5" << std::flush);
+  static constexpr int kSampleMs = 5;
+  void raise(std::size_t bytes) {
+    std::size_t seen = current_max_.load();
+    while (bytes > seen && !current_max_.compare_exchange_weak(seen, bytes)) {
+    }
   }
-  bool enabled_;
-  std::size_t overall_ = 0;
+  std::atomic<std::size_t> current_max_;
   std::vector<std::pair<std::string, std::size_t>> stages_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::thread sampler_;
 };
 
 /// --timeout: while armed, ends the process with one line on stderr and exit
@@ -156,7 +183,11 @@ int run_mesh(MeshArgs& a) {
     context.read_seconds = read_s;
     context.write_seconds = write_s;
     context.total_seconds = total;
-    context.peak_memory_bytes = peaks.overall();
+    // The kernel updates its high-water mark lazily (at unmaps and exits), so a
+    // sample may exceed it: the process's peak is at least both.
+    context.peak_memory_bytes = peak_memory_bytes();
+    for (const auto& [stage, bytes] : peaks.stages())
+      context.peak_memory_bytes = std::max(context.peak_memory_bytes, bytes);
     context.stage_peak_memory_bytes = peaks.stages();
     write_text_file(a.stats, mesher::run_summary(res, options, context).dump(2) + "\n");
   }

@@ -31,8 +31,8 @@ struct SummaryContext {
   double read_seconds = -1, write_seconds = -1, total_seconds = -1;
   /// Peak resident memory of the process (bytes); 0: absent.
   std::size_t peak_memory_bytes = 0;
-  /// Peak resident memory of each stage (bytes), in the order they ended
-  /// ("read", the pipeline's stages, "write"); empty: absent.
+  /// Peak resident memory of each stage (bytes, sampled), in the order they
+  /// ended ("read", the pipeline's stages, "write"); empty: absent.
   std::vector<std::pair<std::string, std::size_t>> stage_peak_memory_bytes;
 };
 

@@ -347,8 +347,8 @@ TEST_CASE("--stats reports the area and enclosed volume of the mesh, per compone
 }
 
 TEST_CASE("--stats: the peak memory of the process and of each stage") {
-  // Crambin at probe 0 (about 0.3 M triangles): each stage's mark is its own
-  // (the high-water mark is reset between stages), none above the process's.
+  // Crambin at probe 0 (about 0.3 M triangles): each stage's peak is sampled,
+  // none above the process's, and the largest close to the kernel's mark.
   Scratch s;
   const std::string crambin = quoted(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
   REQUIRE(run(s, "mesh " + crambin + " --probe 0 -o c.ply --stats s.json --quiet").exit_code == 0);
@@ -365,7 +365,7 @@ TEST_CASE("--stats: the peak memory of the process and of each stage") {
     CHECK(bytes <= peak);
     largest = std::max(largest, bytes);
   }
-  CHECK(largest == peak);  // the process's peak is some stage's
+  CHECK(largest >= peak * 3 / 4);  // sampled every 5 ms: the peak's plateau is seen
   // Reading a 327-atom file needs far less than the sweep of 0.3 M triangles.
   CHECK(std::size_t(per_stage.at("read")) < std::size_t(per_stage.at("sweep")));
 }
