@@ -166,6 +166,12 @@ def shell(args):
     dirs = [apply(rots[h], base_dirs[s]) for h in range(len(rots)) for s in range(args.t)]
     extent = max(math.sqrt(p[0]**2 + p[1]**2 + p[2]**2) for p in local)
 
+    def copy(j, radius):
+        """Copy j = (h, s): the first unit's copy s turned by rotation h, so that the assembly is symmetric
+        (the contacts of the first unit's copies are the contacts of every unit's)."""
+        h, s = divmod(j, args.t)
+        return [apply(rots[h], p) for p in place(local, base_dirs[s], radius)]
+
     def components(radius):
         """Components of the graph of copies joined by a heavy-atom pair closer than --join; by symmetry the
         contacts of the T copies of the first asymmetric unit (h = identity) give every edge."""
@@ -173,9 +179,9 @@ def shell(args):
         edges = []
         for s in range(args.t):
             i = ident * args.t + s
-            near = {j: place(local, dirs[j], radius) for j in range(n)
+            near = {j: copy(j, radius) for j in range(n)
                     if j != i and radius * math.dist(dirs[i], dirs[j]) < 2 * extent + args.join}
-            for j in contacts(place(local, dirs[i], radius), near, args.join):
+            for j in contacts(copy(i, radius), near, args.join):
                 edges.append((s, j))
         parent = list(range(n))
 
@@ -206,7 +212,7 @@ def shell(args):
             lo = mid
         else:
             hi = mid
-    copies = [place(local, d, lo) for d in dirs]
+    copies = [copy(j, lo) for j in range(n)]
     write(atoms, copies)
     print(f"assembly.py shell: {n} copies (T = {args.t}) of {len(atoms)} atoms = {n * len(atoms)} atoms, shell "
           f"radius {lo:.2f} Å; the copies' contact graph (heavy atoms closer than {args.join} Å) is connected",
