@@ -161,6 +161,8 @@ Traced trace_curve(const LevelSet& ls, const Seed& seed, const LevelCurveOptions
   skin::SkinSample sx;
   if (!ls.project(x, cell, sx)) throw GeometryError(at_height(ls.c()) + "a seed does not project onto the curve");
   const Vec3 x0 = x;
+  double sine0 = 0;
+  const Vec3 t0 = ls.tangent(sx, sine0);
   out.points.push_back(x), out.rho.push_back(sx.rho), out.cells.push_back(cell);
   double travelled = 0;
   for (std::size_t step = 0; step < max_steps; ++step) {
@@ -170,10 +172,14 @@ Traced trace_curve(const LevelSet& ls, const Seed& seed, const LevelCurveOptions
       throw GeometryError(at_height(ls.c()) + "the curve passes next to a critical point (sin theta " +
                           std::to_string(sine) + "): the height is not a regular value");
     double h = opt.trace_step * sx.rho * sine;
-    // Closed: the start lies ahead within this step (after the curve went
-    // some way round).
+    // Closed: the start lies ahead within this step, on the line of the
+    // tangent, and the curve runs there as it started (after it went some way
+    // round). Where one curve comes back close to itself (a neck near a
+    // saddle) its strands run the other way, and lie off the tangent line.
     const Vec3 to_start = x0 - x;
-    if (travelled > 4 * h && to_start.norm() <= 1.5 * h && to_start.dot(t1) > 0) {
+    const double ahead = to_start.dot(t1);
+    if (travelled > 4 * h && to_start.norm() <= 1.5 * h && ahead > 0 && t1.dot(t0) > 0 &&
+        (to_start - ahead * t1).norm() <= 0.25 * h) {
       on_segment(x, x0, sx.rho);
       return out;
     }
