@@ -178,6 +178,31 @@ struct FrontState {
   double rho_min_seen = std::numeric_limits<double>::infinity();  ///< smallest rho of a vertex so far (Å)
   SweepStats stats;
 
+  // A slab of the decomposed sweep (front/slab.h; papers/mesher/decomposition.md).
+  // Outside a slab run the bounds are infinite and the marks empty, and the
+  // sweep is Algorithm 1 unchanged.
+  /// Heights (Å) of the lower and upper cut: minima get a bowl only strictly
+  /// between them, and a departure vertex above upper - park_factor · r is
+  /// parked.
+  double slab_lower = -std::numeric_limits<double>::infinity();
+  double slab_upper = std::numeric_limits<double>::infinity();
+  double park_factor = 0;
+  /// Per vertex index: 1 for a vertex of the ghost strip below a lower cut
+  /// curve (never departs, deleted at the end), 2 for a parked vertex (on an
+  /// upper rim, left open for the band). Shorter than the vertex count: the
+  /// vertices past its end are neither.
+  std::vector<std::uint8_t> slab_mark;
+  bool is_ghost(Vertex v) const { return v.idx() < slab_mark.size() && slab_mark[v.idx()] == 1; }
+  bool is_parked(Vertex v) const { return v.idx() < slab_mark.size() && slab_mark[v.idx()] == 2; }
+  /// True if the boundary loop through h has a ghost or a parked vertex: a
+  /// slab's boundary, which neither the seal nor a small hole may close.
+  bool on_slab_boundary(Halfedge h) const {
+    if (slab_mark.empty()) return false;
+    for (Halfedge g : mesh.boundary_loop(h))
+      if (is_ghost(mesh.to_vertex(g)) || is_parked(mesh.to_vertex(g))) return true;
+    return false;
+  }
+
   /// Sets v's state, and keeps front_grid to the vertices not Interior.
   void set_state(Vertex v, VState s) {
     if ((s == VState::Interior) != (state[v] == VState::Interior)) {

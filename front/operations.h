@@ -117,6 +117,16 @@ void create_initial_front(FrontState& fs);
 /// or creeps; after a hold or a creep the wings are drained. False if the
 /// queue was empty.
 bool departure_step(FrontState& fs);
+/// The departures until the queue is empty (releasing unbridged saddles),
+/// then the seal: run_sweep after its initial front (sweep_slab's too).
+void sweep_and_seal(FrontState& fs);
+/// Removes the sweep's own vertex properties and grids; the mesh keeps
+/// those of SweepResult::mesh.
+void drop_sweep_properties(FrontState& fs);
+/// Parks departure vertex v below a slab's upper cut (front/slab.h): held by
+/// no critical point, marked parked, so that it never departs and its loop is
+/// left open for the band.
+void park(FrontState& fs, Vertex v);
 /// Releases the vertices held by unresolved saddles (the queue ran dry before
 /// both sides arrived); returns true if any was released (holds.cpp).
 bool release_saddles(FrontState& fs);

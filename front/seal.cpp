@@ -68,16 +68,25 @@ void seal_all(FrontState& fs) {
   // by one more pass from the start.
   std::size_t cursor = 0;
   bool rescanned = false;
+  // In a slab (front/slab.h), the loops of the ghost strips and the parked
+  // rims are the slab's boundary: they stay open. Their vertices are marked
+  // once, so that the scan skips them without walking the loop again.
+  std::vector<char> kept_open;
   for (std::size_t iter = 0;; ++iter) {
     if (iter > max_loops) throw TopologyError("seal: the holes do not close");
     Halfedge start;
     const std::size_t n = fs.mesh.vertices_size();
     for (; cursor < n; ++cursor) {
       const Vertex v(static_cast<Index>(cursor));
-      if (!fs.mesh.is_deleted(v) && !fs.mesh.is_isolated(v) && fs.mesh.is_boundary(v)) {
-        start = fs.mesh.halfedge(v);
-        break;
+      if (fs.mesh.is_deleted(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
+      if (cursor < kept_open.size() && kept_open[cursor]) continue;
+      if (fs.on_slab_boundary(fs.mesh.halfedge(v))) {
+        kept_open.resize(n, 0);
+        for (Halfedge g : fs.mesh.boundary_loop(fs.mesh.halfedge(v))) kept_open[fs.mesh.to_vertex(g).idx()] = 1;
+        continue;
       }
+      start = fs.mesh.halfedge(v);
+      break;
     }
     if (!start.is_valid()) {
       if (rescanned) return;

@@ -28,8 +28,13 @@ void create_initial_front(FrontState& fs) {
   // front sweeps its basin, and the saddles the missing bowl would have
   // touched are resolved with it (papers/front/creation.md, "Overlapping bowls").
   std::vector<Index> minima;
-  for (std::size_t c = 0; c < fs.ms.critical.size(); ++c)
-    if (fs.ms.live[c] && fs.ms.critical[c].kind == CriticalKind::Minimum) minima.push_back(static_cast<Index>(c));
+  // In a slab (front/slab.h), only the minima strictly between its cuts: the
+  // others are in the slabs below and above.
+  for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
+    if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Minimum) continue;
+    const double h = fs.ms.critical[c].position.dot(fs.e);
+    if (h > fs.slab_lower && h < fs.slab_upper) minima.push_back(static_cast<Index>(c));
+  }
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return fs.ms.critical[a].position.dot(fs.e) < fs.ms.critical[b].position.dot(fs.e);
   });
@@ -78,6 +83,13 @@ bool departure_step(FrontState& fs) {
       throw TopologyError("stopped after " + std::to_string(fs.opt.max_steps) + " departures (max_steps)");
     }
     report_progress(fs, top.h);
+    // In a slab, a vertex whose fan could come within (park_factor - 1) r of
+    // the upper cut stops there: the band above it is the strip's
+    // (front/slab.h). Outside a slab the bound is +infinity.
+    if (fs.height(v) > fs.slab_upper - fs.park_factor * fs.disc_radius(v)) {
+      park(fs, v);
+      return true;
+    }
     // Lines 3–10: in the protecting sphere of a saddle (bridged when ready)
     // or of a maximum: the vertex is held.
     if (const Index c = hold_region(fs, v); c != kInvalidIndex) {
@@ -110,8 +122,16 @@ bool departure_step(FrontState& fs) {
   return false;
 }
 
-SweepResult run_sweep(FrontState& fs) {
-  create_initial_front(fs);
+void park(FrontState& fs, Vertex v) {
+  fs.set_state(v, VState::Held);
+  fs.held_by[v] = kInvalidIndex;
+  if (fs.slab_mark.size() <= v.idx()) fs.slab_mark.resize(fs.mesh.vertices_size(), 0);
+  fs.slab_mark[v.idx()] = 2;
+  ++fs.stats.parked;
+  if (fs.tracing) fs.tracef("park v%u at height %.4f\n", v.idx(), fs.height(v));
+}
+
+void sweep_and_seal(FrontState& fs) {
   // Creeping triangles: Algorithm 1 until the queue is empty, then release the
   // saddles never bridged and go on while that frees any vertex.
   do {
@@ -122,6 +142,9 @@ SweepResult run_sweep(FrontState& fs) {
   // Sealing holes.
   if (!fs.opt.dump_path.empty()) geometry::write_mesh(fs.opt.dump_path, fs.mesh.to_indexed_mesh());
   seal_all(fs);
+}
+
+void drop_sweep_properties(FrontState& fs) {
   // The result keeps the properties the refinement needs.
   fs.vertex_grid.reset();
   fs.front_grid.reset();
@@ -130,6 +153,12 @@ SweepResult run_sweep(FrontState& fs) {
   fs.mesh.remove_vertex_property(fs.stamp);
   fs.mesh.remove_vertex_property(fs.deferrals);
   fs.mesh.remove_vertex_property(fs.reopenings);
+}
+
+SweepResult run_sweep(FrontState& fs) {
+  create_initial_front(fs);
+  sweep_and_seal(fs);
+  drop_sweep_properties(fs);
   SweepResult res;
   res.mesh = std::move(fs.mesh);
   res.stats = fs.stats;

@@ -223,6 +223,9 @@ struct SweepStats {
   std::size_t folds = 0;
   std::size_t patched_holes = 0;  ///< holes whose region the fallback re-meshed (papers/front/patch.md)
   std::size_t patch_faces = 0;    ///< faces the fallback's patches added
+  /// Departure vertices parked below a slab's upper cut (front/slab.h); 0
+  /// outside a slab.
+  std::size_t parked = 0;
 };
 
 /// The closed mesh produced by the sweep, before the local refinement.

@@ -1,0 +1,198 @@
+// front/slab.cpp: the sweep of one slab (front/slab.h). The sweep's front is
+// the boundary of its partial mesh, so a bare loop of cut-curve samples is no
+// front: below each lower curve goes a ghost strip of triangles, which makes
+// the curve the rim of a meshed part exactly like a bowl's. The ghosts are
+// interior vertices (they never depart) that the collision net still sees;
+// the strip is deleted at the end. Near the upper cut departure vertices are
+// parked (sweep.cpp), and the seal leaves the parked rims open.
+// Notes: papers/mesher/decomposition.md ("Increments", 3)
+#include "front/slab.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/errors.h"
+#include "front/operations.h"
+
+namespace skinmesh::front {
+namespace detail {
+namespace {
+
+/// Depth of the ghost strip below a lower cut curve, over the sample's disc
+/// radius r. [derived] Only the directions from a sample to its neighbours
+/// and ghosts matter (its hole angle, the fold check), so the strip can be
+/// shallow: the ghosts of neighbouring samples cross where the depth exceeds
+/// the curve's radius of curvature in the tangent plane, which near a
+/// saddle below the cut falls to a fraction of rho (HIV protease at probe
+/// 1.4 folded at a depth of one r, 0.185 rho; a quarter of it does not).
+constexpr double kGhostDepth = 0.25;
+
+/// Adds the lower curves' samples as front vertices (in curve order, so that
+/// they are the mesh's first vertices) and a ghost strip below each: one
+/// ghost per sample, kGhostDepth · r down the skin's slope, and the faces
+/// (p_j, p_j+1, g_j+1), (p_j, g_j+1, g_j). A curve oriented by n × e has
+/// the skin below it on its left seen from outside, so these faces are
+/// counter-clockwise and the half-edges p_j+1 -> p_j are the front's, with
+/// the slab on their left. Returns the ghost faces.
+std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::LevelCurve>& curves) {
+  std::vector<std::vector<Vertex>> samples;
+  for (const morse::LevelCurve& curve : curves) {
+    std::vector<Vertex>& p = samples.emplace_back();
+    for (std::size_t j = 0; j < curve.points.size(); ++j) p.push_back(new_vertex(fs, curve.points[j], curve.cells[j]));
+  }
+  std::vector<Face> ghost_faces;
+  for (const std::vector<Vertex>& p : samples) {
+    std::vector<Vertex> g;
+    for (Vertex x : p) {
+      // Down the slope: the tangent-plane direction of -e. A regular cut
+      // (Slab's precondition) keeps the skin's normal away from ±e there.
+      const Vec3 n = fs.normal[x];
+      const Vec3 down = -(fs.e - fs.e.dot(n) * n);
+      if (!(down.norm() > 1e-6)) {
+        std::ostringstream os;
+        os << "slab: the lower cut passes through a critical point near (" << fs.mesh.position(x).transpose()
+           << "): the skin's normal is vertical there";
+        throw GeometryError(os.str());
+      }
+      Index cell = kInvalidIndex;
+      const Vec3 q = project_tangent(fs, x, down.normalized(), kGhostDepth * fs.disc_radius(x), &cell);
+      const Vertex gx = new_vertex(fs, q, cell);
+      fs.set_state(gx, VState::Interior);
+      g.push_back(gx);
+    }
+    if (fs.slab_mark.size() < fs.mesh.vertices_size()) fs.slab_mark.resize(fs.mesh.vertices_size(), 0);
+    for (Vertex gx : g) fs.slab_mark[gx.idx()] = 1;
+    const std::size_t k = p.size();
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::size_t j1 = (j + 1) % k;
+      const Vec3 pj = fs.mesh.position(p[j]);
+      const Vec3 nt = (fs.mesh.position(p[j1]) - pj).cross(fs.mesh.position(g[j1]) - pj);
+      if (!(nt.dot(fs.normal[p[j]]) > 0)) {
+        std::ostringstream os;
+        os << "slab: the lower cut curve through (" << pj.transpose()
+           << ") is not oriented as n x e (morse::level_curves), or its ghost strip folds";
+        throw TopologyError(os.str());
+      }
+      ghost_faces.push_back(fs.add_triangle(p[j], p[j1], g[j1]));
+      ghost_faces.push_back(fs.add_triangle(p[j], g[j1], g[j]));
+    }
+    for (Vertex x : p) push(fs, x);
+  }
+  // The strips must not fold: each sample's tangent angles and hole angle make
+  // a full turn, as at a bowl's rim.
+  for (const std::vector<Vertex>& p : samples)
+    for (Vertex x : p)
+      if (std::abs(fold_excess(fs, x)) > fs.opt.fold_tolerance_deg * kDegree) {
+        std::ostringstream os;
+        os << "slab: the ghost strip below the lower cut folds at (" << fs.mesh.position(x).transpose()
+           << "): the cut curve bends more sharply than the strip is deep";
+        throw TopologyError(os.str());
+      }
+  return ghost_faces;
+}
+
+}  // namespace
+}  // namespace detail
+
+SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
+                      const SweepOptions& opt) {
+  using namespace detail;
+  if (!(slab.lower < slab.upper)) throw std::invalid_argument("sweep_slab: the lower cut must lie below the upper cut");
+  if (!(slab.park_factor >= 1)) throw std::invalid_argument("sweep_slab: park_factor must be at least 1");
+  std::size_t n_samples = 0;
+  for (const morse::LevelCurve& c : slab.lower_curves) {
+    if (c.points.size() < 3 || c.cells.size() != c.points.size() || c.rho.size() != c.points.size())
+      throw std::invalid_argument("sweep_slab: a lower curve needs at least three samples, each with its cell and rho");
+    // A sample within park_factor · r of the upper cut would be parked at
+    // once: the slab would have no triangle there, only the band.
+    for (double rho : c.rho)
+      if (slab.lower + (slab.park_factor + 1) * opt.disc_factor * rho > slab.upper) {
+        std::ostringstream os;
+        os << "sweep_slab: the slab [" << slab.lower << ", " << slab.upper
+           << "] is thinner than park_factor + 1 = " << slab.park_factor + 1 << " disc radii ("
+           << (slab.park_factor + 1) * opt.disc_factor * rho << " A) at a sample of its lower curves";
+        throw std::invalid_argument(os.str());
+      }
+    n_samples += c.points.size();
+  }
+  FrontState fs(skin, ms, opt);
+  fs.slab_lower = slab.lower;
+  fs.slab_upper = slab.upper;
+  fs.park_factor = slab.park_factor;
+  const std::vector<Face> ghost_faces = attach_lower_curves(fs, slab.lower_curves);
+  create_initial_front(fs);
+  sweep_and_seal(fs);
+
+  // The ghost strips must have survived the repairs of the front: a
+  // re-opened, enlarged or patched region that reached below the lower cut
+  // would have changed the slab's boundary.
+  for (Face f : ghost_faces)
+    if (fs.mesh.is_deleted(f))
+      throw TopologyError("slab: a repair of the front reached below the lower cut (a ghost face was deleted)");
+  for (Face f : ghost_faces) fs.mesh.delete_face(f);
+
+  // The boundary: each lower curve one loop, every other loop a parked rim.
+  SlabResult res;
+  std::vector<Index> curve_of(n_samples, kInvalidIndex);
+  {
+    Index next = 0;
+    for (std::size_t k = 0; k < slab.lower_curves.size(); ++k) {
+      std::vector<Index>& loop = res.lower_loops.emplace_back();
+      for (std::size_t j = 0; j < slab.lower_curves[k].points.size(); ++j, ++next)
+        loop.push_back(next), curve_of[next] = static_cast<Index>(k);
+    }
+  }
+  std::vector<char> curve_seen(slab.lower_curves.size(), 0);
+  std::vector<std::vector<Vertex>> rims;
+  for (const std::vector<Halfedge>& loop : fs.mesh.boundary_loops()) {
+    const Index k0 = fs.mesh.to_vertex(loop.front()).idx() < n_samples ? curve_of[fs.mesh.to_vertex(loop.front()).idx()]
+                                                                       : kInvalidIndex;
+    bool whole_curve = k0 != kInvalidIndex && loop.size() == res.lower_loops[k0].size() && !curve_seen[k0];
+    bool parked = false;
+    for (Halfedge h : loop) {
+      const Vertex x = fs.mesh.to_vertex(h);
+      if (x.idx() >= n_samples || curve_of[x.idx()] != k0) whole_curve = false;
+      if (fs.is_parked(x)) parked = true;
+    }
+    if (whole_curve) {
+      curve_seen[k0] = 1;
+      continue;
+    }
+    if (!parked) {
+      std::ostringstream os;
+      os << "slab: a hole of " << loop.size() << " vertices near ("
+         << fs.mesh.position(fs.mesh.to_vertex(loop.front())).transpose()
+         << ") was left open: it is neither a lower cut curve nor a parked rim";
+      throw TopologyError(os.str());
+    }
+    std::vector<Vertex>& rim = rims.emplace_back();
+    for (Halfedge h : loop) rim.push_back(fs.mesh.to_vertex(h));
+  }
+  for (std::size_t k = 0; k < curve_seen.size(); ++k)
+    if (!curve_seen[k])
+      throw TopologyError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
+
+  // Garbage collection keeps the order of the surviving vertices, and the
+  // samples (the first vertices) survive: a vertex's new index is its old one
+  // less the deleted vertices before it.
+  std::vector<Index> new_index(fs.mesh.vertices_size(), kInvalidIndex);
+  {
+    Index next = 0;
+    for (std::size_t i = 0; i < new_index.size(); ++i)
+      if (!fs.mesh.is_deleted(Vertex(static_cast<Index>(i)))) new_index[i] = next++;
+  }
+  for (const std::vector<Vertex>& rim : rims) {
+    std::vector<Index>& out = res.upper_rims.emplace_back();
+    for (Vertex x : rim) out.push_back(new_index[x.idx()]);
+  }
+  for (std::size_t i = 0; i < fs.slab_mark.size(); ++i)
+    if (fs.slab_mark[i] == 2 && !fs.mesh.is_deleted(Vertex(static_cast<Index>(i)))) ++res.parked;
+  drop_sweep_properties(fs);
+  fs.mesh.garbage_collection();
+  res.mesh = std::move(fs.mesh);
+  res.stats = fs.stats;
+  return res;
+}
+
+}  // namespace skinmesh::front

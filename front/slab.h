@@ -1,0 +1,78 @@
+// front/slab.h: the sweep of one slab of the decomposed sweep — Algorithm 1
+// of Cheng & Shi 2004 §4.1 restricted to the part of the skin between two
+// cut heights: it starts from the sampled level curves of the lower cut (the
+// slab's initial front, beside the bowls at the minima inside the slab) and
+// parks the front below the upper cut, leaving the thin band up to the upper
+// cut curves open (the band is closed by a strip triangulation, a later
+// increment of papers/mesher/decomposition.md).
+// Notes: papers/mesher/decomposition.md ("Increments", 3)
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "front/sweep.h"
+#include "morse/level_curves.h"
+
+namespace skinmesh::front {
+
+/// One slab S = F ∩ {lower <= e·x <= upper} of the skin F (e the complex's
+/// height direction), given by its cut heights and its lower cut curves.
+struct Slab {
+  /// Height of the lower cut (Å); -infinity: the slab starts below the skin
+  /// (no lower cut, no lower curves).
+  double lower = -std::numeric_limits<double>::infinity();
+  /// The closed curves of F ∩ {e·x = lower}, as morse::level_curves() returns
+  /// them (oriented by n × e, at least three samples each). Every one becomes
+  /// a loop of the initial front; their samples are the slab's lower boundary
+  /// vertices, in this order.
+  std::vector<morse::LevelCurve> lower_curves;
+  /// Height of the upper cut (Å); +infinity: the slab goes over the skin's top
+  /// (no parking; every hole is sealed).
+  double upper = std::numeric_limits<double>::infinity();
+  /// A departure vertex v higher than upper - park_factor · r_v (r_v its
+  /// tangent-disc radius) is parked instead of creeping: no fan then reaches
+  /// above upper - (park_factor - 1) · r. At least 1. [derived] 2: the band
+  /// left between the parked rim and the upper cut is one to two edge lengths
+  /// wide, the width of one strip of triangles.
+  double park_factor = 2;
+};
+
+/// The mesh of one slab: a compact triangulated surface whose boundary is the
+/// lower cut curves' samples and the parked rims below the upper cut.
+struct SlabResult {
+  /// The slab's triangles, counter-clockwise about the outward normal, every
+  /// vertex on the skin, garbage-collected, with the vertex properties of
+  /// SweepResult::mesh. Vertices 0 .. (the samples' total) - 1 are the lower
+  /// curves' samples in Slab::lower_curves' order.
+  geometry::SurfaceMesh mesh;
+  SweepStats stats;
+  /// Per lower curve, its sample vertices in curve order: one boundary loop of
+  /// the mesh each, traversed in that order (the part below the cut, meshed
+  /// by the slab below, on its left).
+  std::vector<std::vector<Index>> lower_loops;
+  /// The boundary loops that reach the upper cut's band (each has a parked
+  /// vertex), in boundary order (the band on their left, seen from outside).
+  std::vector<std::vector<Index>> upper_rims;
+  /// How many of the mesh's vertices were parked.
+  std::size_t parked = 0;
+};
+
+/// Meshes the slab by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
+/// the slab's lower cut curves and of bowls at the minima strictly inside
+/// (lower, upper); a ghost strip of triangles below each lower curve (deleted
+/// at the end) makes the curve a front like a bowl's rim. Departure vertices
+/// near the upper cut are parked; the seal closes every hole but the parked
+/// rims. Pre: lower < upper are regular values of the height on the skin,
+/// clear of every protecting sphere by a few disc radii
+/// (papers/mesher/decomposition.md, "Cuts"). Throws std::invalid_argument for
+/// lower >= upper, park_factor < 1, a curve of fewer than three samples or
+/// without rho and cells per sample, a slab thinner than (park_factor + 1) r
+/// at a lower sample (r its disc radius: the slab would be all band there); TopologyError (besides sweep_mesh's) if
+/// a repair of the front reached below the lower cut or a hole without a
+/// parked vertex was left open; GeometryError if a ghost vertex cannot be
+/// projected.
+SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
+                      const SweepOptions& opt = {});
+
+}  // namespace skinmesh::front
