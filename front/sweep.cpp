@@ -32,7 +32,7 @@ void create_initial_front(FrontState& fs) {
   // others are in the slabs below and above.
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Minimum) continue;
-    const double h = fs.ms.critical[c].position.dot(fs.e);
+    const double h = fs.ms.critical[c].height;
     if (h > fs.slab_lower && h < fs.slab_upper) minima.push_back(static_cast<Index>(c));
   }
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {

@@ -47,8 +47,7 @@ long euler_characteristic(const geometry::SurfaceMesh& m) {
 long expected_euler_characteristic(const morse::MorseSmaleComplex& ms, double lower, double upper) {
   long chi = 0;
   for (const morse::CriticalPoint& cp : ms.critical) {
-    const double h = cp.position.dot(ms.height_direction);
-    if (h > lower && h < upper) chi += static_cast<int>(cp.kind) == 1 ? -1 : 1;
+    if (cp.height > lower && cp.height < upper) chi += cp.kind == morse::CriticalKind::Saddle ? -1 : 1;
   }
   return chi;
 }
@@ -87,7 +86,7 @@ void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& m
     if (std::abs(s.f) / s.gradient.norm() > 1e-9) ++off_skin;
     if (e.dot(p) < slab.lower - 1e-9) ++below;
     // No fan reaches above upper - (park_factor - 1) r; a projection may add a little.
-    if (e.dot(p) > slab.upper - 0.5 * (slab.park_factor - 1) * 0.185 * rho[v]) ++above;
+    if (e.dot(p) > slab.upper - 0.5 * (slab.park_factor - 1) * front::SweepOptions{}.disc_factor * rho[v]) ++above;
   }
   for (geometry::Face f : m.faces()) {
     std::vector<geometry::Vertex> c;
@@ -139,8 +138,7 @@ void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& m
 std::vector<double> clear_heights(const morse::MorseSmaleComplex& ms, int n, double clearance) {
   double lo = kInf, hi = -kInf;
   for (const auto& cp : ms.critical) {
-    const double h = cp.position.dot(ms.height_direction);
-    lo = std::min(lo, h), hi = std::max(hi, h);
+    lo = std::min(lo, cp.height), hi = std::max(hi, cp.height);
   }
   std::vector<double> out;
   for (int i = 1; i < n; ++i) {
