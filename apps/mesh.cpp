@@ -225,11 +225,11 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
     return false;
   }
   if (!batch_run) mesh.mol.input = mesh.mol.inputs.front();
-  return options_fit_algorithm(
-      cmd, mesh.algorithm == "dynamic",
-      {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
-       "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--no-growth", "--growth-step"},
-      {"--no-growth", "--growth-step"});
+  return options_fit_algorithm(cmd, mesh.algorithm == "dynamic",
+                               {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction",
+                                "--disc-factor", "--no-angle-improvement", "--no-fallback", "--no-patch",
+                                "--force-patch-every", "--slabs", "--no-growth", "--growth-step"},
+                               {"--no-growth", "--growth-step"});
 }
 
 }  // namespace
@@ -299,6 +299,12 @@ Command add_mesh_command(CLI::App& app) {
                 "skip the vertex moves that raise the smallest angles after the refinement (the mesh of "
                 "the paper's algorithm alone; papers/refine/angle_improvement.md)");
   add_threads_option(*cmd, mesh.opt.threads, "0: every core", "mesh is, byte for byte,");
+  cmd->add_option("--slabs", mesh.opt.decomposition.slabs,
+                  "cut the skin at N - 1 regular heights and sweep it slab by slab, the slabs glued along the "
+                  "cut curves' shared samples (papers/mesher/decomposition.md); fewer slabs where no admissible "
+                  "cut height exists; 1: one sweep")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
                   "this many seconds (nothing is written; 0: no limit)")

@@ -182,8 +182,8 @@ struct FrontState {
   // Outside a slab run the bounds are infinite and the marks empty, and the
   // sweep is Algorithm 1 unchanged.
   /// Heights (Å) of the lower and upper cut: minima get a bowl only strictly
-  /// between them, and a departure vertex above upper - park_factor · r is
-  /// parked.
+  /// between them, and a departure vertex above upper - park_factor · r ·
+  /// sin(theta) (theta between its normal and e) is parked.
   double slab_lower = -std::numeric_limits<double>::infinity();
   double slab_upper = std::numeric_limits<double>::infinity();
   double park_factor = 0;

@@ -8,9 +8,14 @@
 // Notes: papers/mesher/decomposition.md ("Increments", 3)
 #include "front/slab.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/errors.h"
 #include "front/operations.h"
@@ -92,6 +97,119 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
   return ghost_faces;
 }
 
+/// The nearest cut curve to a point, from a uniform grid over the curves'
+/// samples with cells four disc radii wide (a rim lies within about
+/// park_factor + 1 disc radii of its curve); a point with no sample in the
+/// 27 cells around it is compared with every sample.
+class CurveLocator {
+ public:
+  CurveLocator(const std::vector<morse::LevelCurve>& curves, double disc_factor) : curves_(curves) {
+    double rho_max = 0;
+    for (const morse::LevelCurve& c : curves)
+      for (double rho : c.rho) rho_max = std::max(rho_max, rho);
+    h_ = std::max(4 * disc_factor * rho_max, 1e-6);
+    for (std::size_t k = 0; k < curves.size(); ++k)
+      for (std::size_t j = 0; j < curves[k].points.size(); ++j)
+        grid_[key(curves[k].points[j], 0, 0, 0)].push_back({k, j});
+  }
+  /// The index of the curve with the sample nearest to x.
+  std::size_t nearest(const Vec3& x) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t curve = curves_.size();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = grid_.find(key(x, dx, dy, dz));
+          if (it == grid_.end()) continue;
+          for (const auto& [k, j] : it->second)
+            if (const double d = (curves_[k].points[j] - x).squaredNorm(); d < best) best = d, curve = k;
+        }
+    if (curve < curves_.size()) return curve;
+    for (std::size_t k = 0; k < curves_.size(); ++k)
+      for (const Vec3& p : curves_[k].points)
+        if (const double d = (p - x).squaredNorm(); d < best) best = d, curve = k;
+    return curve;
+  }
+  /// The curve nearest to most of the loop's vertices.
+  std::size_t vote(const FrontState& fs, const std::vector<Vertex>& loop, std::size_t* votes_out = nullptr) const {
+    std::vector<std::size_t> votes(curves_.size(), 0);
+    for (Vertex x : loop) ++votes[nearest(fs.mesh.position(x))];
+    const auto best = std::max_element(votes.begin(), votes.end());
+    if (votes_out) *votes_out = *best;
+    return static_cast<std::size_t>(best - votes.begin());
+  }
+
+ private:
+  std::int64_t key(const Vec3& x, int dx, int dy, int dz) const {
+    const auto q = [this](double t, int d) { return static_cast<std::int64_t>(std::floor(t / h_)) + d; };
+    return (q(x.x(), dx) * 73856093) ^ (q(x.y(), dy) * 19349663) ^ (q(x.z(), dz) * 83492791);
+  }
+  const std::vector<morse::LevelCurve>& curves_;
+  double h_ = 1;
+  std::unordered_map<std::int64_t, std::vector<std::pair<std::size_t, std::size_t>>> grid_;
+};
+
+/// The open loops with a parked vertex and no ghost, each as its vertices.
+std::vector<std::vector<Vertex>> parked_loops(const FrontState& fs) {
+  std::vector<std::vector<Vertex>> loops;
+  std::vector<char> seen(fs.mesh.vertices_size(), 0);
+  for (Vertex v : fs.mesh.vertices()) {
+    if (seen[v.idx()] || !fs.is_parked(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
+    std::vector<Vertex> loop;
+    bool ghost = false;
+    for (Halfedge g : fs.mesh.boundary_loop(fs.mesh.halfedge(v))) {
+      const Vertex x = fs.mesh.to_vertex(g);
+      seen[x.idx()] = 1;
+      ghost = ghost || fs.is_ghost(x);
+      loop.push_back(x);
+    }
+    if (!ghost) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+/// Seals every open loop with parked vertices but the one per upper curve
+/// that lies nearest to it (the most votes of its vertices' nearest samples;
+/// ties: the longer loop). The others are holes the front pinched off in
+/// the band, with no critical point inside: discs, sealed like any hole.
+void seal_stray_rims(FrontState& fs, const CurveLocator& locator, std::size_t n_curves) {
+  const std::vector<std::vector<Vertex>> loops = parked_loops(fs);
+  std::vector<std::size_t> keep(n_curves, loops.size()), keep_votes(n_curves, 0);
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    std::size_t votes = 0;
+    const std::size_t k = locator.vote(fs, loops[i], &votes);
+    if (keep[k] == loops.size() || votes > keep_votes[k] ||
+        (votes == keep_votes[k] && loops[i].size() > loops[keep[k]].size()))
+      keep[k] = i, keep_votes[k] = votes;
+  }
+  std::vector<char> kept(loops.size(), 0);
+  for (std::size_t k = 0; k < n_curves; ++k)
+    if (keep[k] < loops.size()) kept[keep[k]] = 1;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    if (kept[i]) continue;
+    const Vertex x = loops[i].front();
+    // An earlier seal's enlargement may have closed it already.
+    if (fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x) || !fs.mesh.is_boundary(x)) continue;
+    const std::size_t f0 = fs.mesh.faces_size(), seals = fs.stats.seals;
+    seal_loop(fs, fs.mesh.halfedge(x), fs.opt.max_hole_enlargements);
+    if (fs.stats.seals > seals) fs.notify(SweepOperation::Seal, Vertex(), kInvalidIndex, f0);
+  }
+}
+
+/// Closes the sharp corners of the parked rims by wings (front angle below
+/// 90°, Figure 7), as the sweep would have had their vertices departed: a
+/// rim that turns back on itself (a zigzag the last creeps left) has an edge
+/// that no outward triangle can join to the cut curve, and the band's strip
+/// would not exist.
+void wing_rims(FrontState& fs) {
+  for (const std::vector<Vertex>& loop : parked_loops(fs))
+    for (Vertex x : loop) {
+      fs.set_state(x, VState::Front);
+      fs.wing_worklist.push_back(x);
+    }
+  drain_wings(fs);
+}
+
 }  // namespace
 }  // namespace detail
 
@@ -123,6 +241,12 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   const std::vector<Face> ghost_faces = attach_lower_curves(fs, slab.lower_curves);
   create_initial_front(fs);
   sweep_and_seal(fs);
+  std::optional<CurveLocator> locator;
+  if (!slab.upper_curves.empty()) {
+    locator.emplace(slab.upper_curves, opt.disc_factor);
+    seal_stray_rims(fs, *locator, slab.upper_curves.size());
+  }
+  wing_rims(fs);
 
   // The ghost strips must have survived the repairs of the front: a
   // re-opened, enlarged or patched region that reached below the lower cut
@@ -172,6 +296,17 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   for (std::size_t k = 0; k < curve_seen.size(); ++k)
     if (!curve_seen[k])
       throw TopologyError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
+  if (locator) {
+    std::vector<int> rims_of(slab.upper_curves.size(), 0);
+    for (const std::vector<Vertex>& rim : rims) ++rims_of[res.rim_curve.emplace_back(locator->vote(fs, rim))];
+    for (std::size_t k = 0; k < rims_of.size(); ++k)
+      if (rims_of[k] != 1) {
+        std::ostringstream os;
+        os << "slab: the upper cut curve through (" << slab.upper_curves[k].points.front().transpose() << ") has "
+           << rims_of[k] << " parked rims below it instead of one";
+        throw TopologyError(os.str());
+      }
+  }
 
   // Garbage collection keeps the order of the surviving vertices, and the
   // samples (the first vertices) survive: a vertex's new index is its old one

@@ -30,11 +30,20 @@ struct Slab {
   /// Height of the upper cut (Å); +infinity: the slab goes over the skin's top
   /// (no parking; every hole is sealed).
   double upper = std::numeric_limits<double>::infinity();
-  /// A departure vertex v higher than upper - park_factor · r_v (r_v its
-  /// tangent-disc radius) is parked instead of creeping: no fan then reaches
-  /// above upper - (park_factor - 1) · r. At least 1. [derived] 2: the band
+  /// The closed curves of F ∩ {e·x = upper}, as morse::level_curves()
+  /// returns them; may be left empty. Given, they tell the parked rims from
+  /// stray holes: each curve keeps the open loop with parked vertices that
+  /// lies nearest to it (SlabResult::rim_curve), and every other such loop
+  /// (a hole the front pinched off in the band, no critical point inside) is
+  /// sealed like any hole.
+  std::vector<morse::LevelCurve> upper_curves;
+  /// A departure vertex v higher than upper - park_factor · r_v · sin(theta_v)
+  /// (r_v its tangent-disc radius, theta_v the angle between its normal and
+  /// e: about park_factor · r_v from the cut along the skin) is parked
+  /// instead of creeping: no fan then reaches above about upper -
+  /// (park_factor - 1) · r · sin(theta). At least 1. [derived] 2: the band
   /// left between the parked rim and the upper cut is one to two edge lengths
-  /// wide, the width of one strip of triangles.
+  /// wide along the skin, the width of one strip of triangles.
   double park_factor = 2;
 };
 
@@ -54,6 +63,9 @@ struct SlabResult {
   /// The boundary loops that reach the upper cut's band (each has a parked
   /// vertex), in boundary order (the band on their left, seen from outside).
   std::vector<std::vector<Index>> upper_rims;
+  /// With Slab::upper_curves: for each rim, the index of its upper curve
+  /// (one rim per curve); empty otherwise.
+  std::vector<std::size_t> rim_curve;
   /// How many of the mesh's vertices were parked.
   std::size_t parked = 0;
 };
@@ -69,8 +81,9 @@ struct SlabResult {
 /// lower >= upper, park_factor < 1, a curve of fewer than three samples or
 /// without rho and cells per sample, a slab thinner than (park_factor + 1) r
 /// at a lower sample (r its disc radius: the slab would be all band there); TopologyError (besides sweep_mesh's) if
-/// a repair of the front reached below the lower cut or a hole without a
-/// parked vertex was left open; GeometryError if a ghost vertex cannot be
+/// a repair of the front reached below the lower cut, a hole without a
+/// parked vertex was left open, or (with upper curves) an upper curve has no
+/// rim; GeometryError if a ghost vertex cannot be
 /// projected.
 SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
                       const SweepOptions& opt = {});

@@ -6,6 +6,7 @@
 // bookkeeping (vertices, queue) in front_state.cpp, the holds in holds.cpp.
 // Notes: papers/front/sweep.md
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -83,12 +84,20 @@ bool departure_step(FrontState& fs) {
       throw TopologyError("stopped after " + std::to_string(fs.opt.max_steps) + " departures (max_steps)");
     }
     report_progress(fs, top.h);
-    // In a slab, a vertex whose fan could come within (park_factor - 1) r of
-    // the upper cut stops there: the band above it is the strip's
-    // (front/slab.h). Outside a slab the bound is +infinity.
-    if (fs.height(v) > fs.slab_upper - fs.park_factor * fs.disc_radius(v)) {
-      park(fs, v);
-      return true;
+    // In a slab, a vertex within about park_factor · r of the upper cut,
+    // measured along the skin, stops there: the band above it is the strip's
+    // (front/slab.h). The skin rises by sin(theta) per unit length along its
+    // slope (theta the angle between n and e), so the height gap is scaled
+    // by it: on a gentle slope a height bound alone would leave a band many
+    // edges wide, which one strip of triangles cannot fill. Outside a slab
+    // the bound is +infinity.
+    if (const double gap = fs.slab_upper - fs.height(v); gap < fs.park_factor * fs.disc_radius(v)) {
+      const double cos_theta = fs.e.dot(fs.normal[v]);
+      const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+      if (gap < fs.park_factor * fs.disc_radius(v) * sin_theta) {
+        park(fs, v);
+        return true;
+      }
     }
     // Lines 3–10: in the protecting sphere of a saddle (bridged when ready)
     // or of a maximum: the vertex is held.

@@ -85,6 +85,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
     res.frame_centre = centre;
     res.static_fallback = in_frame(res.static_fallback, centre);
     for (Vec3& p : res.mesh.positions) p += centre;
+    for (double& c : res.cut_heights) c += options.height_direction.normalized().dot(centre);
     return res;
   } catch (const TopologyError& e) {
     throw TopologyError(in_frame(e.what(), centre));
@@ -135,6 +136,10 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
                         " differs from the expected Euler characteristic " +
                         std::to_string(res.expected_topology.euler_skin()));
   if (options.observers.morse) options.observers.morse(skin, *ms);
+  // The cut curves are traced from seeds on the integral lines: before
+  // their polylines go.
+  const std::vector<front::Cut> cuts =
+      front::choose_cuts(skin, *ms, options.decomposition, with_size(options.sweep, options.size));
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
@@ -146,8 +151,10 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   clock.begin("sweep");
   front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
-  front::SweepResult swept = front::sweep_mesh(skin, *ms, sweep_options);
+  front::SweepResult swept = front::sweep_decomposed(skin, *ms, cuts, options.decomposition, sweep_options);
   res.sweep = swept.stats;
+  res.slabs = cuts.size() + 1;
+  for (const front::Cut& cut : cuts) res.cut_heights.push_back(cut.height);
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");

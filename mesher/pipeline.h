@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "dynamic/dynamic_skin.h"
+#include "front/decomposed.h"
 #include "front/sweep.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/mesh/indexed_mesh.h"
@@ -91,6 +92,12 @@ struct MeshOptions {
   morse::MorseSmaleOptions morse;
   /// Stage 3: the sweep's tuning numbers and debugging aids.
   front::SweepOptions sweep;
+  /// Stage 3 decomposed (papers/mesher/decomposition.md): with
+  /// decomposition.slabs > 1 the skin is cut at regular heights chosen in
+  /// stage 2 (front::choose_cuts) and swept slab by slab, the slabs glued
+  /// along the shared cut samples (front::sweep_decomposed); the stages
+  /// after the sweep see one closed mesh as before. Default 1: one sweep.
+  front::DecompositionOptions decomposition;
   /// Stage 4: run the local refinement (default). Without it the mesh is
   /// closed, embedded and of the right topology but [L], [U] and the
   /// restricted Delaunay property may fail.
@@ -159,6 +166,12 @@ struct MeshResult {
   /// Topology of the skin computed from the dual complex (independent of the mesh).
   skin::SkinTopology expected_topology;
   front::SweepStats sweep;
+  /// Slabs the sweep was decomposed into (MeshOptions::decomposition; 1: one
+  /// sweep, 0: the baseline).
+  std::size_t slabs = 0;
+  /// The cut heights between the slabs (Å, e·x in the input's coordinates,
+  /// e = MeshOptions::height_direction), increasing; empty for one sweep.
+  std::vector<double> cut_heights;
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).
   refine::AngleImprovementStats angle_improvement;

@@ -90,6 +90,10 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
                      {"flip_caps", r.flip_caps},
                      {"L_left", r.L_left},
                      {"U_left", r.U_left}};
+  // Only a decomposed sweep reports its slabs, so that one sweep's summary
+  // keeps its keys.
+  if (res.slabs > 1)
+    j["decomposition"] = {{"slabs", res.slabs}, {"cut_heights", res.cut_heights}, {"parked", s.parked}};
   const refine::AngleImprovementStats& ai = res.angle_improvement;
   j["angle_improvement"] = {{"enabled", options.improve_angles},
                             {"low_triangles", ai.low_triangles},

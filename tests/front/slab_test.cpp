@@ -85,8 +85,13 @@ void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& m
     hint = s.cell;
     if (std::abs(s.f) / s.gradient.norm() > 1e-9) ++off_skin;
     if (e.dot(p) < slab.lower - 1e-9) ++below;
-    // No fan reaches above upper - (park_factor - 1) r; a projection may add a little.
-    if (e.dot(p) > slab.upper - 0.5 * (slab.park_factor - 1) * front::SweepOptions{}.disc_factor * rho[v]) ++above;
+    // No fan reaches above upper - (park_factor - 1) r sin(theta) (the
+    // parking height scales with the slope, theta the angle between the
+    // normal and e); a projection may add a little.
+    const double cos_theta = e.dot(normal[v]);
+    const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+    if (e.dot(p) > slab.upper - 0.5 * (slab.park_factor - 1) * front::SweepOptions{}.disc_factor * rho[v] * sin_theta)
+      ++above;
   }
   for (geometry::Face f : m.faces()) {
     std::vector<geometry::Vertex> c;

@@ -75,6 +75,8 @@ struct Options {
   double cost_bound_us = 100.0;
   bool list = false;
   bool fork = true;
+  /// MeshOptions::decomposition.slabs of every case (1: one sweep).
+  int slabs = 1;
 };
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -91,7 +93,8 @@ struct Options {
                "  --cost-bound US  fail a case whose run takes more than 2 s + US microseconds per triangle\n"
                "                   (default 100; 0: no bound)\n"
                "  --list           list the cases and exit\n"
-               "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n",
+               "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n"
+               "  --slabs N        mesh every case decomposed into (up to) N slabs (papers/mesher/decomposition.md)\n",
                static_cast<unsigned long long>(kDefaultSeed));
   std::exit(problem.empty() ? 0 : 2);
 }
@@ -140,7 +143,10 @@ Options parse(int argc, char** argv) {
       o.list = true;
     else if (a == "--no-fork")
       o.fork = false;
-    else if (a == "-h" || a == "--help")
+    else if (a == "--slabs") {
+      o.slabs = static_cast<int>(number(value(i), "--slabs"));
+      if (o.slabs < 1) usage("--slabs must be at least 1");
+    } else if (a == "-h" || a == "--help")
       usage("");
     else
       usage("unknown option '" + a + "'");
@@ -199,7 +205,7 @@ std::string unescape(const std::string& s) {
 /// Runs the project's topology and the pipeline on `c`, emitting one
 /// "key\tvalue" line per fact through `emit`.
 template <class Emit>
-void run_case(const StressCase& c, Emit emit) {
+void run_case(const StressCase& c, int slabs, Emit emit) {
   const std::vector<geometry::WeightedPoint> points = weighted_points(c);
   try {
     const Topology t = project_topology(points);
@@ -211,6 +217,7 @@ void run_case(const StressCase& c, Emit emit) {
   try {
     mesher::MeshOptions options;
     options.probe_radius = c.probe;
+    options.decomposition.slabs = slabs;
     if (c.direction != Vec3::Zero()) options.height_direction = c.direction;
     const mesher::MeshResult res = mesher::mesh_skin(to_molecule(c), options);
     emit("check_ok", res.check.ok() ? "1" : "0");
@@ -291,12 +298,12 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
 
 /// Runs `c` in a child process with a time limit (and at most 4 GB more
 /// address space), or in this process with fork = false.
-RunResult run_isolated(const StressCase& c, double timeout, bool fork_child) {
+RunResult run_isolated(const StressCase& c, double timeout, bool fork_child, int slabs) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   RunResult r;
   if (!fork_child) {
-    run_case(c, [&](const std::string& k, const std::string& v) { absorb(r, k, v); });
+    run_case(c, slabs, [&](const std::string& k, const std::string& v) { absorb(r, k, v); });
     r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return r;
   }
@@ -328,7 +335,7 @@ RunResult run_isolated(const StressCase& c, double timeout, bool fork_child) {
       }
     };
     try {
-      run_case(c, emit);
+      run_case(c, slabs, emit);
     } catch (...) {
       _exit(4);
     }
@@ -589,7 +596,7 @@ int main(int argc, char** argv) {
     const auto b0 = Clock::now();
     rep.brute = brute_force_topology(points);
     rep.brute_seconds = std::chrono::duration<double>(Clock::now() - b0).count();
-    rep.run = run_isolated(cases[i], opt.timeout, opt.fork);
+    rep.run = run_isolated(cases[i], opt.timeout, opt.fork, opt.slabs);
     judge(rep, opt.cost_bound_us);
     const StressCase& c = cases[i];
     const std::string verdict = rep.passed ? (c.singular ? "pass*" : "PASS") : (c.singular ? "FAIL*" : "FAIL");

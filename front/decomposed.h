@@ -1,0 +1,87 @@
+// front/decomposed.h: the decomposed sweep on one thread — the skin cut at
+// regular heights into slabs, each swept by sweep_slab() from its lower cut
+// curves, the band between each slab's parked rims and its upper cut curves
+// closed by strip_triangulation(), and the slabs glued along the shared cut
+// samples into one closed mesh (papers/mesher/decomposition.md, "The
+// decomposition" and "Increments", 4). The result goes to the local
+// refinement like sweep_mesh()'s.
+// Notes: papers/mesher/decomposition.md
+#pragma once
+
+#include <vector>
+
+#include "front/slab.h"
+#include "front/sweep.h"
+#include "morse/level_curves.h"
+
+namespace skinmesh::front {
+
+/// Tuning of the cut choice and of the glue. Lengths are multiples of the
+/// disc radius r = disc_factor · rho of the point concerned.
+struct DecompositionOptions {
+  /// Slabs wanted (at least 1; 1: no cut). The cut heights aim at equal
+  /// parts of the range of the critical heights, so they depend on the input
+  /// and on this number only, never on the thread count. Fewer slabs come
+  /// out where no admissible height is found near a target.
+  int slabs = 1;
+  /// Slab::park_factor of every slab.
+  double park_factor = 2;
+  /// A critical point p forbids the cut heights c with
+  /// c - s_p - below · r_p <= h(p) <= c + s_p + above · r_p (s_p its
+  /// protecting radius if it is live, else 0). [derived] below = park_factor
+  /// + 2: the band of parked vertices (heights above c - park_factor · r,
+  /// fans up to c - (park_factor - 1) r) holds no critical point and no
+  /// held vertex, so every hold, bridge and seal below the cut happens
+  /// before the parking; above = 2: the lower cut's ghost strip (a quarter
+  /// r deep) and its first fans stay clear of the slab above's holds.
+  double window_below = 2;
+  /// See window_below.
+  double window_above = 1;
+  /// Every sample of a cut curve lies at least sphere_margin · r (r at the
+  /// sample) outside every live protecting sphere. [derived] the parked rim
+  /// and the strip lie within about park_factor + 1 disc radii of the curve.
+  double sphere_margin = 3;
+  /// Two consecutive cuts are at least min_thickness · r apart at every
+  /// sample of either (sweep_slab refuses a slab thinner than park_factor +
+  /// 1). [derived] park_factor + 2: one row of fans between the lower
+  /// curve and the parking height.
+  double min_thickness = 4;
+  /// Candidate heights are searched within this fraction of the slab height
+  /// on each side of a target, at steps of search_step of the slab height.
+  /// [measured] 0.4 and 0.01: 81 candidates per target.
+  double search_reach = 0.4;
+  double search_step = 0.01;
+  /// The cut curves' tracing and sampling.
+  morse::LevelCurveOptions curves;
+};
+
+/// One cut of the decomposition: its height (Å) and its sampled level
+/// curves (morse::level_curves(), oriented by n × e).
+struct Cut {
+  double height = 0;
+  std::vector<morse::LevelCurve> curves;
+};
+
+/// The cut heights of opt.slabs slabs, in increasing order, each admissible
+/// (DecompositionOptions' windows, sphere margin and thickness) with its
+/// curves traced. Needs the integral lines' polylines of `ms` (the seeds of
+/// level_curves()), so it runs before they are freed. A target without an
+/// admissible height nearby is skipped (fewer slabs). Throws
+/// std::invalid_argument if opt.slabs < 1.
+std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                             const DecompositionOptions& opt, const SweepOptions& sweep);
+
+/// Meshes the skin slab by slab between `cuts` (increasing heights, as
+/// choose_cuts() returns them) and glues the slabs into one closed mesh: the
+/// cut samples are shared by the slab above (its lower boundary) and the
+/// band below (the strip between the slab's parked rims and the cut's
+/// curves). The result has the vertex properties and the meaning of
+/// sweep_mesh()'s, its stats the sum over the slabs. No cuts: sweep_mesh().
+/// Throws what sweep_slab() throws, and TopologyError if a slab's parked
+/// rims do not match its upper cut's curves one to one or a band has no
+/// outward strip, or if the glued mesh is not a closed manifold.
+SweepResult sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                             const std::vector<Cut>& cuts, const DecompositionOptions& opt,
+                             const SweepOptions& sweep = {});
+
+}  // namespace skinmesh::front
