@@ -26,14 +26,15 @@ struct DecompositionOptions {
   int slabs = 1;
   /// Slab::park_factor of every slab.
   double park_factor = 2;
-  /// A critical point p forbids the cut heights c with
-  /// c - s_p - below · r_p <= h(p) <= c + s_p + above · r_p (s_p its
-  /// protecting radius if it is live, else 0). [derived] below = park_factor
-  /// + 2: the band of parked vertices (heights above c - park_factor · r,
-  /// fans up to c - (park_factor - 1) r) holds no critical point and no
-  /// held vertex, so every hold, bridge and seal below the cut happens
-  /// before the parking; above = 2: the lower cut's ghost strip (a quarter
-  /// r deep) and its first fans stay clear of the slab above's holds.
+  /// A critical point p, live or cancelled, forbids the cut heights c with
+  /// c - below · r_p <= h(p) <= c + above · r_p. [measured] 2 and 1: the
+  /// parking scales with sin(theta), which vanishes at a critical point, so
+  /// a maximum or saddle a little below the cut is sealed or bridged, not
+  /// parked around, and only points within about two disc radii of the cut
+  /// height disturb the band; the live spheres near the curve are kept away
+  /// by sphere_margin instead. Adding the protecting radius s_p to the
+  /// window, as first designed, left no cut at probe 0
+  /// (papers/mesher/decomposition.md, increment 4).
   double window_below = 2;
   /// See window_below.
   double window_above = 1;
