@@ -2,10 +2,12 @@
 // parked rim and its upper cut curve (papers/mesher/decomposition.md, "The
 // last band"): the triangulation of an annulus between two closed polylines
 // without new vertices that maximises the smallest angle, by dynamic
-// programming over the two cyclic sequences — the contour-stitching
-// problem of surface reconstruction from serial sections (Fuchs, Kedem &
-// Uselton 1977; Christiansen & Sederberg 1978), here with the smallest angle
-// as the objective and outward orientation as a constraint.
+// programming over the two cyclic sequences (then the least sum of a
+// penalty of small angles among the strips of that smallest angle) — the
+// contour-stitching problem of surface reconstruction from serial sections
+// (Fuchs, Kedem & Uselton 1977; Christiansen & Sederberg 1978), here with
+// the smallest angle as the objective and outward orientation as a
+// constraint.
 // Notes: papers/mesher/decomposition.md ("Increments", 4)
 #pragma once
 
@@ -30,11 +32,17 @@ using StripTriangle = std::array<Index, 3>;
 /// exactly one triangle, as that triangle's own edge, so the strip glues to
 /// both sides. Among such strips it returns one that maximises the smallest
 /// angle, subject to every triangle facing outwards at its three corners
-/// (its normal on the positive side of each corner's normal); the first
-/// triangle joins rim vertex 0 to the curve vertex nearest to it. The search
-/// is O(|rim| · |curve|) over a corridor of states whose arc-length fractions
-/// differ by at most `corridor` (1: all states; widened to 1 if no strip is
-/// found inside it). Returns an empty vector if no outward strip exists.
+/// (its normal on the positive side of each corner's normal), and among
+/// those one that minimises the sum over its triangles of 1 / sin² of their
+/// smallest angles: the bottleneck alone leaves every other triangle free
+/// to be as poor as it, and a strip twisted across the band by a few
+/// samples is as good as a straight one. The strip's connecting edge at rim
+/// vertex 0 ends at the curve vertex nearest to it or one of the two on
+/// either side of that one (the best of the five). The search is
+/// O(|rim| · |curve|) per start over a corridor of states whose arc-length
+/// fractions differ by at most `corridor` (1: all states; widened to 1 if no
+/// strip is found inside it). Returns an empty vector if no outward strip
+/// exists.
 /// Throws std::invalid_argument if a polyline has fewer than three vertices
 /// or a normal per vertex is missing.
 std::vector<StripTriangle> strip_triangulation(const std::vector<Vec3>& rim, const std::vector<Vec3>& rim_normals,

@@ -8,21 +8,60 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "front/band.h"
 #include "skin/vertex_data.h"
 
 namespace skinmesh::front {
 namespace {
 
+/// The critical points sorted by height, with the bounds that let a cut's
+/// tests read only the points near its plane: the largest disc radius (for
+/// the height window) and the largest protecting radius of a live point (for
+/// the sphere margin). Built once per choose_cuts(); each test then costs the
+/// points within its reach of the plane, not all of them.
+struct CriticalByHeight {
+  std::vector<std::size_t> order;  ///< indices into ms.critical, by increasing height
+  std::vector<double> height;      ///< their heights, in that order
+  double r_max = 0, s_max = 0;
+
+  CriticalByHeight(const morse::MorseSmaleComplex& ms, double disc_factor) {
+    order.resize(ms.critical.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return ms.critical[a].height < ms.critical[b].height || (ms.critical[a].height == ms.critical[b].height && a < b);
+    });
+    for (std::size_t i : order) {
+      height.push_back(ms.critical[i].height);
+      r_max = std::max(r_max, disc_factor * ms.critical[i].rho);
+      if (i < ms.live.size() && ms.live[i] && i < ms.protect_radius.size())
+        s_max = std::max(s_max, ms.protect_radius[i]);
+    }
+  }
+  /// The positions in `order` of the points with lo <= height <= hi.
+  std::pair<std::size_t, std::size_t> range(double lo, double hi) const {
+    return {static_cast<std::size_t>(std::lower_bound(height.begin(), height.end(), lo) - height.begin()),
+            static_cast<std::size_t>(std::upper_bound(height.begin(), height.end(), hi) - height.begin())};
+  }
+};
+
 /// True if no critical point lies in the height window that the cut at c
 /// forbids it (DecompositionOptions::window_below, window_above).
-bool window_clear(const morse::MorseSmaleComplex& ms, double c, const DecompositionOptions& opt, double disc_factor) {
-  for (std::size_t i = 0; i < ms.critical.size(); ++i) {
-    const morse::CriticalPoint& p = ms.critical[i];
+bool window_clear(const morse::MorseSmaleComplex& ms, const CriticalByHeight& by_height, double c,
+                  const DecompositionOptions& opt, double disc_factor) {
+  const auto [first, last] =
+      by_height.range(c - opt.window_below * by_height.r_max, c + opt.window_above * by_height.r_max);
+  for (std::size_t k = first; k < last; ++k) {
+    const morse::CriticalPoint& p = ms.critical[by_height.order[k]];
     const double r = disc_factor * p.rho;
     if (p.height >= c - opt.window_below * r && p.height <= c + opt.window_above * r) return false;
   }
@@ -31,18 +70,21 @@ bool window_clear(const morse::MorseSmaleComplex& ms, double c, const Decomposit
 
 /// True if every sample of `curves` lies sphere_margin disc radii outside
 /// every live protecting sphere.
-bool clear_of_spheres(const morse::MorseSmaleComplex& ms, double c, const std::vector<morse::LevelCurve>& curves,
-                      const DecompositionOptions& opt, double disc_factor) {
+bool clear_of_spheres(const morse::MorseSmaleComplex& ms, const CriticalByHeight& by_height, double c,
+                      const std::vector<morse::LevelCurve>& curves, const DecompositionOptions& opt,
+                      double disc_factor) {
   double rho_max = 0;
   for (const morse::LevelCurve& curve : curves)
     for (double rho : curve.rho) rho_max = std::max(rho_max, rho);
   const double reach = opt.sphere_margin * disc_factor * rho_max;
-  for (std::size_t i = 0; i < ms.critical.size(); ++i) {
+  // A sample is at least |h(p) - c| from p: only the spheres near the
+  // plane can come within the margin.
+  const auto [first, last] = by_height.range(c - by_height.s_max - reach, c + by_height.s_max + reach);
+  for (std::size_t k = first; k < last; ++k) {
+    const std::size_t i = by_height.order[k];
     if (i >= ms.live.size() || !ms.live[i] || i >= ms.protect_radius.size()) continue;
     const double s = ms.protect_radius[i];
     const morse::CriticalPoint& p = ms.critical[i];
-    // A sample is at least |h(p) - c| from p: only the spheres near the
-    // plane can come within the margin.
     if (std::abs(p.height - c) >= s + reach) continue;
     for (const morse::LevelCurve& curve : curves)
       for (std::size_t j = 0; j < curve.points.size(); ++j)
@@ -71,14 +113,93 @@ void add_stats(SweepStats& a, const SweepStats& b) {
   a.patched_holes += b.patched_holes, a.patch_faces += b.patch_faces, a.parked += b.parked;
 }
 
-/// The glued mesh under construction: positions, triangles and the skin's
-/// data per vertex.
-struct Soup {
-  geometry::IndexedMesh mesh;
-  std::vector<Vec3> normal;
-  std::vector<double> rho;
-  std::vector<Index> cell;
+/// One slab's sweep: its mesh, or why it failed.
+struct SlabOutcome {
+  std::optional<SlabResult> result;
+  std::string error;
 };
+
+/// sweep_slab(), with the failures the decomposition answers by merging
+/// the slab with a neighbour (a front the slab's bounds disturb, a
+/// construction near them that fails, a slab too thin) caught.
+SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
+                      const SweepOptions& sweep) {
+  SlabOutcome o;
+  try {
+    o.result = sweep_slab(skin, ms, slab, sweep);
+  } catch (const TopologyError& e) {
+    o.error = e.what();
+  } catch (const GeometryError& e) {
+    o.error = e.what();
+  } catch (const std::invalid_argument& e) {
+    o.error = e.what();
+  }
+  return o;
+}
+
+/// A vertex of a band: of the slab below the cut (a rim vertex) or of the
+/// slab above (a sample of the cut's curve), by its index in that slab's mesh.
+struct BandVertex {
+  bool above = false;
+  Index index = 0;
+};
+
+/// The strip closing one parked rim's band.
+struct Band {
+  std::vector<std::array<BandVertex, 3>> triangles;
+};
+
+/// The bands under the cut at `height` between the slab `below` and the
+/// slab `above`: each parked rim of `below` with the samples of its curve,
+/// which are the vertices of `above`'s lower loop of that curve. Throws
+/// TopologyError if a band has no outward strip.
+std::vector<Band> close_bands(const SlabResult& below, const SlabResult& above, double height) {
+  const auto normal_below = below.mesh.get_vertex_property(skin::kVertexNormal);
+  const auto normal_above = above.mesh.get_vertex_property(skin::kVertexNormal);
+  std::vector<Band> bands;
+  for (std::size_t i = 0; i < below.upper_rims.size(); ++i) {
+    const std::vector<Index>& whole = below.upper_rims[i];
+    const std::vector<Index>& curve = above.lower_loops[below.rim_curve[i]];
+    // The strip starts at rim vertex 0 and the curve samples nearest to it;
+    // where those lie across a narrow gap (another stretch of the same
+    // curve), no outward strip starts there: the rim is tried from other
+    // starts, a quarter of it apart, before the band is given up.
+    std::vector<Vec3> b, bn;
+    for (Index v : curve) {
+      b.push_back(above.mesh.position(geometry::Vertex(v)));
+      bn.push_back(normal_above[geometry::Vertex(v)]);
+    }
+    std::vector<Index> rim;
+    std::vector<StripTriangle> strip;
+    for (int attempt = 0; attempt < 4 && strip.empty(); ++attempt) {
+      const std::size_t shift = static_cast<std::size_t>(attempt) * whole.size() / 4;
+      rim.assign(whole.begin() + static_cast<std::ptrdiff_t>(shift), whole.end());
+      rim.insert(rim.end(), whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(shift));
+      std::vector<Vec3> a, an;
+      for (Index v : rim) {
+        a.push_back(below.mesh.position(geometry::Vertex(v)));
+        an.push_back(normal_below[geometry::Vertex(v)]);
+      }
+      // The corridor: a few dozen edges of slack in arc-length fraction.
+      const double corridor = std::min(1.0, 24.0 / static_cast<double>(std::min(a.size(), b.size())));
+      strip = strip_triangulation(a, an, b, bn, corridor);
+    }
+    if (strip.empty()) {
+      std::ostringstream os;
+      os << "decomposed sweep: the band between a parked rim and the cut curve at height " << height << " through ("
+         << b.front().transpose() << ") has no outward strip";
+      throw TopologyError(os.str());
+    }
+    Band& band = bands.emplace_back();
+    const Index n_rim = static_cast<Index>(rim.size());
+    for (const StripTriangle& t : strip) {
+      std::array<BandVertex, 3>& g = band.triangles.emplace_back();
+      for (int k = 0; k < 3; ++k)
+        g[k] = t[k] < n_rim ? BandVertex{false, rim[t[k]]} : BandVertex{true, curve[t[k] - n_rim]};
+    }
+  }
+  return bands;
+}
 
 }  // namespace
 
@@ -91,6 +212,7 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
   for (const morse::CriticalPoint& p : ms.critical) lo = std::min(lo, p.height), hi = std::max(hi, p.height);
   const double slab_height = (hi - lo) / opt.slabs;
   const int reach = static_cast<int>(std::floor(opt.search_reach / opt.search_step));
+  const CriticalByHeight by_height(ms, sweep.disc_factor);
   for (int i = 1; i < opt.slabs; ++i) {
     const double target = lo + i * slab_height;
     // Candidates from the target outwards: 0, +1, -1, +2, -2, … steps.
@@ -98,14 +220,14 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
       const int step = (j + 1) / 2 * (j % 2 ? 1 : -1);
       const double c = target + step * opt.search_step * slab_height;
       if (!cuts.empty() && c <= cuts.back().height) continue;
-      if (!window_clear(ms, c, opt, sweep.disc_factor)) continue;
+      if (!window_clear(ms, by_height, c, opt, sweep.disc_factor)) continue;
       Cut cut{c, {}};
       try {
         cut.curves = morse::level_curves(skin, ms, c, opt.curves);
       } catch (const GeometryError&) {
         continue;  // the curve passes next to a critical point: not regular enough
       }
-      if (cut.curves.empty() || !clear_of_spheres(ms, c, cut.curves, opt, sweep.disc_factor)) continue;
+      if (cut.curves.empty() || !clear_of_spheres(ms, by_height, c, cut.curves, opt, sweep.disc_factor)) continue;
       if (!cuts.empty() && !thick_enough(cuts.back(), cut, opt, sweep.disc_factor)) continue;
       cuts.push_back(std::move(cut));
       break;
@@ -114,118 +236,147 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
   return cuts;
 }
 
-SweepResult sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const std::vector<Cut>& cuts, const DecompositionOptions& opt, const SweepOptions& sweep) {
-  if (cuts.empty()) return sweep_mesh(skin, ms, sweep);
+DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                 const std::vector<Cut>& cuts, const DecompositionOptions& opt,
+                                 const SweepOptions& sweep) {
+  DecomposedSweep out;
   const std::size_t n_cuts = cuts.size();
-  Soup soup;
-  SweepResult out;
-  // ids[c][k][j]: the glued mesh's vertex of sample j of curve k of cut c.
-  std::vector<std::vector<std::vector<Index>>> ids(n_cuts);
-  // rims[s]: the parked rims of slab s (below cut s), as glued vertices;
-  // rim_curve[s]: the curve of cut s that each bounds the band with.
-  std::vector<std::vector<std::vector<Index>>> rims(n_cuts);
-  std::vector<std::vector<std::size_t>> rim_curve(n_cuts);
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  // A slab by its cuts' indices (kNone: below the skin / above it); every
+  // slab swept so far, kept when a cut is dropped since the slabs away from
+  // it stay as they were.
+  using SlabKey = std::pair<std::size_t, std::size_t>;
+  std::map<SlabKey, SlabOutcome> swept;
+  std::vector<char> kept(n_cuts, 1);
+  // The observers and the trace see one slab at a time, in order.
+  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, opt.threads);
 
-  for (std::size_t s = 0; s <= n_cuts; ++s) {
-    Slab slab;
-    slab.park_factor = opt.park_factor;
-    if (s > 0) slab.lower = cuts[s - 1].height, slab.lower_curves = cuts[s - 1].curves;
-    if (s < n_cuts) slab.upper = cuts[s].height, slab.upper_curves = cuts[s].curves;
-    SweepOptions slab_sweep = sweep;
-    if (sweep.progress)
-      slab_sweep.progress = [&sweep, s, n_cuts](const std::string& stage, double f) {
-        sweep.progress(stage, (static_cast<double>(s) + f) / static_cast<double>(n_cuts + 1));
-      };
-    SlabResult r = sweep_slab(skin, ms, slab, slab_sweep);
-    add_stats(out.stats, r.stats);
+  for (;;) {
+    std::vector<std::size_t> live;  // the kept cuts' indices, increasing
+    for (std::size_t c = 0; c < n_cuts; ++c)
+      if (kept[c]) live.push_back(c);
+    if (live.empty()) {
+      out.sweep = sweep_mesh(skin, ms, sweep);
+      return out;
+    }
+    std::vector<SlabKey> keys;
+    for (std::size_t k = 0; k <= live.size(); ++k)
+      keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
 
-    const auto normal = r.mesh.get_vertex_property(skin::kVertexNormal);
-    const auto rho = r.mesh.get_vertex_property(skin::kVertexRho);
-    const auto cell = r.mesh.get_vertex_property(skin::kVertexCell);
-    std::vector<Index> glued(r.mesh.vertices_size(), kInvalidIndex);
-    for (geometry::Vertex v : r.mesh.vertices()) {
-      glued[v.idx()] = static_cast<Index>(soup.mesh.positions.size());
-      soup.mesh.positions.push_back(r.mesh.position(v));
-      soup.normal.push_back(normal[v]);
-      soup.rho.push_back(rho[v]);
-      soup.cell.push_back(cell[v]);
-    }
-    if (s > 0)
-      for (const std::vector<Index>& loop : r.lower_loops) {
-        std::vector<Index>& g = ids[s - 1].emplace_back();
-        for (Index v : loop) g.push_back(glued[v]);
+    // 1. The slabs not swept yet, on up to `threads` threads; each writes
+    // its own outcome.
+    std::vector<SlabKey> todo;
+    for (const SlabKey& key : keys)
+      if (!swept.count(key)) todo.push_back(key);
+    std::vector<SlabOutcome> fresh(todo.size());
+    std::mutex progress_mutex;
+    std::size_t finished = 0;
+    parallel_for(todo.size(), threads, 1, [&](std::size_t i) {
+      Slab slab;
+      slab.park_factor = opt.park_factor;
+      const auto [lower, upper] = todo[i];
+      if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
+      if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
+      SweepOptions slab_sweep = sweep;
+      slab_sweep.progress = nullptr;
+      if (sweep.progress && threads == 1)
+        slab_sweep.progress = [&sweep, i, &todo](const std::string& stage, double f) {
+          sweep.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
+        };
+      fresh[i] = sweep_one(skin, ms, slab, slab_sweep);
+      if (sweep.progress && threads > 1) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        sweep.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
       }
-    for (geometry::Face f : r.mesh.faces()) {
-      std::array<Index, 3> t{};
-      geometry::Halfedge h = r.mesh.halfedge(f);
-      for (int i = 0; i < 3; ++i, h = r.mesh.next(h)) t[i] = glued[r.mesh.from_vertex(h).idx()];
-      soup.mesh.triangles.push_back(t);
-    }
-    if (s < n_cuts) {
-      for (const std::vector<Index>& rim : r.upper_rims) {
-        std::vector<Index>& g = rims[s].emplace_back();
-        for (Index v : rim) g.push_back(glued[v]);
-      }
-      rim_curve[s] = std::move(r.rim_curve);
-    }
-  }
+    });
+    for (std::size_t i = 0; i < todo.size(); ++i) swept.emplace(todo[i], std::move(fresh[i]));
 
-  // The bands: each parked rim with its cut curve (one rim per curve,
-  // sweep_slab's match), by the max-min-angle strip.
-  for (std::size_t c = 0; c < n_cuts; ++c) {
-    const std::vector<std::size_t>& match = rim_curve[c];
-    for (std::size_t i = 0; i < rims[c].size(); ++i) {
-      const std::vector<Index>& curve = ids[c][match[i]];
-      // The strip starts at rim vertex 0 and the curve sample nearest to it;
-      // where that sample lies across a narrow gap (another stretch of the
-      // same curve), no outward strip starts there: the rim is tried from
-      // other starts, a quarter of it apart, before the band is given up.
-      std::vector<Index> rim;
-      std::vector<StripTriangle> strip;
-      for (int attempt = 0; attempt < 4 && strip.empty(); ++attempt) {
-        const std::vector<Index>& whole = rims[c][i];
-        const std::size_t shift = attempt * whole.size() / 4;
-        rim.assign(whole.begin() + static_cast<std::ptrdiff_t>(shift), whole.end());
-        rim.insert(rim.end(), whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(shift));
-        std::vector<Vec3> a, an, b, bn;
-        for (Index v : rim) a.push_back(soup.mesh.positions[v]), an.push_back(soup.normal[v]);
-        for (Index v : curve) b.push_back(soup.mesh.positions[v]), bn.push_back(soup.normal[v]);
-        // The corridor: a few dozen edges of slack in arc-length fraction.
-        const double corridor = std::min(1.0, 24.0 / static_cast<double>(std::min(a.size(), b.size())));
-        strip = strip_triangulation(a, an, b, bn, corridor);
+    // 2. A slab that failed is merged with the slab above (the top one with
+    // the slab below) by dropping the cut between them, and swept again.
+    bool dropped = false;
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      const SlabOutcome& o = swept.at(keys[k]);
+      if (o.result) continue;
+      const std::size_t c = keys[k].second != kNone ? keys[k].second : keys[k].first;
+      if (!kept[c]) continue;  // the slab below dropped it already
+      kept[c] = 0, dropped = true;
+      out.dropped.push_back({cuts[c].height, o.error});
+    }
+    if (dropped) continue;
+
+    // 3. The bands: under each kept cut, each parked rim of the slab below
+    // with its curve's samples in the slab above.
+    std::vector<std::vector<Band>> bands(live.size());
+    std::vector<std::string> band_error(live.size());
+    parallel_for(live.size(), threads, 1, [&](std::size_t k) {
+      const SlabResult& below = *swept.at(keys[k]).result;
+      const SlabResult& above = *swept.at(keys[k + 1]).result;
+      try {
+        bands[k] = close_bands(below, above, cuts[live[k]].height);
+      } catch (const TopologyError& e) {
+        band_error[k] = e.what();
       }
-      if (strip.empty()) {
+    });
+    for (std::size_t k = 0; k < live.size(); ++k)
+      if (!band_error[k].empty()) {
+        kept[live[k]] = 0, dropped = true;
+        out.dropped.push_back({cuts[live[k]].height, band_error[k]});
+      }
+    if (dropped) continue;
+
+    // 4. The glue: every slab's mesh appended in slab order, its vertex data
+    // with it, then the bands' triangles on the shared vertices.
+    geometry::SurfaceMesh& mesh = out.sweep.mesh;
+    auto normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
+    auto rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
+    auto cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
+    {
+      std::size_t nv = 0, nf = 0;
+      for (const SlabKey& key : keys) {
+        const SlabResult& r = *swept.at(key).result;
+        nv += r.mesh.vertices_size(), nf += r.mesh.faces_size();
+      }
+      for (const std::vector<Band>& cut_bands : bands)
+        for (const Band& band : cut_bands) nf += band.triangles.size();
+      mesh.reserve(nv, nf);
+    }
+    std::vector<Index> base(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      const SlabResult& r = *swept.at(keys[k]).result;
+      add_stats(out.sweep.stats, r.stats);
+      base[k] = static_cast<Index>(mesh.vertices_size());
+      mesh.append(r.mesh);
+      const auto r_normal = r.mesh.get_vertex_property(skin::kVertexNormal);
+      const auto r_rho = r.mesh.get_vertex_property(skin::kVertexRho);
+      const auto r_cell = r.mesh.get_vertex_property(skin::kVertexCell);
+      for (geometry::Vertex v : r.mesh.vertices()) {
+        const geometry::Vertex g(base[k] + v.idx());
+        normal[g] = r_normal[v], rho[g] = r_rho[v], cell[g] = r_cell[v];
+      }
+      swept.erase(keys[k]);  // its copy is in the glued mesh: the peak holds one copy of the slab at a time
+    }
+    for (std::size_t k = 0; k < live.size(); ++k)
+      for (const Band& band : bands[k])
+        for (const std::array<BandVertex, 3>& t : band.triangles) {
+          std::array<geometry::Vertex, 3> g;
+          for (int i = 0; i < 3; ++i) g[i] = geometry::Vertex(base[t[i].above ? k + 1 : k] + t[i].index);
+          try {
+            mesh.add_triangle(g[0], g[1], g[2]);
+          } catch (const TopologyError& e) {
+            throw TopologyError("decomposed sweep: a band's triangle does not glue at the cut at height " +
+                                std::to_string(cuts[live[k]].height) + ": " + e.what());
+          }
+        }
+    for (std::size_t c : live) out.cut_heights.push_back(cuts[c].height);
+    for (geometry::Vertex v : mesh.vertices())
+      if (mesh.is_boundary(v) || !mesh.is_manifold(v)) {
         std::ostringstream os;
-        os << "decomposed sweep: the band between a parked rim and the cut curve at height " << cuts[c].height
-           << " through (" << soup.mesh.positions[curve.front()].transpose() << ") has no outward strip";
+        os << "decomposed sweep: the glued mesh is " << (mesh.is_boundary(v) ? "open" : "not manifold") << " at ("
+           << mesh.position(v).transpose() << ")";
         throw TopologyError(os.str());
       }
-      const Index n_rim = static_cast<Index>(rim.size());
-      for (const StripTriangle& t : strip) {
-        std::array<Index, 3> g{};
-        for (int k = 0; k < 3; ++k) g[k] = t[k] < n_rim ? rim[t[k]] : curve[t[k] - n_rim];
-        soup.mesh.triangles.push_back(g);
-      }
-    }
+    return out;
   }
-
-  out.mesh = geometry::SurfaceMesh::from_indexed_mesh(soup.mesh);
-  for (geometry::Vertex v : out.mesh.vertices())
-    if (out.mesh.is_boundary(v)) {
-      std::ostringstream os;
-      os << "decomposed sweep: the glued mesh is open at (" << out.mesh.position(v).transpose() << ")";
-      throw TopologyError(os.str());
-    }
-  auto normal = out.mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
-  auto rho = out.mesh.add_vertex_property(skin::kVertexRho, 0.0);
-  auto cell = out.mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
-  for (geometry::Vertex v : out.mesh.vertices()) {
-    normal[v] = soup.normal[v.idx()];
-    rho[v] = soup.rho[v.idx()];
-    cell[v] = soup.cell[v.idx()];
-  }
-  return out;
 }
 
 }  // namespace skinmesh::front

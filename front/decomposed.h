@@ -8,6 +8,7 @@
 // Notes: papers/mesher/decomposition.md
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "front/slab.h"
@@ -54,6 +55,9 @@ struct DecompositionOptions {
   double search_step = 0.01;
   /// The cut curves' tracing and sampling.
   morse::LevelCurveOptions curves;
+  /// Threads for the slabs and the bands (at least 1; the pipeline passes
+  /// its --threads). The cuts and the mesh do not depend on it.
+  int threads = 1;
 };
 
 /// One cut of the decomposition: its height (Å) and its sampled level
@@ -72,17 +76,40 @@ struct Cut {
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const SweepOptions& sweep);
 
+/// A cut the decomposed sweep gave up, and why: a slab next to it failed
+/// (the message of sweep_slab()'s error) or a band under it had no strip.
+struct DroppedCut {
+  double height = 0;
+  std::string why;
+};
+
+/// The decomposed sweep's mesh and the cuts it kept.
+struct DecomposedSweep {
+  /// The glued mesh, with the vertex properties and the meaning of
+  /// sweep_mesh()'s; its stats the sum over the slabs of the mesh.
+  SweepResult sweep;
+  /// The heights (Å, along the complex's height direction) of the cuts the
+  /// mesh was glued along, increasing.
+  std::vector<double> cut_heights;
+  /// The cuts dropped, in the order they were.
+  std::vector<DroppedCut> dropped;
+};
+
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as
 /// choose_cuts() returns them) and glues the slabs into one closed mesh: the
 /// cut samples are shared by the slab above (its lower boundary) and the
 /// band below (the strip between the slab's parked rims and the cut's
-/// curves). The result has the vertex properties and the meaning of
-/// sweep_mesh()'s, its stats the sum over the slabs. No cuts: sweep_mesh().
-/// Throws what sweep_slab() throws, and TopologyError if a slab's parked
-/// rims do not match its upper cut's curves one to one or a band has no
-/// outward strip, or if the glued mesh is not a closed manifold.
-SweepResult sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                             const SweepOptions& sweep = {});
+/// curves). The slabs, then the bands, are computed on up to opt.threads
+/// threads (one if `sweep` has an observer or a trace); the mesh does not
+/// depend on the count. Where a slab fails (sweep_slab() throws
+/// TopologyError, GeometryError or std::invalid_argument) the cut above it
+/// is dropped (below it for the top slab), and where a band has no outward
+/// strip the cut of the band: the two slabs become one, swept again, the
+/// others kept. With every cut dropped, or none given: sweep_mesh().
+/// Throws what sweep_mesh() throws, and TopologyError if the glued mesh is
+/// not a closed manifold.
+DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                 const std::vector<Cut>& cuts, const DecompositionOptions& opt,
+                                 const SweepOptions& sweep = {});
 
 }  // namespace skinmesh::front

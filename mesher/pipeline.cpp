@@ -86,6 +86,10 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
     res.static_fallback = in_frame(res.static_fallback, centre);
     for (Vec3& p : res.mesh.positions) p += centre;
     for (double& c : res.cut_heights) c += options.height_direction.normalized().dot(centre);
+    for (front::DroppedCut& d : res.dropped_cuts) {
+      d.height += options.height_direction.normalized().dot(centre);
+      d.why = in_frame(d.why, centre);
+    }
     return res;
   } catch (const TopologyError& e) {
     throw TopologyError(in_frame(e.what(), centre));
@@ -151,10 +155,14 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   clock.begin("sweep");
   front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
-  front::SweepResult swept = front::sweep_decomposed(skin, *ms, cuts, options.decomposition, sweep_options);
+  front::DecompositionOptions decomposition = options.decomposition;
+  decomposition.threads = threads;
+  front::DecomposedSweep decomposed = front::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
+  front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
-  res.slabs = cuts.size() + 1;
-  for (const front::Cut& cut : cuts) res.cut_heights.push_back(cut.height);
+  res.slabs = decomposed.cut_heights.size() + 1;
+  res.cut_heights = std::move(decomposed.cut_heights);
+  res.dropped_cuts = std::move(decomposed.dropped);
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");

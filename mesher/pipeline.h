@@ -172,6 +172,10 @@ struct MeshResult {
   /// The cut heights between the slabs (Å, e·x in the input's coordinates,
   /// e = MeshOptions::height_direction), increasing; empty for one sweep.
   std::vector<double> cut_heights;
+  /// The cuts chosen but given up by the decomposed sweep (a slab next to it
+  /// or its band failed; front::sweep_decomposed), heights as cut_heights',
+  /// messages with positions in the input's coordinates frame noted.
+  std::vector<front::DroppedCut> dropped_cuts;
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).
   refine::AngleImprovementStats angle_improvement;

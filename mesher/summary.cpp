@@ -92,8 +92,12 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
                      {"U_left", r.U_left}};
   // Only a decomposed sweep reports its slabs, so that one sweep's summary
   // keeps its keys.
-  if (res.slabs > 1)
-    j["decomposition"] = {{"slabs", res.slabs}, {"cut_heights", res.cut_heights}, {"parked", s.parked}};
+  if (res.slabs > 1 || !res.dropped_cuts.empty()) {
+    json dropped = json::array();
+    for (const front::DroppedCut& d : res.dropped_cuts) dropped.push_back({{"height", d.height}, {"why", d.why}});
+    j["decomposition"] = {
+        {"slabs", res.slabs}, {"cut_heights", res.cut_heights}, {"parked", s.parked}, {"dropped_cuts", dropped}};
+  }
   const refine::AngleImprovementStats& ai = res.angle_improvement;
   j["angle_improvement"] = {{"enabled", options.improve_angles},
                             {"low_triangles", ai.low_triangles},

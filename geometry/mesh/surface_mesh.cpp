@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.h"
 
@@ -170,6 +171,37 @@ Vertex SurfaceMesh::add_vertex(const Vec3& p) {
   Vertex v(Index(vprops_.size() - 1));
   vpoint_[v] = p;
   return v;
+}
+
+void SurfaceMesh::append(const SurfaceMesh& other) {
+  if (&other == this) throw std::invalid_argument("SurfaceMesh::append: a mesh cannot be appended to itself");
+  if (other.has_garbage()) throw std::invalid_argument("SurfaceMesh::append: the appended mesh has deleted elements");
+  const Index v0 = Index(vertices_size()), h0 = Index(halfedges_size()), f0 = Index(faces_size());
+  // Invalid handles stay invalid; valid ones move by their kind's offset.
+  auto shift_v = [v0](Vertex v) { return v.is_valid() ? Vertex(v.idx() + v0) : v; };
+  auto shift_h = [h0](Halfedge h) { return h.is_valid() ? Halfedge(h.idx() + h0) : h; };
+  auto shift_f = [f0](Face f) { return f.is_valid() ? Face(f.idx() + f0) : f; };
+  reserve(vertices_size() + other.vertices_size(), faces_size() + other.faces_size());
+  for (std::size_t i = 0; i < other.vertices_size(); ++i) {
+    const Vertex w(static_cast<Index>(i));
+    const Vertex v = add_vertex(other.position(w));
+    set_halfedge(v, shift_h(other.halfedge(w)));
+  }
+  for (std::size_t i = 0; i < other.edges_size(); ++i) {
+    eprops_.push_back();
+    hprops_.push_back();
+    hprops_.push_back();
+  }
+  for (std::size_t i = 0; i < other.halfedges_size(); ++i) {
+    const Halfedge g(static_cast<Index>(i));
+    HalfedgeConnectivity& c = hconn_[Halfedge(g.idx() + h0)];
+    const HalfedgeConnectivity& o = other.hconn_[g];
+    c.to = shift_v(o.to), c.face = shift_f(o.face), c.next = shift_h(o.next), c.prev = shift_h(o.prev);
+  }
+  for (std::size_t i = 0; i < other.faces_size(); ++i) {
+    const Face g(static_cast<Index>(i));
+    set_halfedge(new_face(), shift_h(other.halfedge(g)));
+  }
 }
 
 Halfedge SurfaceMesh::new_edge(Vertex a, Vertex b) {

@@ -474,6 +474,15 @@ class SurfaceMesh {
   // SurfaceMesh Element Creation
   /// Append a vertex at p (Å). It is isolated until a face uses it.
   Vertex add_vertex(const Vec3& p);
+  /// Appends a copy of `other`'s vertices, edges and faces, with their
+  /// connectivity: its vertex i becomes vertex vertices_size() + i of this
+  /// mesh (taken before the call), and likewise for its half-edges, edges
+  /// and faces, so its boundary stays boundary here, ready for add_triangle().
+  /// Only the built-in properties are copied; the user properties of this
+  /// mesh get their initial value on the new elements. O(size of `other`).
+  /// Throws std::invalid_argument if `other` has deleted elements (call its
+  /// garbage_collection() first) or is this mesh.
+  void append(const SurfaceMesh& other);
 
   /// Add the triangle (a, b, c), counter-clockwise seen from outside, and return it.
   /// Supported: any of the three edges may be new or an existing boundary

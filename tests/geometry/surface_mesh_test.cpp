@@ -13,6 +13,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -405,6 +406,56 @@ TEST_CASE("SurfaceMesh: from_indexed_mesh accepts any triangle order and round-t
       }
     }
   }
+}
+
+TEST_CASE("SurfaceMesh: append keeps each mesh's connectivity, and the band between them glues") {
+  // A sphere cut by the plane z = 0 into its lower and upper vertices: the
+  // triangles of each side are built as their own mesh, appended, and the
+  // triangles that mix both sides are added on the appended boundaries.
+  const IndexedMesh whole = sphere(2);
+  std::vector<int> side(whole.positions.size());
+  for (std::size_t i = 0; i < side.size(); ++i) side[i] = whole.positions[i].z() < 0 ? 0 : 1;
+  IndexedMesh part[2];
+  std::vector<Index> local(whole.positions.size());
+  for (std::size_t i = 0; i < side.size(); ++i) {
+    local[i] = Index(part[side[i]].positions.size());
+    part[side[i]].positions.push_back(whole.positions[i]);
+  }
+  std::vector<std::array<Index, 3>> band;
+  for (const auto& t : whole.triangles) {
+    const int s0 = side[t[0]];
+    if (side[t[1]] == s0 && side[t[2]] == s0)
+      part[s0].triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+    else
+      band.push_back(t);
+  }
+  REQUIRE(!band.empty());
+  SurfaceMesh m;
+  auto tag = m.add_vertex_property<int>("v:tag", -1);
+  Index base[2];
+  for (int k = 0; k < 2; ++k) {
+    const SurfaceMesh p = build(part[k]);
+    base[k] = Index(m.vertices_size());
+    const std::size_t faces_before = m.n_faces(), loops_before = m.boundary_loops().size();
+    m.append(p);
+    consistent(m);
+    CHECK(m.n_faces() == faces_before + p.n_faces());
+    CHECK(m.boundary_loops().size() == loops_before + p.boundary_loops().size());
+    for (std::size_t i = 0; i < p.vertices_size(); ++i) CHECK(tag[Vertex(base[k] + Index(i))] == -1);
+  }
+  std::mt19937 rng(2611);
+  std::shuffle(band.begin(), band.end(), rng);
+  auto glued = [&](Index i) { return Vertex(base[side[i]] + local[i]); };
+  for (const auto& t : band) m.add_triangle(glued(t[0]), glued(t[1]), glued(t[2]));
+  consistent(m);
+  CHECK(m.boundary_loops().empty());
+  CHECK(euler(m) == 2);
+  for (std::size_t i = 0; i < whole.positions.size(); ++i) CHECK(m.position(glued(Index(i))) == whole.positions[i]);
+
+  SurfaceMesh with_garbage = build(icosahedron());
+  with_garbage.delete_face(Face(0));
+  CHECK_THROWS_AS(m.append(with_garbage), std::invalid_argument);
+  CHECK_THROWS_AS(m.append(m), std::invalid_argument);
 }
 
 TEST_CASE("SurfaceMesh: from_indexed_mesh refuses non-manifold input") {

@@ -68,4 +68,42 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
   }
 }
 
+TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  mesher::MeshOptions options;
+  options.decomposition.slabs = 8;
+  options.threads = 1;
+  const mesher::MeshResult one = mesher::mesh_skin(mol, options);
+  REQUIRE(one.slabs > 2);
+  for (int threads : {2, 3}) {
+    CAPTURE(threads);
+    options.threads = threads;
+    const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    CHECK(res.cut_heights == one.cut_heights);
+    CHECK(res.mesh.positions == one.mesh.positions);
+    CHECK(res.mesh.triangles == one.mesh.triangles);
+  }
+}
+
+TEST_CASE("regression: a band with no outward strip drops its cut, random atoms at probe 0.5") {
+  // A stress case whose cut crosses a nearly level stretch of skin: the
+  // parked rim juts towards the curve there, so no strip of outward
+  // triangles joins them. The cut is dropped and its two slabs are swept
+  // as one; the other slabs are kept.
+  const skin::Molecule mol =
+      skin::read_molecule(std::string(SKINMESH_TEST_DATA) + "/regression/cluster60_probe0.5_band_without_strip.xyzr");
+  mesher::MeshOptions options;
+  options.probe_radius = 0.5;
+  options.decomposition.slabs = 8;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  REQUIRE(!res.dropped_cuts.empty());
+  CHECK(res.dropped_cuts.front().why.find("no outward strip") != std::string::npos);
+  CHECK(res.slabs > 1);
+  REQUIRE(res.cut_heights.size() + 1 == res.slabs);
+  for (const front::DroppedCut& d : res.dropped_cuts)
+    for (double h : res.cut_heights) CHECK(d.height != h);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+}
+
 }  // TEST_SUITE

@@ -171,6 +171,7 @@ struct RunResult {
   std::string crash;  ///< Crash: how the process ended
   double seconds = 0;
   std::size_t patched = 0, left = 0, folds = 0;  ///< the fallback's patches, openings left for the seal, folds
+  std::size_t slabs = 0, dropped_cuts = 0;       ///< slabs of the mesh, cuts the decomposed sweep gave up
 };
 
 /// Escapes newlines and tabs so that a message fits one protocol line.
@@ -224,6 +225,8 @@ void run_case(const StressCase& c, int slabs, Emit emit) {
     emit("patched", std::to_string(res.sweep.patched_holes));
     emit("left", std::to_string(res.sweep.left_holes));
     emit("folds", std::to_string(res.sweep.folds));
+    emit("slabs", std::to_string(res.slabs));
+    emit("dropped_cuts", std::to_string(res.dropped_cuts.size()));
     emit("triangles", std::to_string(res.mesh.triangles.size()));
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3f", res.check.mesh.min_angle_deg);
@@ -281,6 +284,10 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
     r.left = std::stoull(value);
   else if (key == "folds")
     r.folds = std::stoull(value);
+  else if (key == "slabs")
+    r.slabs = std::stoull(value);
+  else if (key == "dropped_cuts")
+    r.dropped_cuts = std::stoull(value);
   else if (key == "min_angle")
     r.min_angle = std::stod(value);
   else if (key == "components") {
@@ -704,6 +711,21 @@ int main(int argc, char** argv) {
     if (rep.run.patched + rep.run.left + rep.run.folds > 0)
       std::printf("  %s: %zu patches, %zu left, %zu folds%s\n", rep.c->name.c_str(), rep.run.patched, rep.run.left,
                   rep.run.folds, rep.passed ? "" : " (FAILED)");
+  if (opt.slabs > 1) {
+    std::size_t slabs = 0, meshed = 0, dropping = 0, dropped = 0;
+    for (const CaseReport& rep : reports) {
+      if (rep.run.kind != RunResult::Mesh) continue;
+      ++meshed, slabs += rep.run.slabs, dropping += rep.run.dropped_cuts > 0, dropped += rep.run.dropped_cuts;
+    }
+    std::printf(
+        "decomposition (papers/mesher/decomposition.md): %zu slabs over %zu meshed cases (up to %d each); cuts "
+        "dropped in %zu cases, %zu in all\n",
+        slabs, meshed, opt.slabs, dropping, dropped);
+    for (const CaseReport& rep : reports)
+      if (rep.run.dropped_cuts > 0)
+        std::printf("  %s: %zu slabs, %zu cuts dropped%s\n", rep.c->name.c_str(), rep.run.slabs, rep.run.dropped_cuts,
+                    rep.passed ? "" : " (FAILED)");
+  }
   std::printf("cost: at most %.1f µs per triangle (%s), bound %g µs + %g s\n", worst_us, worst_case.c_str(),
               opt.cost_bound_us, kCostFloorSeconds);
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
