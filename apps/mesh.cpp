@@ -300,10 +300,10 @@ Command add_mesh_command(CLI::App& app) {
                 "the paper's algorithm alone; papers/refine/angle_improvement.md)");
   add_threads_option(*cmd, mesh.opt.threads, "0: every core", "mesh is, byte for byte,");
   cmd->add_option("--slabs", mesh.opt.decomposition.slabs,
-                  "cut the skin at N - 1 regular heights and sweep it slab by slab, the slabs glued along the "
-                  "cut curves' shared samples (papers/mesher/decomposition.md); fewer slabs where no admissible "
-                  "cut height exists; 1: one sweep")
-      ->check(CLI::Range(1, 1000000))
+                  "cut the skin at N - 1 heights and sweep the slabs on the threads, glued along the cut curves' "
+                  "shared samples (papers/mesher/decomposition.md); fewer slabs where no admissible cut height "
+                  "exists; 1: one sweep; 0: one slab per 2500 atoms (the mesh depends on N, never on --threads)")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "

@@ -203,17 +203,23 @@ std::vector<Band> close_bands(const SlabResult& below, const SlabResult& above, 
 
 }  // namespace
 
+int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt) {
+  const double n = std::round(static_cast<double>(atoms) / opt.atoms_per_slab);
+  return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(opt.max_slabs)));
+}
+
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const SweepOptions& sweep) {
-  if (opt.slabs < 1) throw std::invalid_argument("choose_cuts: at least one slab");
+  if (opt.slabs < 0) throw std::invalid_argument("choose_cuts: the slab count must be positive, or 0 (automatic)");
+  const int slabs = opt.slabs == 0 ? automatic_slabs(skin.points().size(), opt) : opt.slabs;
   std::vector<Cut> cuts;
-  if (opt.slabs == 1 || ms.critical.empty()) return cuts;
+  if (slabs == 1 || ms.critical.empty()) return cuts;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const morse::CriticalPoint& p : ms.critical) lo = std::min(lo, p.height), hi = std::max(hi, p.height);
-  const double slab_height = (hi - lo) / opt.slabs;
+  const double slab_height = (hi - lo) / slabs;
   const int reach = static_cast<int>(std::floor(opt.search_reach / opt.search_step));
   const CriticalByHeight by_height(ms, sweep.disc_factor);
-  for (int i = 1; i < opt.slabs; ++i) {
+  for (int i = 1; i < slabs; ++i) {
     const double target = lo + i * slab_height;
     // Candidates from the target outwards: 0, +1, -1, +2, -2, … steps.
     for (int j = 0; j <= 2 * reach; ++j) {
@@ -355,11 +361,18 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       }
       swept.erase(keys[k]);  // its copy is in the glued mesh: the peak holds one copy of the slab at a time
     }
+    // Each slab's mesh is a surface whose boundary is its lower curves'
+    // samples and its rims, one rim per upper curve (sweep_slab), and every
+    // band covers its rim's and its curve's edges: only the bands' corners
+    // can be left open or pinched, so only they are tested (the check of
+    // the whole mesh later tests every vertex).
+    std::vector<geometry::Vertex> seam;
     for (std::size_t k = 0; k < live.size(); ++k)
       for (const Band& band : bands[k])
         for (const std::array<BandVertex, 3>& t : band.triangles) {
           std::array<geometry::Vertex, 3> g;
           for (int i = 0; i < 3; ++i) g[i] = geometry::Vertex(base[t[i].above ? k + 1 : k] + t[i].index);
+          seam.insert(seam.end(), g.begin(), g.end());
           try {
             mesh.add_triangle(g[0], g[1], g[2]);
           } catch (const TopologyError& e) {
@@ -368,7 +381,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
           }
         }
     for (std::size_t c : live) out.cut_heights.push_back(cuts[c].height);
-    for (geometry::Vertex v : mesh.vertices())
+    for (geometry::Vertex v : seam)
       if (mesh.is_boundary(v) || !mesh.is_manifold(v)) {
         std::ostringstream os;
         os << "decomposed sweep: the glued mesh is " << (mesh.is_boundary(v) ? "open" : "not manifold") << " at ("

@@ -20,11 +20,17 @@ namespace skinmesh::front {
 /// Tuning of the cut choice and of the glue. Lengths are multiples of the
 /// disc radius r = disc_factor · rho of the point concerned.
 struct DecompositionOptions {
-  /// Slabs wanted (at least 1; 1: no cut). The cut heights aim at equal
-  /// parts of the range of the critical heights, so they depend on the input
-  /// and on this number only, never on the thread count. Fewer slabs come
-  /// out where no admissible height is found near a target.
+  /// Slabs wanted (1: no cut; 0: automatic_slabs() of the atom count). The
+  /// cut heights aim at equal parts of the range of the critical heights, so
+  /// they depend on the input and on this number only, never on the thread
+  /// count. Fewer slabs come out where no admissible height is found near a
+  /// target.
   int slabs = 1;
+  /// With slabs = 0: one slab per this many atoms. [measured] 2500: maltoporin
+  /// (10,123 atoms) in 4 slabs (papers/mesher/decomposition.md, increment 5).
+  double atoms_per_slab = 2500;
+  /// With slabs = 0: at most this many slabs.
+  int max_slabs = 256;
   /// Slab::park_factor of every slab.
   double park_factor = 2;
   /// A critical point p, live or cancelled, forbids the cut heights c with
@@ -60,6 +66,10 @@ struct DecompositionOptions {
   int threads = 1;
 };
 
+/// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
+/// round(atoms / opt.atoms_per_slab), within [1, opt.max_slabs].
+int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt);
+
 /// One cut of the decomposition: its height (Å) and its sampled level
 /// curves (morse::level_curves(), oriented by n × e).
 struct Cut {
@@ -67,12 +77,13 @@ struct Cut {
   std::vector<morse::LevelCurve> curves;
 };
 
-/// The cut heights of opt.slabs slabs, in increasing order, each admissible
+/// The cut heights of opt.slabs slabs (automatic_slabs() if 0), in
+/// increasing order, each admissible
 /// (DecompositionOptions' windows, sphere margin and thickness) with its
 /// curves traced. Needs the integral lines' polylines of `ms` (the seeds of
 /// level_curves()), so it runs before they are freed. A target without an
 /// admissible height nearby is skipped (fewer slabs). Throws
-/// std::invalid_argument if opt.slabs < 1.
+/// std::invalid_argument if opt.slabs < 0.
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const SweepOptions& sweep);
 

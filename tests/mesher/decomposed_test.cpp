@@ -68,6 +68,17 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
   }
 }
 
+TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within its bounds") {
+  front::DecompositionOptions opt;
+  CHECK(front::automatic_slabs(0, opt) == 1);
+  CHECK(front::automatic_slabs(327, opt) == 1);      // crambin: one sweep
+  CHECK(front::automatic_slabs(10123, opt) == 4);    // maltoporin
+  CHECK(front::automatic_slabs(101230, opt) == 40);  // ten maltoporins
+  CHECK(front::automatic_slabs(100000000, opt) == opt.max_slabs);
+  opt.atoms_per_slab = 100;
+  CHECK(front::automatic_slabs(327, opt) == 3);
+}
+
 TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
   const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
   mesher::MeshOptions options;

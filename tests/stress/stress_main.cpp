@@ -75,7 +75,7 @@ struct Options {
   double cost_bound_us = 100.0;
   bool list = false;
   bool fork = true;
-  /// MeshOptions::decomposition.slabs of every case (1: one sweep).
+  /// MeshOptions::decomposition.slabs of every case (1: one sweep, 0: automatic).
   int slabs = 1;
 };
 
@@ -94,7 +94,8 @@ struct Options {
                "                   (default 100; 0: no bound)\n"
                "  --list           list the cases and exit\n"
                "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n"
-               "  --slabs N        mesh every case decomposed into (up to) N slabs (papers/mesher/decomposition.md)\n",
+               "  --slabs N        mesh every case decomposed into (up to) N slabs, 0: automatic "
+               "(papers/mesher/decomposition.md)\n",
                static_cast<unsigned long long>(kDefaultSeed));
   std::exit(problem.empty() ? 0 : 2);
 }
@@ -145,7 +146,7 @@ Options parse(int argc, char** argv) {
       o.fork = false;
     else if (a == "--slabs") {
       o.slabs = static_cast<int>(number(value(i), "--slabs"));
-      if (o.slabs < 1) usage("--slabs must be at least 1");
+      if (o.slabs < 0) usage("--slabs must be 0 (automatic) or more");
     } else if (a == "-h" || a == "--help")
       usage("");
     else
@@ -711,7 +712,7 @@ int main(int argc, char** argv) {
     if (rep.run.patched + rep.run.left + rep.run.folds > 0)
       std::printf("  %s: %zu patches, %zu left, %zu folds%s\n", rep.c->name.c_str(), rep.run.patched, rep.run.left,
                   rep.run.folds, rep.passed ? "" : " (FAILED)");
-  if (opt.slabs > 1) {
+  if (opt.slabs != 1) {
     std::size_t slabs = 0, meshed = 0, dropping = 0, dropped = 0;
     for (const CaseReport& rep : reports) {
       if (rep.run.kind != RunResult::Mesh) continue;
