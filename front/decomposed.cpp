@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -268,6 +269,10 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     std::vector<SlabKey> keys;
     for (std::size_t k = 0; k <= live.size(); ++k)
       keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
+
+    // The slabs of dropped cuts are not needed any more.
+    for (auto it = swept.begin(); it != swept.end();)
+      it = std::find(keys.begin(), keys.end(), it->first) == keys.end() ? swept.erase(it) : std::next(it);
 
     // 1. The slabs not swept yet, on up to `threads` threads; each writes
     // its own outcome.
