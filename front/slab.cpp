@@ -10,15 +10,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "core/errors.h"
 #include "front/operations.h"
+#include "geometry/triangulation/point_grid.h"
 
 namespace skinmesh::front {
 namespace detail {
@@ -97,33 +96,27 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
   return ghost_faces;
 }
 
-/// The nearest cut curve to a point, from a uniform grid over the curves'
-/// samples with cells four disc radii wide (a rim lies within about
-/// park_factor + 1 disc radii of its curve); a point with no sample in the
-/// 27 cells around it is compared with every sample.
+/// The nearest cut curve to a point, from a geometry::PointGrid over the
+/// curves' samples with cells four disc radii wide (a rim lies within about
+/// park_factor + 1 disc radii of its curve); a point with no sample that
+/// near is compared with every sample.
 class CurveLocator {
  public:
-  CurveLocator(const std::vector<morse::LevelCurve>& curves, double disc_factor) : curves_(curves) {
-    double rho_max = 0;
-    for (const morse::LevelCurve& c : curves)
-      for (double rho : c.rho) rho_max = std::max(rho_max, rho);
-    h_ = std::max(4 * disc_factor * rho_max, 1e-6);
+  CurveLocator(const std::vector<morse::LevelCurve>& curves, double disc_factor)
+      : curves_(curves), reach_(std::max(4 * disc_factor * rho_max(curves), 1e-6)), grid_(reach_) {
     for (std::size_t k = 0; k < curves.size(); ++k)
-      for (std::size_t j = 0; j < curves[k].points.size(); ++j)
-        grid_[key(curves[k].points[j], 0, 0, 0)].push_back({k, j});
+      for (const Vec3& p : curves[k].points) {
+        grid_.insert(static_cast<Index>(curve_of_.size()), p);
+        curve_of_.push_back(k);
+      }
   }
   /// The index of the curve with the sample nearest to x.
   std::size_t nearest(const Vec3& x) const {
     double best = std::numeric_limits<double>::infinity();
     std::size_t curve = curves_.size();
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = grid_.find(key(x, dx, dy, dz));
-          if (it == grid_.end()) continue;
-          for (const auto& [k, j] : it->second)
-            if (const double d = (curves_[k].points[j] - x).squaredNorm(); d < best) best = d, curve = k;
-        }
+    grid_.for_each_near(x, reach_, [&](Index id, const Vec3& p) {
+      if (const double d = (p - x).squaredNorm(); d < best) best = d, curve = curve_of_[id];
+    });
     if (curve < curves_.size()) return curve;
     for (std::size_t k = 0; k < curves_.size(); ++k)
       for (const Vec3& p : curves_[k].points)
@@ -140,13 +133,16 @@ class CurveLocator {
   }
 
  private:
-  std::int64_t key(const Vec3& x, int dx, int dy, int dz) const {
-    const auto q = [this](double t, int d) { return static_cast<std::int64_t>(std::floor(t / h_)) + d; };
-    return (q(x.x(), dx) * 73856093) ^ (q(x.y(), dy) * 19349663) ^ (q(x.z(), dz) * 83492791);
+  static double rho_max(const std::vector<morse::LevelCurve>& curves) {
+    double r = 0;
+    for (const morse::LevelCurve& c : curves)
+      for (double rho : c.rho) r = std::max(r, rho);
+    return r;
   }
   const std::vector<morse::LevelCurve>& curves_;
-  double h_ = 1;
-  std::unordered_map<std::int64_t, std::vector<std::pair<std::size_t, std::size_t>>> grid_;
+  double reach_;
+  geometry::PointGrid grid_;
+  std::vector<std::size_t> curve_of_;  ///< the curve of each sample, by its id in grid_
 };
 
 /// The open loops with a parked vertex and no ghost, each as its vertices.
