@@ -56,4 +56,31 @@ void parallel_for(std::size_t n, int threads, std::size_t grain, Fn&& fn) {
     if (e) std::rethrow_exception(e);
 }
 
+/// The indices i in [0, n) for which pred(i) holds, in increasing order —
+/// the list a plain loop would build — computed on up to `threads` threads:
+/// each block of `grain` consecutive indices collects its own, and the blocks
+/// are joined in order, so the result does not depend on the thread count.
+/// pred must only read shared state. Exceptions as parallel_for().
+template <class Pred>
+std::vector<std::size_t> parallel_select(std::size_t n, int threads, std::size_t grain, Pred&& pred) {
+  grain = std::max<std::size_t>(grain, 1);
+  std::vector<std::size_t> out;
+  if (threads <= 1 || n <= grain) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (pred(i)) out.push_back(i);
+    return out;
+  }
+  const std::size_t blocks = (n + grain - 1) / grain;
+  std::vector<std::vector<std::size_t>> found(blocks);
+  parallel_for(blocks, threads, 1, [&](std::size_t b) {
+    for (std::size_t i = b * grain, end = std::min(n, i + grain); i < end; ++i)
+      if (pred(i)) found[b].push_back(i);
+  });
+  std::size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  out.reserve(total);
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
+
 }  // namespace skinmesh

@@ -170,7 +170,9 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // 4. The local refinement (§4.3).
   if (options.refine) {
     clock.begin("refine");
-    res.refinement = refine::refine_mesh(skin, swept.mesh, with_size(options.refinement, options.size));
+    refine::RefineOptions refinement = with_size(options.refinement, options.size);
+    if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = threads;
+    res.refinement = refine::refine_mesh(skin, swept.mesh, refinement);
     if (options.observers.stage_end) options.observers.stage_end("refine", skin, swept.mesh);
     clock.end("refine");
     // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).

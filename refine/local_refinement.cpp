@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geometry/check/mesh_checks.h"
 #include "geometry/triangulation/point_grid.h"
 #include "skin/restricted_delaunay.h"
@@ -23,6 +25,13 @@ using geometry::SurfaceMesh;
 using geometry::Vertex;
 
 namespace {
+
+/// Elements per block of a parallel scan. [chosen] large enough that a
+/// block's list and its hand-out cost little beside its tests.
+constexpr std::size_t kScanGrain = 8192;
+/// Suspect edges per block of the first Lawson pass's verdicts. [chosen]
+/// each verdict may project up to four circumcentres onto the skin.
+constexpr std::size_t kVerdictGrain = 512;
 
 class Refiner {
  public:
@@ -119,6 +128,11 @@ class Refiner {
   /// (scan_L, scan_U); handles are never reused (deleted elements stay).
   std::vector<Edge> touched_edges_;
   std::vector<Face> touched_faces_;
+  /// During the first Lawson pass: per edge, should_flip()'s verdict on the
+  /// mesh before the pass (kFlip, kKeep), kUnknown once a flip changed a
+  /// face of the edge, or if never taken; empty otherwise.
+  std::vector<std::uint8_t> first_verdict_;
+  static constexpr std::uint8_t kUnknown = 0, kKeep = 1, kFlip = 2;
   RefineStats stats_;
 };
 
@@ -153,7 +167,12 @@ void Refiner::lawson() {
   while (!stack_.empty()) {
     const Edge e = stack_.back();
     stack_.pop_back();
-    if (!should_flip(e)) continue;
+    // A verdict taken on the threads before the first pass holds while
+    // neither face of e has changed since (flips mark the edges of their quad).
+    const bool flip = e.idx() < first_verdict_.size() && first_verdict_[e.idx()] != kUnknown
+                          ? first_verdict_[e.idx()] == kFlip
+                          : should_flip(e);
+    if (!flip) continue;
     if (++flips > cap) {
       ++stats_.flip_caps;
       stack_.clear();
@@ -165,10 +184,13 @@ void Refiner::lawson() {
     touched_edges_.push_back(e);
     touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 0)));
     touched_faces_.push_back(mesh_.face(mesh_.halfedge(e, 1)));
+    if (e.idx() < first_verdict_.size()) first_verdict_[e.idx()] = kUnknown;
     for (unsigned i = 0; i < 2; ++i) {
       const Halfedge h = mesh_.halfedge(e, i);
-      stack_.push_back(mesh_.edge(mesh_.next(h)));
-      stack_.push_back(mesh_.edge(mesh_.prev(h)));
+      for (const Edge g : {mesh_.edge(mesh_.next(h)), mesh_.edge(mesh_.prev(h))}) {
+        if (g.idx() < first_verdict_.size()) first_verdict_[g.idx()] = kUnknown;
+        stack_.push_back(g);
+      }
     }
   }
 }
@@ -349,16 +371,21 @@ bool Refiner::insert(Face f) {
   return true;
 }
 
-/// The elements of `all` (a range of mesh handles in index order) for which
-/// `violates` holds, in index order: every one if `full`, else those of `prev`
+/// The elements of the `all` first handles of their kind (deleted ones
+/// skipped) for which `violates` holds, in index order: every one if `full`, else those of `prev`
 /// and `touched` (sorted, without repeats, not deleted). Clears `touched`.
-template <class Handle, class Range, class Violates>
-std::vector<Handle> rescan(const SurfaceMesh& mesh, Range all, const std::vector<Handle>& prev,
-                           std::vector<Handle>& touched, bool full, Violates violates) {
+/// A full scan runs on `threads` threads (core/parallel.h: the same list).
+template <class Handle, class Violates>
+std::vector<Handle> rescan(const SurfaceMesh& mesh, std::size_t all, const std::vector<Handle>& prev,
+                           std::vector<Handle>& touched, bool full, int threads, Violates violates) {
   std::vector<Handle> out;
   if (full) {
-    for (Handle x : all)
-      if (violates(x)) out.push_back(x);
+    const std::vector<std::size_t> hit = parallel_select(all, threads, kScanGrain, [&](std::size_t i) {
+      const Handle x(static_cast<Index>(i));
+      return !mesh.is_deleted(x) && violates(x);
+    });
+    out.reserve(hit.size());
+    for (std::size_t i : hit) out.emplace_back(static_cast<Index>(i));
   } else {
     std::vector<Handle> cand = prev;
     cand.insert(cand.end(), touched.begin(), touched.end());
@@ -372,11 +399,13 @@ std::vector<Handle> rescan(const SurfaceMesh& mesh, Range all, const std::vector
 }
 
 std::vector<Edge> Refiner::scan_L(const std::vector<Edge>& prev, bool full) {
-  return rescan(mesh_, mesh_.edges(), prev, touched_edges_, full, [&](Edge e) { return violates_L(e); });
+  return rescan(mesh_, mesh_.edges_size(), prev, touched_edges_, full, opt_.threads,
+                [&](Edge e) { return violates_L(e); });
 }
 
 std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
-  return rescan(mesh_, mesh_.faces(), prev, touched_faces_, full, [&](Face f) { return violates_U(f); });
+  return rescan(mesh_, mesh_.faces_size(), prev, touched_faces_, full, opt_.threads,
+                [&](Face f) { return violates_U(f); });
 }
 
 RefineStats Refiner::run() {
@@ -386,21 +415,47 @@ RefineStats Refiner::run() {
   // across its three edges, and only the edges where it fails go on the
   // stack, in index order (the others would be popped and dropped).
   {
+    // Per face, which of its three edges are suspect (bit i: the edge of
+    // the face's i-th half-edge): set on the threads, each face its own
+    // slot, then marked on the edges.
+    std::vector<std::uint8_t> mask(mesh_.faces_size(), 0);
+    const std::size_t blocks = (mask.size() + kScanGrain - 1) / kScanGrain;
+    parallel_for(blocks, opt_.threads, 1, [&](std::size_t b) {
+      for (std::size_t i = b * kScanGrain, end = std::min(mask.size(), i + kScanGrain); i < end; ++i) {
+        const Face f(static_cast<Index>(i));
+        if (mesh_.is_deleted(f)) continue;
+        const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0), h2 = mesh_.next(h1);
+        const skin::SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)),
+                                           pos(mesh_.to_vertex(h1)), skin_.length_scale());
+        int bit = 0;
+        for (Halfedge h : {h0, h1, h2}) {
+          const Halfedge o = mesh_.opposite(h);
+          if (!mesh_.is_boundary(o) && !ball.outside(pos(mesh_.to_vertex(mesh_.next(o))))) mask[i] |= 1u << bit;
+          ++bit;
+        }
+      }
+    });
     std::vector<char> suspect(mesh_.edges_size(), 0);
     for (Face f : mesh_.faces()) {
       const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0), h2 = mesh_.next(h1);
-      const skin::SurfaceBallFilter ball(pos(mesh_.from_vertex(h0)), pos(mesh_.to_vertex(h0)), pos(mesh_.to_vertex(h1)),
-                                         skin_.length_scale());
-      for (Halfedge h : {h0, h1, h2}) {
-        const Halfedge o = mesh_.opposite(h);
-        if (!mesh_.is_boundary(o) && !ball.outside(pos(mesh_.to_vertex(mesh_.next(o)))))
-          suspect[mesh_.edge(h).idx()] = 1;
-      }
+      const Halfedge hs[3] = {h0, h1, h2};
+      for (int bit = 0; bit < 3; ++bit)
+        if (mask[f.idx()] >> bit & 1u) suspect[mesh_.edge(hs[bit]).idx()] = 1;
     }
     for (Edge e : mesh_.edges())
       if (suspect[e.idx()]) stack_.push_back(e);
+    // The suspects' verdicts on the mesh as it is, on the threads (the
+    // exact surface Delaunay balls are most of this pass's time).
+    first_verdict_.assign(mesh_.edges_size(), kUnknown);
+    const std::size_t n = stack_.size(), blocks_s = (n + kVerdictGrain - 1) / kVerdictGrain;
+    if (opt_.threads > 1)
+      parallel_for(blocks_s, opt_.threads, 1, [&](std::size_t b) {
+        for (std::size_t i = b * kVerdictGrain, end = std::min(n, i + kVerdictGrain); i < end; ++i)
+          first_verdict_[stack_[i].idx()] = should_flip(stack_[i]) ? kFlip : kKeep;
+      });
   }
   lawson();
+  std::vector<std::uint8_t>().swap(first_verdict_);
   // The first scans read every element; later ones the previous violators
   // and what changed since (touched_edges_, touched_faces_): the same lists.
   std::vector<Edge> short_edges;

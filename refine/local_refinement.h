@@ -53,6 +53,10 @@ struct RefineOptions {
   /// triangle is below this splits the opposite edge instead of the
   /// triangle (no sliver next to the edge). [measured]
   double split_edge_barycentric = 0.15;
+  /// Threads for the scans that read every element (the first Lawson pass's
+  /// suspects, the first [L] and [U] scans); the refinement is the same for
+  /// every count (core/parallel.h). 1: the calling thread only.
+  int threads = 1;
   /// Called after every flip, contraction and insertion with the mesh as it
   /// is then (a contraction or insertion is told before the flips that
   /// follow it); empty: not called. For recorders (trace/trace_recorder.h);

@@ -43,6 +43,22 @@ TEST_CASE("parallel_for rethrows the exception of the lowest block, as a plain l
   }
 }
 
+TEST_CASE("parallel_select lists the indices a plain loop would, in order, whatever the threads and the grain") {
+  // A predicate with runs, gaps and an irregular pattern (i*i mod 7 < 3).
+  auto pred = [](std::size_t i) { return (i * i) % 7 < 3 || (i >= 500 && i < 520); };
+  for (int threads : {1, 2, 3, 8})
+    for (std::size_t grain : {1u, 5u, 64u, 4096u})
+      for (std::size_t n : {0u, 1u, 9u, 1000u}) {
+        CAPTURE(threads);
+        CAPTURE(grain);
+        CAPTURE(n);
+        std::vector<std::size_t> plain;
+        for (std::size_t i = 0; i < n; ++i)
+          if (pred(i)) plain.push_back(i);
+        CHECK(parallel_select(n, threads, grain, pred) == plain);
+      }
+}
+
 TEST_CASE("thread_count: a positive request is kept, 0 means every core") {
   CHECK(thread_count(3) == 3);
   CHECK(thread_count(0) >= 1);
