@@ -6,6 +6,7 @@
 #include "front/decomposed.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -118,7 +119,13 @@ void add_stats(SweepStats& a, const SweepStats& b) {
 struct SlabOutcome {
   std::optional<SlabResult> result;
   std::string error;
+  double seconds = 0;  // wall clock of the sweep_slab() call
 };
+
+/// Wall-clock seconds since `start`.
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// sweep_slab(), with the failures the decomposition answers by merging
 /// the slab with a neighbour (a front the slab's bounds disturb, a
@@ -126,6 +133,7 @@ struct SlabOutcome {
 SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
                       const SweepOptions& sweep) {
   SlabOutcome o;
+  const auto start = std::chrono::steady_clock::now();
   try {
     o.result = sweep_slab(skin, ms, slab, sweep);
   } catch (const TopologyError& e) {
@@ -135,6 +143,7 @@ SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   } catch (const std::invalid_argument& e) {
     o.error = e.what();
   }
+  o.seconds = seconds_since(start);
   return o;
 }
 
@@ -270,9 +279,15 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     for (std::size_t k = 0; k <= live.size(); ++k)
       keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
 
-    // The slabs of dropped cuts are not needed any more.
-    for (auto it = swept.begin(); it != swept.end();)
-      it = std::find(keys.begin(), keys.end(), it->first) == keys.end() ? swept.erase(it) : std::next(it);
+    // The slabs of dropped cuts are not needed any more: their time is lost.
+    for (auto it = swept.begin(); it != swept.end();) {
+      if (std::find(keys.begin(), keys.end(), it->first) != keys.end()) {
+        ++it;
+        continue;
+      }
+      out.costs.retried += it->second.seconds;
+      it = swept.erase(it);
+    }
 
     // 1. The slabs not swept yet, on up to `threads` threads; each writes
     // its own outcome.
@@ -319,6 +334,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     // with its curve's samples in the slab above.
     std::vector<std::vector<Band>> bands(live.size());
     std::vector<std::string> band_error(live.size());
+    const auto bands_start = std::chrono::steady_clock::now();
     parallel_for(live.size(), threads, 1, [&](std::size_t k) {
       const SlabResult& below = *swept.at(keys[k]).result;
       const SlabResult& above = *swept.at(keys[k + 1]).result;
@@ -328,15 +344,21 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
         band_error[k] = e.what();
       }
     });
+    const double bands_seconds = seconds_since(bands_start);
     for (std::size_t k = 0; k < live.size(); ++k)
       if (!band_error[k].empty()) {
         kept[live[k]] = 0, dropped = true;
         out.dropped.push_back({cuts[live[k]].height, band_error[k]});
       }
-    if (dropped) continue;
+    if (dropped) {
+      out.costs.retried += bands_seconds;
+      continue;
+    }
 
     // 4. The glue: every slab's mesh appended in slab order, its vertex data
     // with it, then the bands' triangles on the shared vertices.
+    const auto glue_start = std::chrono::steady_clock::now();
+    out.costs.bands = bands_seconds;
     geometry::SurfaceMesh& mesh = out.sweep.mesh;
     auto normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
     auto rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
@@ -353,7 +375,9 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     }
     std::vector<Index> base(keys.size());
     for (std::size_t k = 0; k < keys.size(); ++k) {
-      const SlabResult& r = *swept.at(keys[k]).result;
+      const SlabOutcome& o = swept.at(keys[k]);
+      const SlabResult& r = *o.result;
+      out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
       add_stats(out.sweep.stats, r.stats);
       base[k] = static_cast<Index>(mesh.vertices_size());
       mesh.append(r.mesh);
@@ -393,6 +417,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
            << mesh.position(v).transpose() << ")";
         throw TopologyError(os.str());
       }
+    out.costs.glue = seconds_since(glue_start);
     return out;
   }
 }

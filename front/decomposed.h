@@ -94,6 +94,27 @@ struct DroppedCut {
   std::string why;
 };
 
+/// What one slab of the glued mesh cost: the wall-clock seconds of its
+/// sweep_slab() (on whichever thread ran it; with several threads these
+/// include the contention of the shared caches and memory) and its
+/// triangles. For the speed-up model of bench/speedup_model.py
+/// (papers/mesher/decomposition.md, "Beyond this machine").
+struct SlabCost {
+  double seconds = 0;
+  std::size_t triangles = 0;
+};
+
+/// Where the decomposed sweep's time went, in wall-clock seconds: per slab
+/// of the glued mesh (bottom to top), the bands' strips (all of them, on
+/// the threads), the glue (serial), and the slabs swept but given up when a
+/// cut was dropped (their time is lost).
+struct DecompositionCosts {
+  std::vector<SlabCost> slabs;
+  double bands = 0;
+  double glue = 0;
+  double retried = 0;
+};
+
 /// The decomposed sweep's mesh and the cuts it kept.
 struct DecomposedSweep {
   /// The glued mesh, with the vertex properties and the meaning of
@@ -104,6 +125,8 @@ struct DecomposedSweep {
   std::vector<double> cut_heights;
   /// The cuts dropped, in the order they were.
   std::vector<DroppedCut> dropped;
+  /// The costs, empty for one sweep (no cut kept).
+  DecompositionCosts costs;
 };
 
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as

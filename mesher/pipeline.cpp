@@ -163,6 +163,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   res.slabs = decomposed.cut_heights.size() + 1;
   res.cut_heights = std::move(decomposed.cut_heights);
   res.dropped_cuts = std::move(decomposed.dropped);
+  res.decomposition_costs = std::move(decomposed.costs);
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");

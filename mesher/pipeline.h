@@ -176,6 +176,10 @@ struct MeshResult {
   /// or its band failed; front::sweep_decomposed), heights as cut_heights',
   /// messages with positions in the input's coordinates frame noted.
   std::vector<front::DroppedCut> dropped_cuts;
+  /// Where the decomposed sweep's time went (per slab, bands, glue, lost to
+  /// dropped cuts; wall-clock seconds) and each slab's triangles; empty for
+  /// one sweep.
+  front::DecompositionCosts decomposition_costs;
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).
   refine::AngleImprovementStats angle_improvement;

@@ -95,8 +95,13 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
   if (res.slabs > 1 || !res.dropped_cuts.empty()) {
     json dropped = json::array();
     for (const front::DroppedCut& d : res.dropped_cuts) dropped.push_back({{"height", d.height}, {"why", d.why}});
-    j["decomposition"] = {
-        {"slabs", res.slabs}, {"cut_heights", res.cut_heights}, {"parked", s.parked}, {"dropped_cuts", dropped}};
+    std::vector<std::size_t> slab_triangles;
+    for (const front::SlabCost& c : res.decomposition_costs.slabs) slab_triangles.push_back(c.triangles);
+    j["decomposition"] = {{"slabs", res.slabs},
+                          {"cut_heights", res.cut_heights},
+                          {"parked", s.parked},
+                          {"dropped_cuts", dropped},
+                          {"slab_triangles", slab_triangles}};
   }
   const refine::AngleImprovementStats& ai = res.angle_improvement;
   j["angle_improvement"] = {{"enabled", options.improve_angles},
@@ -179,6 +184,14 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (context.read_seconds >= 0) seconds["read"] = context.read_seconds;
   for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
   if (analytic_seconds >= 0) seconds["analytic"] = analytic_seconds;
+  // The decomposed sweep's parts (inside "sweep"): per slab, bottom to top,
+  // then the bands, the glue and the slabs lost to dropped cuts.
+  if (!res.decomposition_costs.slabs.empty()) {
+    const front::DecompositionCosts& c = res.decomposition_costs;
+    std::vector<double> per_slab;
+    for (const front::SlabCost& slab : c.slabs) per_slab.push_back(slab.seconds);
+    seconds["sweep_parts"] = {{"slabs", per_slab}, {"bands", c.bands}, {"glue", c.glue}, {"retried", c.retried}};
+  }
   if (context.write_seconds >= 0) seconds["write"] = context.write_seconds;
   if (context.total_seconds >= 0) seconds["total"] = context.total_seconds;
   j["seconds"] = seconds;

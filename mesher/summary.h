@@ -43,8 +43,9 @@ struct SummaryContext {
 /// ("checked", "problems", and when checked "min_angle_deg",
 /// "max_angle_deg", "checks_passed"), critical points, the algorithm, the
 /// threads, the operation counts of the algorithm that ran, "seconds" per
-/// stage (the exact integration's as "analytic") and the peak memory, of the
-/// process and per stage. Keys keep this order.
+/// stage (the exact integration's as "analytic"; a decomposed sweep's parts
+/// as "sweep_parts": per slab, bands, glue, retried) and the peak memory, of
+/// the process and per stage. Keys keep this order.
 nlohmann::ordered_json run_summary(const MeshResult& result, const MeshOptions& options, const SummaryContext& context);
 
 }  // namespace skinmesh::mesher

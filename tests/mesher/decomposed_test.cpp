@@ -54,6 +54,17 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
     REQUIRE(res.cut_heights.size() + 1 == res.slabs);
     for (std::size_t i = 1; i < res.cut_heights.size(); ++i) CHECK(res.cut_heights[i - 1] < res.cut_heights[i]);
     CHECK(res.sweep.parked > 0);
+    // The costs name every slab of the glued mesh, bottom to top; the slabs
+    // hold most of its triangles (the bands and the refinement add the rest).
+    REQUIRE(res.decomposition_costs.slabs.size() == res.slabs);
+    std::size_t slab_triangles = 0;
+    for (const front::SlabCost& cost : res.decomposition_costs.slabs) {
+      CHECK(cost.triangles > 0);
+      CHECK(cost.seconds >= 0);
+      slab_triangles += cost.triangles;
+    }
+    CHECK(slab_triangles > 0.8 * static_cast<double>(res.mesh.triangles.size()));
+    CHECK(slab_triangles < 1.1 * static_cast<double>(res.mesh.triangles.size()));
     REQUIRE(res.checked);
     test::check_every_property(res.check);
     if (c.probe > 0) {
@@ -63,6 +74,7 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
       const mesher::MeshResult one = mesher::mesh_skin(mol, options);
       CHECK(one.slabs == 1);
       CHECK(one.cut_heights.empty());
+      CHECK(one.decomposition_costs.slabs.empty());
       CHECK(mesh_area(res.mesh) == doctest::Approx(mesh_area(one.mesh)).epsilon(2e-3));
     }
   }
