@@ -17,9 +17,11 @@ measures, and then simulates:
    - "per region": the design of papers/mesher/decomposition.md carried through every stage (skin, Morse-Smale
      complex, refinement, angles, check per region, increment 6). Each of those stages' 1-thread seconds is
      split over the slabs in proportion to their triangles and list-scheduled with the slabs' sweeps;
-     reading, the output conversion, writing, the bands and the glue stay serial.
+     reading, the output conversion, writing, the bands and the glue stay serial. Where that is slower than
+     "today" (few slabs), today's schedule is taken.
    - "balanced": as "per region", but with the regions' work cut into 4 P equal slabs, the decomposition the
-     cut choice would need to find (today it finds fewer, unequal ones): the ceiling the serial parts set.
+     cut choice would need to find (today it finds fewer, unequal ones): the ceiling the serial parts set. The
+     seams are the measured ones, so for an input the cut choice left whole (no seams) it is an underestimate.
    The speed-up is the model's 1-core seconds over its P-core seconds (the 1-core prediction is the sum of the
    measured stages; the measured whole process is printed beside it). At P = 2 the "today" prediction of the
    sweep is checked against the measured 2-thread sweep (printed).
@@ -29,6 +31,7 @@ measures, and then simulates:
 Usage:
     python3 bench/speedup_model.py build/skinmesh OUTDIR [--input data/maltoporin_1af6.pdb] [--probe 1.4]
                                    [--slabs 64] [--repeat 1] [--cores 1,2,4,8,16,32,64] [--extra ARGS]
+                                   [--reuse]
 `--input` may be given several times (each gets a line per model). Standard library only; runs are sequential.
 """
 import argparse
@@ -49,11 +52,15 @@ MODELS = ["today", "regions", "balanced"]
 MODEL_TITLES = {"today": "today", "regions": "per region", "balanced": "balanced regions"}
 
 
-def run(skinmesh, path, outdir, probe, slabs, threads, extra):
-    """The --stats summary of one run (the mesh is written to OUTDIR and removed)."""
+def run(skinmesh, path, outdir, probe, slabs, threads, extra, reuse=False):
+    """The --stats summary of one run (the mesh is written to OUTDIR and removed); with `reuse`, the summary an
+    earlier run left in OUTDIR if there is one."""
     name = os.path.splitext(os.path.basename(path))[0]
     stats = os.path.join(outdir, f"{name}.t{threads}.json")
     mesh = os.path.join(outdir, f"{name}.t{threads}.ply")
+    if reuse and os.path.exists(stats):
+        with open(stats) as f:
+            return json.load(f)
     cmd = [skinmesh, "mesh", path, "-o", mesh, "--probe", str(probe), "--slabs", str(slabs), "--threads",
            str(threads), "-q", "--stats", stats] + extra
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -115,8 +122,14 @@ def predict_today(one, two, p):
     return others + sweep
 
 
-def predict_regions(one, p):
-    """Whole-process seconds on p cores with every region stage per slab (see the module's comment)."""
+def predict_regions(one, two, p):
+    """Whole-process seconds on p cores with every region stage per slab (see the module's comment), or today's
+    schedule where it is faster (few slabs: the stages' own threads beat one region per core)."""
+    return min(predict_today(one, two, p), regions_only(one, p))
+
+
+def regions_only(one, p):
+    """predict_regions() without today's schedule."""
     tris = one["slab_triangles"]
     total_tris = float(sum(tris)) or 1.0
     per_region = sum(stage(one, s) for s in REGION_STAGES)
@@ -155,7 +168,7 @@ def plot(results, cores, outdir):
         for j, (m, dt) in enumerate(zip(MODELS, (1, 3, 2))):
             col = 2 + len(MODELS) * k + j
             lines.append(f"'{dat}' using 1:{col} with linespoints lw 2 dt {dt} title '{label}, {MODEL_TITLES[m]}'")
-    script = f"""set terminal png size 900,600
+    script = f"""set terminal pngcairo size 900,600 noenhanced
 set output '{png}'
 set logscale xy 2
 set xrange [1:{max(cores)}]
@@ -182,7 +195,11 @@ def main():
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--cores", default="1,2,4,8,16,32,64")
     ap.add_argument("--extra", default="", help="more arguments for skinmesh mesh, space-separated")
+    ap.add_argument("--reuse", action="store_true", help="model the summaries an earlier run left in OUTDIR "
+                    "(with --repeat 1) instead of running again")
     a = ap.parse_args()
+    if a.reuse and a.repeat != 1:
+        sys.exit("speedup_model: --reuse models one run per thread count: use it with --repeat 1")
     inputs = a.input or [os.path.join(ROOT, "data", "maltoporin_1af6.pdb")]
     cores = [int(c) for c in a.cores.split(",")]
     if not cores or min(cores) < 1:
@@ -194,7 +211,7 @@ def main():
         runs = {1: [], 2: []}
         for _ in range(a.repeat):
             for t in (1, 2):  # alternated, so a slow spell of the machine hits both
-                runs[t].append(run(a.skinmesh, path, a.outdir, a.probe, a.slabs, t, extra))
+                runs[t].append(run(a.skinmesh, path, a.outdir, a.probe, a.slabs, t, extra, a.reuse))
         one, two = median_stats(runs[1]), median_stats(runs[2])
         name = os.path.splitext(os.path.basename(path))[0]
         t1 = stage(one, "total")
@@ -202,7 +219,7 @@ def main():
              "measured_total_1": t1, "measured_total_2": stage(two, "total"), "today": [], "regions": [],
              "balanced": [], "serial": serial_seconds(one)}
         for model, f in (("today", lambda q: predict_today(one, two, q)), ("regions", lambda q: predict_regions(
-                one, q)), ("balanced", lambda q: predict_balanced(one, q))):
+                one, two, q)), ("balanced", lambda q: predict_balanced(one, q))):
             base = f(1)
             r[model + "_1"] = base
             for p in cores:
@@ -213,7 +230,7 @@ def main():
             one)
         r["sweep_2_measured"] = stage(two, "sweep")
         r["critical_path_today"] = predict_today(one, two, 10 ** 9)
-        r["critical_path_regions"] = predict_regions(one, 10 ** 9)
+        r["critical_path_regions"] = predict_regions(one, two, 10 ** 9)
         results.append(r)
 
     with open(os.path.join(a.outdir, "speedup.json"), "w") as f:
