@@ -82,7 +82,10 @@ class Refiner {
   /// circumsphere of abc if the dual line misses the skin).
   bool inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const;
   /// True if the edge is not locally restricted Delaunay and flipping it
-  /// gives two triangles that face outwards and are locally Delaunay.
+  /// gives two triangles that face outwards and are locally Delaunay: a
+  /// test of the edge's two faces alone (their four vertices and the skin).
+  bool flips_locally(Edge e) const;
+  /// flips_locally(), and the new edge does not exist yet (is_flip_ok()).
   bool should_flip(Edge e) const;
   void lawson();
   void push_edges_around(Vertex v);
@@ -128,8 +131,8 @@ class Refiner {
   /// (scan_L, scan_U); handles are never reused (deleted elements stay).
   std::vector<Edge> touched_edges_;
   std::vector<Face> touched_faces_;
-  /// During the first Lawson pass: per edge, should_flip()'s verdict on the
-  /// mesh before the pass (kFlip, kKeep), kUnknown once a flip changed a
+  /// During the first Lawson pass: per edge, flips_locally()'s verdict on
+  /// the mesh before the pass (kFlip, kKeep), kUnknown once a flip changed a
   /// face of the edge, or if never taken; empty otherwise.
   std::vector<std::uint8_t> first_verdict_;
   static constexpr std::uint8_t kUnknown = 0, kKeep = 1, kFlip = 2;
@@ -148,17 +151,19 @@ bool Refiner::inside_ball(Vertex a, Vertex b, Vertex c, Vertex d) const {
   return (m - pos(d)).norm() < (m - pos(a)).norm() * (1 - kStrictlyInside);
 }
 
-bool Refiner::should_flip(Edge e) const {
+bool Refiner::flips_locally(Edge e) const {
   if (mesh_.is_deleted(e) || mesh_.is_boundary(e)) return false;
   const Halfedge h0 = mesh_.halfedge(e, 0), h1 = mesh_.halfedge(e, 1);
   const Vertex a = mesh_.from_vertex(h0), b = mesh_.to_vertex(h0);
   const Vertex c = mesh_.to_vertex(mesh_.next(h0)), d = mesh_.to_vertex(mesh_.next(h1));
   // Faces (a, b, c) and (b, a, d).
   if (!inside_ball(a, b, c, d) && !inside_ball(b, a, d, c)) return false;
-  if (!mesh_.is_flip_ok(e) || !face_ok(a, d, c) || !face_ok(b, c, d)) return false;
+  if (!face_ok(a, d, c) || !face_ok(b, c, d)) return false;
   // Flip only towards a locally Delaunay pair (no flip cycles).
   return !inside_ball(a, d, c, b) && !inside_ball(b, c, d, a);
 }
+
+bool Refiner::should_flip(Edge e) const { return flips_locally(e) && mesh_.is_flip_ok(e); }
 
 void Refiner::lawson() {
   constexpr std::size_t kMinFlipCap = 100;  // [measured] room for the flips of a tiny mesh
@@ -167,10 +172,12 @@ void Refiner::lawson() {
   while (!stack_.empty()) {
     const Edge e = stack_.back();
     stack_.pop_back();
-    // A verdict taken on the threads before the first pass holds while
-    // neither face of e has changed since (flips mark the edges of their quad).
+    // A verdict of flips_locally() taken on the threads before the first
+    // pass holds while neither face of e has changed since (flips mark the
+    // edges of their quad). Whether the new edge exists already depends on
+    // the whole mesh, so is_flip_ok() is asked now.
     const bool flip = e.idx() < first_verdict_.size() && first_verdict_[e.idx()] != kUnknown
-                          ? first_verdict_[e.idx()] == kFlip
+                          ? first_verdict_[e.idx()] == kFlip && mesh_.is_flip_ok(e)
                           : should_flip(e);
     if (!flip) continue;
     if (++flips > cap) {
@@ -451,7 +458,7 @@ RefineStats Refiner::run() {
     if (opt_.threads > 1)
       parallel_for(blocks_s, opt_.threads, 1, [&](std::size_t b) {
         for (std::size_t i = b * kVerdictGrain, end = std::min(n, i + kVerdictGrain); i < end; ++i)
-          first_verdict_[stack_[i].idx()] = should_flip(stack_[i]) ? kFlip : kKeep;
+          first_verdict_[stack_[i].idx()] = flips_locally(stack_[i]) ? kFlip : kKeep;
       });
   }
   lawson();

@@ -135,6 +135,44 @@ TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edge
   CHECK(st.flips > 0);
 }
 
+TEST_CASE("refinement: the mesh is the same for every thread count") {
+  // The full scans and the first Lawson pass's verdicts run on the threads
+  // (RefineOptions::threads); a verdict is only used while its edge's two
+  // faces are unchanged, and whether the flipped edge exists already is asked
+  // when the flip is due. A jittered fine icosphere has long chains of flips
+  // (each invalidating the verdicts of its quad), contractions and insertions,
+  // and more elements than one block of a parallel scan.
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh m = test::sphere(5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
+  for (Vec3& p : m.positions) {
+    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
+    p = (p + 0.03 * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
+  }
+  REQUIRE(m.triangles.size() > 16384);
+  std::vector<geometry::IndexedMesh> out;
+  std::vector<refine::RefineStats> stats;
+  for (int threads : {1, 2, 3}) {
+    geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(m);
+    refine::RefineOptions opt;
+    opt.threads = threads;
+    stats.push_back(refine::refine_mesh(skin, mesh, opt));
+    mesh.garbage_collection();
+    out.push_back(mesh.to_indexed_mesh());
+  }
+  CHECK(stats[0].flips > 1000);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    CAPTURE(i);
+    CHECK(stats[i].flips == stats[0].flips);
+    CHECK(stats[i].insertions == stats[0].insertions);
+    CHECK(stats[i].contractions == stats[0].contractions);
+    CHECK(out[i].positions == out[0].positions);
+    CHECK(out[i].triangles == out[0].triangles);
+  }
+  test::check_every_property(verify::check_skin_mesh(skin, out[0]));
+}
+
 TEST_CASE("refinement: circumcentres over a ridge (a cube on the sphere, split along the diagonals)") {
   // Each square face of a cube inscribed in the sphere is split by a
   // diagonal into two right triangles: their circumcentres lie on that
