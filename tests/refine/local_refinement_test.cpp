@@ -34,6 +34,20 @@ verify::SkinCheckReport refine_and_check(const skin::SkinSurface& skin, const ge
   return verify::check_skin_mesh(skin, mesh.to_indexed_mesh());
 }
 
+/// test::sphere(level) on the one-atom skin, each vertex moved along the
+/// sphere by up to `amount` (unit-sphere lengths) in each of two tangent
+/// directions, seeded: thin triangles and non-Delaunay edges.
+geometry::IndexedMesh jittered_sphere(int level, unsigned seed, double amount) {
+  geometry::IndexedMesh m = test::sphere(level);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
+  for (Vec3& p : m.positions) {
+    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
+    p = (p + amount * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
+  }
+  return m;
+}
+
 }  // namespace
 
 TEST_SUITE("refine") {
@@ -115,15 +129,9 @@ TEST_CASE("refinement: a fine icosphere (edges violate [L]) is coarsened by cont
 
 TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edges") {
   const skin::SkinSurface skin = one_atom();
-  geometry::IndexedMesh m = test::sphere(3);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
-  // Move each vertex along the sphere by up to a third of an edge: many
+  // Each vertex moved along the sphere by up to a third of an edge: many
   // triangles become thin and many edges stop being Delaunay.
-  for (Vec3& p : m.positions) {
-    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
-    p = (p + 0.06 * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
-  }
+  const geometry::IndexedMesh m = jittered_sphere(3, 7, 0.06);
   {
     const auto before = verify::check_skin_mesh(skin, m);
     REQUIRE(before.mesh.min_angle_deg < 21.5);  // the test starts from a bad mesh
@@ -143,13 +151,7 @@ TEST_CASE("refinement: the mesh is the same for every thread count") {
   // (each invalidating the verdicts of its quad), contractions and insertions,
   // and more elements than one block of a parallel scan.
   const skin::SkinSurface skin = one_atom();
-  geometry::IndexedMesh m = test::sphere(5);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
-  for (Vec3& p : m.positions) {
-    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
-    p = (p + 0.03 * (jitter(rng) * t1 + jitter(rng) * t2)).normalized() * kRadius;
-  }
+  const geometry::IndexedMesh m = jittered_sphere(5, 11, 0.03);
   REQUIRE(m.triangles.size() > 16384);
   std::vector<geometry::IndexedMesh> out;
   std::vector<refine::RefineStats> stats;
