@@ -6,10 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/stage_clock.h"
+#include "dynamic/dynamic_skin.h"
 #include "morse/level_curves.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/molecule_io.h"
@@ -120,6 +127,136 @@ void check_curves(const skin::SkinSurface& skin, const Vec3& e, double c, const 
     }
 }
 
+/// True if x lies in the part of the skin below the cut with detours:
+/// ({h <= c} minus the balls that go up) plus the balls that go down.
+bool below_cut(const Vec3& x, const Vec3& e, double c, const std::vector<morse::CutDetour>& detours) {
+  for (const auto& d : detours)
+    if ((x - d.center).norm() < d.radius) return !d.upper;
+  return e.dot(x) <= c;
+}
+
+/// A fine mesh of the skin for the brute-force count: a mesh subdivided
+/// `levels` times (midpoints pulled back onto the skin), with its edges
+/// numbered.
+struct FineMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<std::array<Index, 3>> triangle_edges;  ///< edge k joins corners k and k + 1
+  std::vector<std::pair<Index, Index>> edges;
+};
+
+/// The edges of `triangles` as sorted keys (smaller index in the high word),
+/// and each triangle's three edges as indices into them.
+std::vector<std::uint64_t> number_edges(const std::vector<std::array<Index, 3>>& triangles,
+                                        std::vector<std::array<Index, 3>>& triangle_edges) {
+  auto key = [](Index a, Index b) { return std::uint64_t(std::min(a, b)) << 32 | std::max(a, b); };
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * triangles.size());
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) keys.push_back(key(t[k], t[(k + 1) % 3]));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  triangle_edges.resize(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      triangle_edges[i][k] = static_cast<Index>(
+          std::lower_bound(keys.begin(), keys.end(), key(triangles[i][k], triangles[i][(k + 1) % 3])) - keys.begin());
+  return keys;
+}
+
+FineMesh fine_mesh(const skin::SkinSurface& skin, const geometry::IndexedMesh& m, int levels) {
+  FineMesh f;
+  f.positions = m.positions;
+  f.triangles = m.triangles;
+  for (int l = 0; l < levels; ++l) {
+    std::vector<std::array<Index, 3>> te;
+    const std::vector<std::uint64_t> keys = number_edges(f.triangles, te);
+    const Index first = static_cast<Index>(f.positions.size());
+    for (std::uint64_t k : keys) {
+      Index cell = kInvalidIndex;
+      f.positions.push_back(skin.pull_back(0.5 * (f.positions[k >> 32] + f.positions[k & 0xffffffffu]), cell));
+    }
+    std::vector<std::array<Index, 3>> next;
+    next.reserve(4 * f.triangles.size());
+    for (std::size_t i = 0; i < f.triangles.size(); ++i) {
+      const auto& t = f.triangles[i];
+      const Index ab = first + te[i][0], bc = first + te[i][1], ca = first + te[i][2];
+      next.push_back({t[0], ab, ca}), next.push_back({ab, t[1], bc});
+      next.push_back({ca, bc, t[2]}), next.push_back({ab, bc, ca});
+    }
+    f.triangles = std::move(next);
+  }
+  for (std::uint64_t k : number_edges(f.triangles, f.triangle_edges))
+    f.edges.emplace_back(static_cast<Index>(k >> 32), static_cast<Index>(k & 0xffffffffu));
+  return f;
+}
+
+/// The number of closed curves bounding the part of the skin below a cut
+/// with detours, by brute force: the triangles of a fine mesh whose three
+/// vertices lie below the cut, and the connected components of their
+/// boundary edges.
+int brute_force_cut_count(const FineMesh& m, const Vec3& e, double c, const std::vector<morse::CutDetour>& detours) {
+  std::vector<char> in(m.positions.size());
+  for (std::size_t v = 0; v < in.size(); ++v) in[v] = below_cut(m.positions[v], e, c, detours);
+  std::vector<int> edge_count(m.edges.size(), 0);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    if (!in[tri[0]] || !in[tri[1]] || !in[tri[2]]) continue;
+    for (int k = 0; k < 3; ++k) ++edge_count[m.triangle_edges[t][k]];
+  }
+  std::vector<Index> parent(m.positions.size());
+  std::iota(parent.begin(), parent.end(), Index(0));
+  std::function<Index(Index)> find = [&](Index a) { return parent[a] == a ? a : parent[a] = find(parent[a]); };
+  std::vector<char> on_boundary(m.positions.size(), 0);
+  for (std::size_t k = 0; k < m.edges.size(); ++k) {
+    if (edge_count[k] != 1) continue;
+    const auto [a, b] = m.edges[k];
+    on_boundary[a] = on_boundary[b] = 1;
+    parent[find(a)] = find(b);
+  }
+  int count = 0;
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    if (on_boundary[v] && find(static_cast<Index>(v)) == static_cast<Index>(v)) ++count;
+  return count;
+}
+
+/// Every property a cut with detours must have: samples on the skin; an edge
+/// on the level set has both ends on the plane and outside every ball and
+/// runs along n × e; an edge on a ball's circle has both ends on its sphere,
+/// on the cut's side of the plane, and runs with the ball on its right if the
+/// ball goes up (left if it goes down).
+void check_detoured(const skin::SkinSurface& skin, const Vec3& e, double c,
+                    const std::vector<morse::CutDetour>& detours, const std::vector<morse::LevelCurve>& curves,
+                    int& detoured_edges) {
+  const double tol = 1e-9 * skin.length_scale();
+  for (const auto& curve : curves) {
+    const std::size_t n = curve.points.size();
+    REQUIRE(n >= 3);
+    REQUIRE(curve.detour.size() == n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& p = curve.points[i];
+      const Vec3& q = curve.points[(i + 1) % n];
+      const auto s = skin.sample(p, curve.cells[i]);
+      CHECK(std::abs(s.f) / s.gradient.norm() < tol);
+      const Index d = curve.detour[i];
+      if (d == kInvalidIndex) {
+        CHECK(std::abs(e.dot(p) - c) < tol);
+        CHECK(std::abs(e.dot(q) - c) < tol);
+        for (const auto& b : detours) CHECK((p - b.center).norm() > b.radius - tol);
+        CHECK((q - p).dot(s.gradient.normalized().cross(e)) > 0);
+      } else {
+        REQUIRE(d < detours.size());
+        ++detoured_edges;
+        const auto& b = detours[d];
+        CHECK(std::abs((p - b.center).norm() - b.radius) < tol);
+        CHECK(std::abs((q - b.center).norm() - b.radius) < tol);
+        CHECK((b.upper ? e.dot(p) - c : c - e.dot(p)) < tol);
+        const Vec3 u = (p - b.center).normalized();
+        CHECK((q - p).dot((b.upper ? -1.0 : 1.0) * s.gradient.normalized().cross(u)) > 0);
+      }
+    }
+  }
+}
 }  // namespace
 
 TEST_SUITE("morse") {
@@ -231,6 +368,93 @@ TEST_CASE("level curves: the count of a brute-force section, on rings, separate 
       CHECK(tried >= 2);
       CHECK(most >= cs.most);  // the cuts do meet several curves where the input has them
     }
+  }
+}
+
+TEST_CASE(
+    "cuts that detour around protecting spheres: on the skin, the plane or the circles, and the brute-force count") {
+  // Heights that cross the protecting spheres of saddles (where no level cut
+  // is allowed): the cut passes around each ball the plane meets, and its
+  // curves bound the part below as a fine mesh of the skin counts it.
+  struct Case {
+    std::string what;
+    std::vector<geometry::WeightedPoint> points;
+  };
+  std::vector<Case> cases;
+  std::vector<geometry::WeightedPoint> ring;
+  for (int i = 0; i < 12; ++i) {
+    const double a = 2 * kPi * i / 12;
+    ring.push_back({Vec3(4 * std::cos(a), 4 * std::sin(a), 0), 2 * 1.4 * 1.4});
+  }
+  cases.push_back({"a ring of 12 balls", ring});
+  const skin::Molecule crambin = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  cases.push_back({"crambin, probe 1.4", skin::weighted_points(crambin, 1.4)});
+  std::mt19937 rng(2611);
+  int cuts = 0, refused = 0, detoured_edges = 0, whole_circles = 0;
+  for (const Case& cs : cases) {
+    CAPTURE(cs.what);
+    const skin::SkinSurface skin(cs.points);
+    // A mesh of the skin by the dynamic-skin baseline's static variant, an
+    // algorithm that knows nothing of the Morse–Smale complex.
+    dynamic::DynamicOptions dyn;
+    dyn.growth = false;
+    StageClock clock;
+    dynamic::DynamicStats dyn_stats;
+    skin::SkinVertexData vertex_data;
+    const FineMesh mesh =
+        fine_mesh(skin, dynamic::mesh_dynamic(skin, {}, dyn, clock, dyn_stats, vertex_data), /*levels=*/2);
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 e = test::random_rotation(rng).col(2);
+      const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, e);
+      int tried = 0;
+      for (std::size_t i = 0; i < ms.critical.size() && tried < 8; ++i) {
+        const auto& p = ms.critical[i];
+        if (p.kind != morse::CriticalKind::Saddle || !ms.live[i]) continue;
+        for (const double offset : {-0.7, -0.2, 0.3}) {
+          const double c = p.height + offset * ms.protect_radius[i];
+          CAPTURE(c);
+          std::vector<morse::CutDetour> detours;
+          if (!morse::cut_detours(ms, c, {}, detours)) continue;
+          REQUIRE(!detours.empty());
+          ++tried;
+          std::vector<morse::LevelCurve> curves;
+          try {
+            curves = morse::cut_curves(skin, ms, c, detours);
+          } catch (const GeometryError& err) {
+            MESSAGE("refused: " << std::string(err.what()));
+            ++refused;
+            continue;
+          }
+          ++cuts;
+          check_detoured(skin, e, c, detours, curves, detoured_edges);
+          for (const auto& curve : curves)
+            if (std::all_of(curve.detour.begin(), curve.detour.end(), [](Index d) { return d != kInvalidIndex; }))
+              ++whole_circles;
+          CHECK(static_cast<int>(curves.size()) == brute_force_cut_count(mesh, e, c, detours));
+        }
+      }
+    }
+  }
+  MESSAGE("cuts " << cuts << ", refused " << refused << ", edges on circles " << detoured_edges << ", whole circles "
+                  << whole_circles);
+  CHECK(cuts >= 10);
+  CHECK(refused == 0);  // the tracer's own checks refuse none of these heights
+  CHECK(detoured_edges > 0);
+}
+
+TEST_CASE("a cut without detours is the level cut") {
+  const skin::Molecule crambin = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const skin::SkinSurface skin(skin::weighted_points(crambin, 1.4));
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, Vec3(0.36, 0.48, 0.8));
+  double lo = 1e300, hi = -1e300;
+  for (const auto& p : ms.critical) lo = std::min(lo, p.height), hi = std::max(hi, p.height);
+  const double c = 0.5 * (lo + hi);
+  std::vector<morse::CutDetour> none;
+  const auto a = morse::level_curves(skin, ms, c), b = morse::cut_curves(skin, ms, c, none);
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].points == b[i].points);
+    CHECK(std::count(a[i].detour.begin(), a[i].detour.end(), kInvalidIndex) == static_cast<long>(a[i].points.size()));
   }
 }
 
