@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <unordered_set>
 
 #include "core/errors.h"
@@ -288,24 +289,37 @@ LevelCurve sample_curve(const CurveSet& ls, const Traced& tr, const LevelCurveOp
     if (!ls.project(y, cell, s)) throw GeometryError(at_height(ls.c()) + "a sample does not project onto the curve");
     curve.points.push_back(y), curve.rho.push_back(s.rho), curve.cells.push_back(cell);
   }
-  curve.detour.assign(n, kInvalidIndex);  // a whole circle's caller names its ball
+  curve.detour.assign(n, kInvalidIndex);  // a whole circle's caller names its detour and ball
+  curve.ball.assign(n, kInvalidIndex);
   return curve;
 }
 
-/// A point where a detour's circle crosses the plane: on F, on the sphere and
-/// on the plane (a junction of the cut, where it turns between the two).
+/// A plane {e·y = c} or a sphere {|y - q| = R}, as the second or third
+/// equation of a junction.
+struct Surface {
+  bool sphere = false;
+  Vec3 v;    ///< e, or the centre q
+  double s;  ///< c, or the radius R
+  double value(const Vec3& y) const { return sphere ? (y - v).squaredNorm() - s * s : v.dot(y) - s; }
+  Vec3 gradient(const Vec3& y) const { return sphere ? Vec3(2 * (y - v)) : v; }
+  /// The gradient's length at a point of the surface.
+  double scale() const { return sphere ? 2 * s : 1.0; }
+};
+
+/// A point of F on two surfaces: where the cut turns from the plane to a
+/// ball's circle, or from one ball's circle to another's.
 struct Junction {
   Vec3 p;
   Index cell = kInvalidIndex;
   double rho = 0;
-  std::size_t after = 0;  ///< the crossing lies on the circle's fine edge (after, after + 1)
-  bool rising = false;    ///< h - c goes from < 0 to >= 0 along the circle's orientation
+  std::size_t after = 0;  ///< it lies on its loop's fine edge (after, after + 1)
+  bool rising = false;    ///< plane crossings: h - c goes from < 0 to >= 0 along the loop
 };
 
-/// Newton on the three equations f = 0, |y - q|² = R², e·y = c, from a point
-/// next to their solution. False where the three gradients are nearly
-/// dependent (the circle touches the plane) or it does not converge.
-bool refine_junction(const skin::SkinSurface& skin, const Vec3& e, double c, const Vec3& q, double R, Junction& j) {
+/// Newton on the three equations f = 0, a = 0, b = 0 from a point next to
+/// their solution. False where the three gradients are nearly dependent (the
+/// surfaces meet nearly tangentially) or it does not converge.
+bool refine_junction(const skin::SkinSurface& skin, const Surface& a, const Surface& b, Junction& j) {
   const double tol = 1e-12 * skin.length_scale();
   Vec3 y = j.p;
   Index cell = j.cell;
@@ -313,122 +327,258 @@ bool refine_junction(const skin::SkinSurface& skin, const Vec3& e, double c, con
     const skin::SkinSample s = skin.sample(y, cell);
     cell = s.cell;
     const double gn = s.gradient.norm();
-    const Vec3 r = y - q;
-    const Vec3 F(s.f, r.squaredNorm() - R * R, e.dot(y) - c);
-    if (std::abs(F[0]) <= tol * gn && std::abs(F[1]) <= tol * 2 * R && std::abs(F[2]) <= tol) {
+    const Vec3 F(s.f, a.value(y), b.value(y));
+    if (std::abs(F[0]) <= tol * gn && std::abs(F[1]) <= tol * a.scale() && std::abs(F[2]) <= tol * b.scale()) {
       j.p = y, j.cell = cell, j.rho = s.rho;
       return true;
     }
     Mat3 J;
-    J.row(0) = s.gradient.transpose(), J.row(1) = 2 * r.transpose(), J.row(2) = e.transpose();
-    // Divided by the rows' lengths (e is a unit vector), the determinant
-    // measures how transversally the three surfaces meet.
-    if (!(gn > 0) || !(r.norm() > 0)) return false;
-    if (std::abs(J.determinant()) < 1e-6 * gn * 2 * r.norm()) return false;
+    J.row(0) = s.gradient.transpose(), J.row(1) = a.gradient(y).transpose(), J.row(2) = b.gradient(y).transpose();
+    // Divided by the rows' lengths, the determinant measures how
+    // transversally the three surfaces meet.
+    const double lengths = gn * J.row(1).norm() * J.row(2).norm();
+    if (!(lengths > 0) || std::abs(J.determinant()) < 1e-6 * lengths) return false;
     y -= J.partialPivLu().solve(F);
   }
   return false;
 }
 
-/// One detour's circle traced whole, with its crossings of the plane in the
-/// circle's order.
-struct DetourCircle {
-  Traced circle;                    ///< oriented by n × u (the ball on the left)
-  std::vector<Junction> crossings;  ///< in the order of the circle
+Surface sphere_of(const DetourBall& b) { return {true, b.center, b.radius}; }
+
+/// One closed curve of the boundary of a cluster's union of balls on F, with
+/// the union on its left: arcs of the balls' circles joined at corners, and
+/// its crossings of the plane in its order.
+struct DetourLoop {
+  Traced fine;
+  std::vector<Index> ball;          ///< per fine edge (i, i + 1): the ball whose circle it follows
+  std::vector<Junction> crossings;  ///< with the plane, in the loop's order
 };
 
-DetourCircle trace_detour_circle(const skin::SkinSurface& skin, const Vec3& e, double c, const CutDetour& d,
-                                 const LevelCurveOptions& opt, std::size_t max_steps) {
-  const CurveSet circle = CurveSet::sphere(skin, e, c, d.center, d.radius, +1);
+/// The circle F ∩ S(q, R) of one ball traced whole, the ball on its left.
+Traced trace_ball_circle(const skin::SkinSurface& skin, const Vec3& e, double c, const DetourBall& b,
+                         const LevelCurveOptions& opt, std::size_t max_steps) {
+  const CurveSet circle = CurveSet::sphere(skin, e, c, b.center, b.radius, +1);
   // Start where the tangent plane at the centre meets the sphere.
   Index cell = kInvalidIndex;
-  const skin::SkinSample s0 = skin.sample(d.center, cell);
-  const Vec3 n = s0.gradient.normalized();
-  const Vec3 u = n.unitOrthogonal();
-  Seed seed{d.center + d.radius * u, s0.cell, s0.rho};
-  DetourCircle out;
-  out.circle = trace_curve(circle, seed, opt, max_steps, [](const Vec3&, const Vec3&, double) {});
-  const Traced& t = out.circle;
-  const std::size_t m = t.points.size();
-  for (std::size_t i = 0; i < m; ++i) {
-    const std::size_t k = (i + 1) % m;
-    const double a = e.dot(t.points[i]) - c, b = e.dot(t.points[k]) - c;
-    if ((a < 0) == (b < 0)) continue;
-    Junction j;
-    j.p = t.points[i] + (a / (a - b)) * (t.points[k] - t.points[i]);
-    j.cell = t.cells[i];
-    j.after = i;
-    j.rising = a < 0;
-    if (!refine_junction(skin, e, c, d.center, d.radius, j))
-      throw GeometryError(at_height(c) + "a detour's circle meets the plane too obliquely");
-    out.crossings.push_back(j);
-  }
-  // Two crossings close together along the circle: the plane nearly touches
-  // it there, and the level set grazes the ball (in and out within a step or
-  // two of the tracer). Such a height is refused: the stretch between them
-  // could not be sampled anyway.
-  const std::size_t nc = out.crossings.size();
-  for (std::size_t k = 0; k < nc && nc > 1; ++k) {
-    const Junction& a = out.crossings[k];
-    const Junction& b = out.crossings[(k + 1) % nc];
-    // The arc from a to b along the fine polyline: a, the fine points
-    // a.after + 1 … b.after, b.
-    double arc = 0, rho = a.rho;
-    Vec3 last = a.p;
-    for (std::size_t i = a.after; i != b.after;) {
-      i = (i + 1) % m;
-      arc += (t.points[i] - last).norm(), last = t.points[i], rho = std::min(rho, t.rho[i]);
-    }
-    arc += (b.p - last).norm();
-    if (arc < 0.5 * opt.spacing * std::min(rho, b.rho))
-      throw GeometryError(at_height(c) + "the plane nearly touches a detour's circle");
-  }
-  return out;
+  const skin::SkinSample s0 = skin.sample(b.center, cell);
+  const Vec3 u = s0.gradient.normalized().unitOrthogonal();
+  return trace_curve(circle, Seed{b.center + b.radius * u, s0.cell, s0.rho}, opt, max_steps,
+                     [](const Vec3&, const Vec3&, double) {});
 }
 
-/// A stretch of a cut between two junctions (or a whole closed curve): its
-/// fine polyline, both ends included for a stretch, and the curve it lies on.
+/// The boundary of the union of a cluster's balls on F (each ball meets F
+/// in one disc): every circle traced whole; the runs of each circle outside
+/// the other balls, from the corner where it leaves one to the corner where it
+/// enters the next (Newton on f and the two spheres); the runs joined at
+/// their corners into loops, and each loop's crossings of the plane.
+std::vector<DetourLoop> trace_cluster_boundary(const skin::SkinSurface& skin, const Vec3& e, double c,
+                                               const CutDetour& d, const LevelCurveOptions& opt,
+                                               std::size_t max_steps) {
+  const std::size_t nb = d.balls.size();
+  const double tol = 1e-7 * skin.length_scale();
+  auto inside_other = [&](std::size_t i, const Vec3& x) {
+    for (std::size_t j = 0; j < nb; ++j)
+      if (j != i && (x - d.balls[j].center).norm() < d.balls[j].radius) return static_cast<Index>(j);
+    return kInvalidIndex;
+  };
+  // A run of circle i outside every other ball: its fine points, both ends
+  // exact (a corner, or none for a whole circle).
+  struct Run {
+    std::size_t ball = 0;
+    Traced fine;
+    bool closed = false;  ///< the whole circle
+  };
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Traced circle = trace_ball_circle(skin, e, c, d.balls[i], opt, max_steps);
+    const std::size_t m = circle.points.size();
+    std::vector<Index> in(m);
+    bool any_in = false, any_out = false;
+    for (std::size_t k = 0; k < m; ++k) {
+      in[k] = inside_other(i, circle.points[k]);
+      (in[k] == kInvalidIndex ? any_out : any_in) = true;
+    }
+    if (!any_out) continue;
+    if (!any_in) {
+      runs.push_back({i, circle, true});
+      continue;
+    }
+    // Start just after a point inside another ball, at the first corner.
+    std::size_t start = 0;
+    while (!(in[start] != kInvalidIndex && in[(start + 1) % m] == kInvalidIndex)) ++start;
+    Run* run = nullptr;
+    for (std::size_t n = 0; n < m; ++n) {
+      const std::size_t k = (start + n) % m, k1 = (k + 1) % m;
+      // The corner on the edge (k, k1) where the circle leaves the union
+      // (the last crossing of another ball's sphere along the edge) or enters
+      // it (the first): with several balls at one end, the right one is the
+      // one crossed last, or first.
+      auto corner = [&](bool leaving) {
+        Junction j;
+        Index other = kInvalidIndex;
+        double t = leaving ? -1.0 : 2.0;
+        for (std::size_t b = 0; b < nb; ++b) {
+          if (b == i) continue;
+          const double da = (circle.points[k] - d.balls[b].center).norm() - d.balls[b].radius;
+          const double db = (circle.points[k1] - d.balls[b].center).norm() - d.balls[b].radius;
+          if ((da < 0) == (db < 0)) continue;
+          const double tb = da / (da - db);
+          if (leaving ? tb > t : tb < t) t = tb, other = static_cast<Index>(b);
+        }
+        if (other == kInvalidIndex) throw GeometryError(at_height(c) + "a corner of a detour's balls was not found");
+        j.p = circle.points[k] + std::clamp(t, 0.0, 1.0) * (circle.points[k1] - circle.points[k]);
+        j.cell = circle.cells[k];
+        if (!refine_junction(skin, sphere_of(d.balls[i]), sphere_of(d.balls[other]), j))
+          throw GeometryError(at_height(c) + "two balls of a detour meet on the skin too obliquely");
+        return j;
+      };
+      if (in[k] != kInvalidIndex && in[k1] == kInvalidIndex) {
+        // Leaves the union of the other balls: a run starts.
+        const Junction j = corner(true);
+        run = &runs.emplace_back();
+        run->ball = i;
+        run->fine.points.push_back(j.p), run->fine.rho.push_back(j.rho), run->fine.cells.push_back(j.cell);
+      }
+      if (run && in[k1] == kInvalidIndex && n + 1 < m) {
+        run->fine.points.push_back(circle.points[k1]), run->fine.rho.push_back(circle.rho[k1]);
+        run->fine.cells.push_back(circle.cells[k1]);
+      }
+      if (run && in[k] == kInvalidIndex && in[k1] != kInvalidIndex) {
+        // Enters the union of the other balls: the run ends.
+        const Junction j = corner(false);
+        run->fine.points.push_back(j.p), run->fine.rho.push_back(j.rho), run->fine.cells.push_back(j.cell);
+        run = nullptr;
+      }
+    }
+  }
+  // Join the runs end to start: a run that ends entering ball k continues
+  // along k's circle from the same corner, where it leaves the first ball.
+  std::vector<DetourLoop> loops;
+  std::vector<char> used(runs.size(), 0);
+  for (std::size_t first = 0; first < runs.size(); ++first) {
+    if (used[first]) continue;
+    DetourLoop loop;
+    if (runs[first].closed) {
+      used[first] = 1;
+      loop.fine = runs[first].fine;
+      loop.ball.assign(loop.fine.points.size(), static_cast<Index>(runs[first].ball));
+      loops.push_back(std::move(loop));
+      continue;
+    }
+    for (std::size_t r = first;;) {
+      used[r] = 1;
+      const Run& run = runs[r];
+      for (std::size_t k = 0; k + 1 < run.fine.points.size(); ++k) {
+        loop.fine.points.push_back(run.fine.points[k]), loop.fine.rho.push_back(run.fine.rho[k]);
+        loop.fine.cells.push_back(run.fine.cells[k]), loop.ball.push_back(static_cast<Index>(run.ball));
+      }
+      const Vec3& end = run.fine.points.back();
+      std::size_t next = runs.size();
+      double best = tol;
+      for (std::size_t q = 0; q < runs.size(); ++q)
+        if (!runs[q].closed && (!used[q] || q == first))
+          if (const double dist = (runs[q].fine.points.front() - end).norm(); dist <= best) best = dist, next = q;
+      if (next == runs.size())
+        throw GeometryError(at_height(c) + "the arcs of a detour's balls do not join up at a corner");
+      if (next == first) break;
+      r = next;
+    }
+    loops.push_back(std::move(loop));
+  }
+  // The crossings of the plane, along each loop.
+  for (DetourLoop& loop : loops) {
+    const Traced& t = loop.fine;
+    const std::size_t m = t.points.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t k = (i + 1) % m;
+      const double a = e.dot(t.points[i]) - c, b = e.dot(t.points[k]) - c;
+      if ((a < 0) == (b < 0)) continue;
+      Junction j;
+      j.p = t.points[i] + (a / (a - b)) * (t.points[k] - t.points[i]);
+      j.cell = t.cells[i];
+      j.after = i;
+      j.rising = a < 0;
+      if (!refine_junction(skin, sphere_of(d.balls[loop.ball[i]]), Surface{false, e, c}, j))
+        throw GeometryError(at_height(c) + "a detour's circle meets the plane too obliquely");
+      loop.crossings.push_back(j);
+    }
+    // Two crossings close together along the loop: the plane nearly touches
+    // it there, and the level set grazes the union (in and out within a step
+    // or two of the tracer). Such a height is refused: the stretch between
+    // them could not be sampled anyway.
+    const std::size_t nc = loop.crossings.size();
+    for (std::size_t k = 0; k < nc && nc > 1; ++k) {
+      const Junction& a = loop.crossings[k];
+      const Junction& b = loop.crossings[(k + 1) % nc];
+      // The arc from a to b along the fine polyline: a, the fine points
+      // a.after + 1 … b.after, b.
+      double arc = 0, rho = a.rho;
+      Vec3 last = a.p;
+      for (std::size_t i = a.after; i != b.after;) {
+        i = (i + 1) % m;
+        arc += (t.points[i] - last).norm(), last = t.points[i], rho = std::min(rho, t.rho[i]);
+      }
+      arc += (b.p - last).norm();
+      if (arc < 0.5 * opt.spacing * std::min(rho, b.rho))
+        throw GeometryError(at_height(c) + "the plane nearly touches a detour's circle");
+    }
+  }
+  return loops;
+}
+
+/// A stretch of a cut between two junctions: its fine polyline, both ends
+/// included, and per fine edge the ball whose circle it follows
+/// (kInvalidIndex on the level set), in detour `detour`.
 struct Piece {
   Traced fine;
-  Index detour = kInvalidIndex;  ///< the circle it follows, kInvalidIndex on the level set
+  std::vector<Index> ball;
+  Index detour = kInvalidIndex;
 };
 
-/// Samples the pieces of one closed cut, joined end to start: each piece's
-/// first point is a sample (the junction, exactly as refined), and its inside
-/// gets ceil(T) - 1 more at equal steps of tau = ∫ ds / (spacing · rho).
+/// Samples the pieces of one closed cut, joined end to start. The pieces are
+/// cut further where the ball changes (a corner); each part's first point is
+/// a sample (a junction or corner, exactly as refined), and its inside gets
+/// ceil(T) - 1 more at equal steps of tau = ∫ ds / (spacing · rho), projected
+/// onto the plane or the part's sphere.
 LevelCurve sample_pieces(const skin::SkinSurface& skin, const Vec3& e, double c, const std::vector<CutDetour>& detours,
                          const std::vector<Piece>& pieces, const LevelCurveOptions& opt) {
   LevelCurve curve;
   for (const Piece& piece : pieces) {
     const Traced& tr = piece.fine;
-    const CurveSet ls = piece.detour == kInvalidIndex ? CurveSet::plane(skin, e, c)
-                                                      : CurveSet::sphere(skin, e, c, detours[piece.detour].center,
-                                                                         detours[piece.detour].radius, +1);
     const std::size_t m = tr.points.size();
-    std::vector<double> tau(m, 0.0);
-    for (std::size_t i = 0; i + 1 < m; ++i) {
-      const double d = (tr.points[i + 1] - tr.points[i]).norm();
-      curve.length += d;
-      tau[i + 1] = tau[i] + d / (opt.spacing * 0.5 * (tr.rho[i] + tr.rho[i + 1]));
-    }
-    const double total = tau[m - 1];
-    if (total < 0.5)
-      throw GeometryError(at_height(c) + "a stretch of the cut between two junctions is shorter than half a spacing");
-    const std::size_t n = static_cast<std::size_t>(std::ceil(total - 1e-9));
-    curve.points.push_back(tr.points[0]), curve.rho.push_back(tr.rho[0]), curve.cells.push_back(tr.cells[0]);
-    curve.detour.push_back(piece.detour);
-    std::size_t seg = 0;
-    for (std::size_t k = 1; k < n; ++k) {
-      const double target = total * static_cast<double>(k) / static_cast<double>(n);
-      while (seg + 2 < m && tau[seg + 1] <= target) ++seg;
-      const double span = tau[seg + 1] - tau[seg];
-      const double w = span > 0 ? (target - tau[seg]) / span : 0.0;
-      Vec3 y = tr.points[seg] + w * (tr.points[seg + 1] - tr.points[seg]);
-      Index cell = tr.cells[seg];
-      skin::SkinSample s;
-      if (!ls.project(y, cell, s)) throw GeometryError(at_height(c) + "a sample does not project onto the cut");
-      curve.points.push_back(y), curve.rho.push_back(s.rho), curve.cells.push_back(cell);
-      curve.detour.push_back(piece.detour);
+    for (std::size_t from = 0; from + 1 < m;) {
+      std::size_t to = from + 1;
+      while (to + 1 < m && piece.ball[to] == piece.ball[from]) ++to;
+      const Index ball = piece.ball[from];
+      const CurveSet ls = ball == kInvalidIndex ? CurveSet::plane(skin, e, c)
+                                                : CurveSet::sphere(skin, e, c, detours[piece.detour].balls[ball].center,
+                                                                   detours[piece.detour].balls[ball].radius, +1);
+      std::vector<double> tau(to - from + 1, 0.0);
+      for (std::size_t i = from; i < to; ++i) {
+        const double d = (tr.points[i + 1] - tr.points[i]).norm();
+        curve.length += d;
+        tau[i - from + 1] = tau[i - from] + d / (opt.spacing * 0.5 * (tr.rho[i] + tr.rho[i + 1]));
+      }
+      const double total = tau.back();
+      if (total < 0.5)
+        throw GeometryError(at_height(c) + "a stretch of the cut between two junctions is shorter than half a spacing");
+      const std::size_t n = static_cast<std::size_t>(std::ceil(total - 1e-9));
+      curve.points.push_back(tr.points[from]), curve.rho.push_back(tr.rho[from]), curve.cells.push_back(tr.cells[from]);
+      curve.detour.push_back(ball == kInvalidIndex ? kInvalidIndex : piece.detour), curve.ball.push_back(ball);
+      std::size_t seg = 0;
+      for (std::size_t k = 1; k < n; ++k) {
+        const double target = total * static_cast<double>(k) / static_cast<double>(n);
+        while (seg + 2 < tau.size() && tau[seg + 1] <= target) ++seg;
+        const double span = tau[seg + 1] - tau[seg];
+        const double w = span > 0 ? (target - tau[seg]) / span : 0.0;
+        Vec3 y = tr.points[from + seg] + w * (tr.points[from + seg + 1] - tr.points[from + seg]);
+        Index cell = tr.cells[from + seg];
+        skin::SkinSample s;
+        if (!ls.project(y, cell, s)) throw GeometryError(at_height(c) + "a sample does not project onto the cut");
+        curve.points.push_back(y), curve.rho.push_back(s.rho), curve.cells.push_back(cell);
+        curve.detour.push_back(ball == kInvalidIndex ? kInvalidIndex : piece.detour), curve.ball.push_back(ball);
+      }
+      from = to;
     }
   }
   if (curve.points.size() < 3) throw GeometryError(at_height(c) + "a cut with a detour has fewer than three samples");
@@ -449,9 +599,11 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
   // Bounds tied to the input's size: a curve crosses the patches of at most
   // every atom, each in a bounded number of steps of the tracer.
   const std::size_t max_steps = 100000 + 4000 * skin.points().size();
-  auto in_disc = [&](const Vec3& p) {
+  // The detour whose union of balls contains p, or kInvalidIndex.
+  auto in_detour = [&](const Vec3& x, const Vec3& xn, double shrink) {
     for (std::size_t d = 0; d < detours.size(); ++d)
-      if ((p - detours[d].center).norm() < detours[d].radius) return static_cast<Index>(d);
+      for (const DetourBall& b : detours[d].balls)
+        if (segment_distance(b.center, x, xn) < b.radius * shrink) return static_cast<Index>(d);
     return kInvalidIndex;
   };
 
@@ -480,11 +632,11 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
     Seed s;
     if (ascend_to_level(ls, m, max_steps, s)) seeds.push_back(s);
   }
-  // The level set inside a detour's ball is not part of the cut.
+  // The level set inside a detour's balls is not part of the cut.
   if (!detours.empty())
-    seeds.erase(
-        std::remove_if(seeds.begin(), seeds.end(), [&](const Seed& s) { return in_disc(s.p) != kInvalidIndex; }),
-        seeds.end());
+    seeds.erase(std::remove_if(seeds.begin(), seeds.end(),
+                               [&](const Seed& s) { return in_detour(s.p, s.p, 1.0) != kInvalidIndex; }),
+                seeds.end());
 
   std::vector<Vec3> seed_points(seeds.size());
   geometry::LeveledPointGrid grid(opt.trace_step, kSeedGridOctaves, /*erasable=*/false);
@@ -502,112 +654,160 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
   };
   std::vector<LevelCurve> curves;
 
-  // The detours: each circle whole, its crossings with the plane, and its
-  // arcs on the cut (below the plane for a ball that goes up, above it for
-  // one that goes down); a circle that does not meet the plane is a whole
-  // cut if it lies on the cut's side.
-  std::vector<DetourCircle> circles;
-  std::vector<std::pair<Index, std::size_t>> exits;  // (detour, crossing) where the cut leaves a circle
-  for (std::size_t d = 0; d < detours.size(); ++d) {
-    circles.push_back(trace_detour_circle(skin, e, c, detours[d], opt, max_steps));
-    const DetourCircle& dc = circles.back();
-    if (dc.crossings.size() % 2)
-      throw GeometryError(at_height(c) + "a detour's circle crosses the plane an odd number of times");
-    if (dc.crossings.empty()) {
-      const bool below = e.dot(dc.circle.points[0]) < c;
-      if (below == detours[d].upper) {
-        LevelCurve whole =
-            sample_curve(CurveSet::sphere(skin, e, c, detours[d].center, detours[d].radius, detours[d].upper ? -1 : +1),
-                         detours[d].upper ? Traced{{dc.circle.points.rbegin(), dc.circle.points.rend()},
-                                                   {dc.circle.rho.rbegin(), dc.circle.rho.rend()},
-                                                   {dc.circle.cells.rbegin(), dc.circle.cells.rend()}}
-                                          : dc.circle,
-                         opt);
-        whole.detour.assign(whole.points.size(), static_cast<Index>(d));
-        curves.push_back(std::move(whole));
-      }
-      continue;
-    }
-    // At a crossing, e·(n × u) = -(n × e)·u: where h rises along the circle
-    // (the ball on its left), the level set's tangent n × e points into the
-    // ball. So the cut enters a ball at its rising crossings and leaves it at
-    // its falling ones, whichever way the ball goes. Along the circle, an arc
-    // from a falling crossing to the next rising one lies below the plane: a
-    // ball that goes up keeps those, run backwards (the ball on the cut's
-    // right) from a rising crossing to the falling one before it; a ball
-    // that goes down keeps the arcs above, run forwards from a rising
-    // crossing to the next falling one.
-    for (std::size_t k = 0; k < dc.crossings.size(); ++k)
-      if (!dc.crossings[k].rising) exits.emplace_back(static_cast<Index>(d), k);
-  }
-  // The arc of detour d that starts at its crossing `entry` (where the
-  // level set enters the ball), ending at the crossing where it leaves.
-  auto arc_from = [&](Index d, std::size_t entry, std::size_t& exit) {
-    const DetourCircle& dc = circles[d];
-    const std::size_t nc = dc.crossings.size(), m = dc.circle.points.size();
-    const bool up = detours[d].upper;
-    exit = up ? (entry + nc - 1) % nc : (entry + 1) % nc;
+  // The detours: the boundary loops of each union of balls, their crossings
+  // with the plane, and their arcs on the cut (below the plane for a detour
+  // that goes up, above it for one that goes down); a loop that does not
+  // meet the plane is a whole cut if it lies on the cut's side.
+  struct Crossing {
+    Index detour;
+    std::size_t loop, k;
+    bool operator<(const Crossing& o) const { return std::tie(detour, loop, k) < std::tie(o.detour, o.loop, o.k); }
+  };
+  std::vector<std::vector<DetourLoop>> loops(detours.size());
+  std::vector<Crossing> exits;  // where the cut leaves a union of balls
+  // A whole loop (or a run of it from a junction) as a piece: forwards keeps
+  // the union on the left.
+  auto loop_piece = [&](Index d, std::size_t l, std::size_t from, std::size_t count, bool forwards) {
+    const DetourLoop& loop = loops[d][l];
+    const std::size_t m = loop.fine.points.size();
     Piece piece;
     piece.detour = d;
-    const Junction& a = dc.crossings[entry];
-    const Junction& b = dc.crossings[exit];
-    auto push = [&](const Vec3& p, double rho, Index cell) {
+    for (std::size_t n = 0; n < count; ++n) {
+      const std::size_t i = forwards ? (from + n) % m : (from + m - n % m) % m;
+      piece.fine.points.push_back(loop.fine.points[i]), piece.fine.rho.push_back(loop.fine.rho[i]);
+      piece.fine.cells.push_back(loop.fine.cells[i]);
+      // The edge from fine point i to the next one along the piece.
+      piece.ball.push_back(forwards ? loop.ball[i] : loop.ball[(i + m - 1) % m]);
+    }
+    return piece;
+  };
+  for (std::size_t d = 0; d < detours.size(); ++d) {
+    loops[d] = trace_cluster_boundary(skin, e, c, detours[d], opt, max_steps);
+    for (std::size_t l = 0; l < loops[d].size(); ++l) {
+      const DetourLoop& loop = loops[d][l];
+      if (loop.crossings.size() % 2)
+        throw GeometryError(at_height(c) + "a detour's boundary crosses the plane an odd number of times");
+      if (loop.crossings.empty()) {
+        if ((e.dot(loop.fine.points[0]) < c) != detours[d].upper) continue;
+        // A whole loop: its pieces between corners, closed.
+        const std::size_t m = loop.fine.points.size();
+        const bool forwards = !detours[d].upper;
+        Piece whole = loop_piece(static_cast<Index>(d), l, 0, m + 1, forwards);
+        // Start at a corner, so that every part between corners is whole.
+        std::size_t start = 0;
+        for (std::size_t i = 0; i < m; ++i)
+          if (whole.ball[i] != whole.ball[(i + m - 1) % m]) {
+            start = i;
+            break;
+          }
+        Piece rotated;
+        rotated.detour = whole.detour;
+        for (std::size_t n = 0; n <= m; ++n) {
+          const std::size_t i = (start + n) % m;
+          rotated.fine.points.push_back(whole.fine.points[i]), rotated.fine.rho.push_back(whole.fine.rho[i]);
+          rotated.fine.cells.push_back(whole.fine.cells[i]), rotated.ball.push_back(whole.ball[i]);
+        }
+        bool corners = false;
+        for (std::size_t i = 1; i < m; ++i) corners |= rotated.ball[i] != rotated.ball[0];
+        if (!corners) {
+          // One circle: sampled as a closed curve.
+          const DetourBall& b = detours[d].balls[rotated.ball[0]];
+          rotated.fine.points.pop_back(), rotated.fine.rho.pop_back(), rotated.fine.cells.pop_back();
+          LevelCurve circle =
+              sample_curve(CurveSet::sphere(skin, e, c, b.center, b.radius, forwards ? +1 : -1), rotated.fine, opt);
+          circle.detour.assign(circle.points.size(), static_cast<Index>(d));
+          circle.ball.assign(circle.points.size(), rotated.ball[0]);
+          curves.push_back(std::move(circle));
+        } else {
+          curves.push_back(sample_pieces(skin, e, c, detours, {rotated}, opt));
+        }
+        continue;
+      }
+      // At a crossing on ball b's arc, e·(n × u_b) = -(n × e)·u_b: where h
+      // rises along the loop (the union on its left), the level set's
+      // tangent n × e points into the union. So the cut enters a union at its
+      // rising crossings and leaves it at its falling ones, whichever way it
+      // goes. Along the loop, an arc from a falling crossing to the next
+      // rising one lies below the plane: a detour that goes up keeps those,
+      // run backwards (the union on the cut's right) from a rising crossing
+      // to the falling one before it; one that goes down keeps the arcs
+      // above, run forwards from a rising crossing to the next falling one.
+      for (std::size_t k = 0; k < loop.crossings.size(); ++k)
+        if (!loop.crossings[k].rising) exits.push_back({static_cast<Index>(d), l, k});
+    }
+  }
+  // The arc of a detour's loop from its crossing `entry` (where the level
+  // set enters the union) to the crossing where it leaves, both included.
+  auto arc_from = [&](const Crossing& entry, Crossing& exit) {
+    const DetourLoop& loop = loops[entry.detour][entry.loop];
+    const std::size_t nc = loop.crossings.size(), m = loop.fine.points.size();
+    const bool up = detours[entry.detour].upper;
+    exit = entry;
+    exit.k = up ? (entry.k + nc - 1) % nc : (entry.k + 1) % nc;
+    const Junction& a = loop.crossings[entry.k];
+    const Junction& b = loop.crossings[exit.k];
+    Piece piece;
+    piece.detour = entry.detour;
+    auto push = [&](const Vec3& p, double rho, Index cell, Index ball) {
       piece.fine.points.push_back(p), piece.fine.rho.push_back(rho), piece.fine.cells.push_back(cell);
+      piece.ball.push_back(ball);
     };
-    push(a.p, a.rho, a.cell);
+    // Edge (i, i + 1) of the loop follows loop.ball[i]; run backwards, the
+    // piece's edge from fine point i to i - 1 follows loop.ball[i - 1].
     if (up) {
-      // Backwards from the fine point a.after down to b.after + 1.
+      push(a.p, a.rho, a.cell, loop.ball[a.after]);
       for (std::size_t i = a.after; i != b.after; i = (i + m - 1) % m)
-        push(dc.circle.points[i], dc.circle.rho[i], dc.circle.cells[i]);
+        push(loop.fine.points[i], loop.fine.rho[i], loop.fine.cells[i], loop.ball[(i + m - 1) % m]);
     } else {
-      // Forwards from the fine point a.after + 1 up to b.after.
+      push(a.p, a.rho, a.cell, loop.ball[a.after]);
       for (std::size_t i = a.after; i != b.after;) {
         i = (i + 1) % m;
-        push(dc.circle.points[i], dc.circle.rho[i], dc.circle.cells[i]);
+        push(loop.fine.points[i], loop.fine.rho[i], loop.fine.cells[i], loop.ball[i]);
       }
     }
-    push(b.p, b.rho, b.cell);
+    push(b.p, b.rho, b.cell, kInvalidIndex);
     return piece;
   };
   // Check the junctions' orientation: the level set's tangent n × e points
-  // out of the ball where the cut leaves it.
-  for (const auto& [d, k] : exits) {
-    const Junction& j = circles[d].crossings[k];
+  // out of the union where the cut leaves it.
+  for (const Crossing& x : exits) {
+    const DetourLoop& loop = loops[x.detour][x.loop];
+    const Junction& j = loop.crossings[x.k];
+    const Vec3 q = detours[x.detour].balls[loop.ball[j.after]].center;
     const skin::SkinSample s = skin.sample(j.p, j.cell);
-    if ((s.gradient.normalized().cross(e)).dot(j.p - detours[d].center) <= 0)
+    if ((s.gradient.normalized().cross(e)).dot(j.p - q) <= 0)
       throw GeometryError(at_height(c) + "the level set does not leave a detour's ball where its circle says");
   }
-  // The level stretches: from each crossing where the cut leaves a ball, along
-  // n × e, until the tracer enters a ball; there the cut takes the crossing
-  // where the level set enters that ball.
-  std::map<std::pair<Index, std::size_t>, std::size_t> stretch_of_exit;
+  // The level stretches: from each crossing where the cut leaves a union,
+  // along n × e, until the tracer enters a union; there the cut takes the
+  // crossing where the level set enters it.
+  std::map<Crossing, std::size_t> stretch_of_exit;
   std::vector<Piece> stretches;
-  std::vector<std::pair<Index, std::size_t>> stretch_end;
-  for (const auto& [d, k] : exits) {
-    const Junction& j = circles[d].crossings[k];
-    std::pair<Index, std::size_t> end{kInvalidIndex, 0};
-    auto stop = [&](const Vec3& x, const Vec3& xn) {
-      for (std::size_t b = 0; b < detours.size(); ++b) {
-        if (segment_distance(detours[b].center, x, xn) >= detours[b].radius * (1 - 1e-9)) continue;
-        // The entry crossing of ball b nearest to the step.
-        double best = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < circles[b].crossings.size(); ++i) {
-          const Junction& q = circles[b].crossings[i];
+  std::vector<Crossing> stretch_end;
+  for (const Crossing& x : exits) {
+    const Junction& j = loops[x.detour][x.loop].crossings[x.k];
+    Crossing end{kInvalidIndex, 0, 0};
+    auto stop = [&](const Vec3& p, const Vec3& pn) {
+      const Index d = in_detour(p, pn, 1 - 1e-9);
+      if (d == kInvalidIndex) return false;
+      // The entry crossing of that union nearest to the step.
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t l = 0; l < loops[d].size(); ++l)
+        for (std::size_t k = 0; k < loops[d][l].crossings.size(); ++k) {
+          const Junction& q = loops[d][l].crossings[k];
           if (!q.rising) continue;  // a crossing where the cut leaves
-          if (const double dist = segment_distance(q.p, x, xn); dist < best)
-            best = dist, end = {static_cast<Index>(b), i};
+          if (const double dist = segment_distance(q.p, p, pn); dist < best) best = dist, end = {d, l, k};
         }
-        if (!(best <= 2 * (xn - x).norm() + 1e-9 * skin.length_scale()))
-          throw GeometryError(at_height(c) + "the level set enters a detour's ball away from its crossings");
-        return true;
-      }
-      return false;
+      if (!(best <= 2 * (pn - p).norm() + 1e-9 * skin.length_scale()))
+        throw GeometryError(at_height(c) + "the level set enters a detour's ball away from its crossings");
+      return true;
     };
     Piece piece;
     piece.fine = trace_curve(ls, Seed{j.p, j.cell, j.rho}, opt, max_steps, on_segment, stop, /*stretch=*/true);
-    const Junction& q = circles[end.first].crossings[end.second];
+    const Junction& q = loops[end.detour][end.loop].crossings[end.k];
     piece.fine.points.push_back(q.p), piece.fine.rho.push_back(q.rho), piece.fine.cells.push_back(q.cell);
-    stretch_of_exit[{d, k}] = stretches.size();
+    piece.ball.assign(piece.fine.points.size(), kInvalidIndex);
+    stretch_of_exit[x] = stretches.size();
     stretches.push_back(std::move(piece));
     stretch_end.push_back(end);
   }
@@ -619,9 +819,9 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
     for (std::size_t s = first; !used[s];) {
       used[s] = 1;
       pieces.push_back(stretches[s]);
-      std::size_t exit = 0;
-      pieces.push_back(arc_from(stretch_end[s].first, stretch_end[s].second, exit));
-      const auto it = stretch_of_exit.find({stretch_end[s].first, exit});
+      Crossing exit{};
+      pieces.push_back(arc_from(stretch_end[s], exit));
+      const auto it = stretch_of_exit.find(exit);
       if (it == stretch_of_exit.end())
         throw GeometryError(at_height(c) + "a detour's arc does not end where the cut leaves its ball");
       s = it->second;
@@ -629,12 +829,12 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
     }
     // Each stretch's last point is the next arc's first, and each arc's last
     // the next stretch's first: drop the duplicates.
-    for (Piece& p : pieces) p.fine.points.pop_back(), p.fine.rho.pop_back(), p.fine.cells.pop_back();
+    for (Piece& p : pieces) p.fine.points.pop_back(), p.fine.rho.pop_back(), p.fine.cells.pop_back(), p.ball.pop_back();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const Piece& next = pieces[(i + 1) % pieces.size()];
       Piece& p = pieces[i];
       p.fine.points.push_back(next.fine.points[0]), p.fine.rho.push_back(next.fine.rho[0]);
-      p.fine.cells.push_back(next.fine.cells[0]);
+      p.fine.cells.push_back(next.fine.cells[0]), p.ball.push_back(kInvalidIndex);
     }
     curves.push_back(sample_pieces(skin, e, c, detours, pieces, opt));
   }
@@ -646,9 +846,8 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
     StopTest stop = nullptr;
     if (!detours.empty())
       stop = [&](const Vec3& x, const Vec3& xn) -> bool {
-        for (const CutDetour& d : detours)
-          if (segment_distance(d.center, x, xn) < d.radius * (1 - 1e-9))
-            throw GeometryError(at_height(c) + "a level curve enters a detour's ball but no crossing leads to it");
+        if (in_detour(x, xn, 1 - 1e-9) != kInvalidIndex)
+          throw GeometryError(at_height(c) + "a level curve enters a detour's ball but no crossing leads to it");
         return false;
       };
     curves.push_back(sample_curve(ls, trace_curve(ls, seeds[i], opt, max_steps, on_segment, stop), opt));
@@ -656,8 +855,7 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
   return curves;
 }
 
-bool cut_detours(const MorseSmaleComplex& ms, double c, const CutDetourOptions& opt, std::vector<CutDetour>& out) {
-  out.clear();
+std::vector<CutDetour> cut_detours(const MorseSmaleComplex& ms, double c, const CutDetourOptions& opt) {
   const std::size_t n = ms.critical.size();
   auto ball_radius = [&](std::size_t i) {
     return (1 + opt.margin) * (i < ms.protect_radius.size() ? ms.protect_radius[i] : 0.0);
@@ -668,81 +866,48 @@ bool cut_detours(const MorseSmaleComplex& ms, double c, const CutDetourOptions& 
   std::sort(by_height.begin(), by_height.end(), [&](std::size_t a, std::size_t b) {
     return ms.critical[a].height < ms.critical[b].height || (ms.critical[a].height == ms.critical[b].height && a < b);
   });
-  // The critical points whose heights lie in [lo, hi], by the sorted order.
+  // Visits the critical points whose heights lie in [lo, hi].
   auto in_heights = [&](double lo, double hi, const std::function<void(std::size_t)>& fn) {
     auto first = std::lower_bound(by_height.begin(), by_height.end(), lo,
                                   [&](std::size_t i, double h) { return ms.critical[i].height < h; });
     for (auto it = first; it != by_height.end() && ms.critical[*it].height <= hi; ++it) fn(*it);
   };
-  // A cluster's ball: about its member with the largest ball (the first on
-  // ties), wide enough to hold every member's ball.
-  struct Cluster {
-    std::vector<Index> members;
-    std::size_t center = 0;
-    double radius = 0;
+  // Union–find over the critical points; a breadth-first growth from the
+  // balls that meet the plane adds every ball that overlaps one in the set.
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  std::function<std::size_t(std::size_t)> find = [&](std::size_t a) {
+    return parent[a] == a ? a : parent[a] = find(parent[a]);
   };
-  // A cluster's ball: about the member that needs the smallest ball to hold
-  // every member's ball, relative to its rho (the first on ties).
-  auto fit = [&](Cluster& k) {
-    double best = std::numeric_limits<double>::infinity();
-    for (Index q : k.members) {
-      double r = 0;
-      for (Index m : k.members)
-        r = std::max(r, (ms.critical[m].position - ms.critical[q].position).norm() + ball_radius(m));
-      if (r / ms.critical[q].rho < best) best = r / ms.critical[q].rho, k.center = q, k.radius = r;
-    }
-  };
-  std::vector<Cluster> clusters;
-  std::vector<std::size_t> cluster_of(n, std::numeric_limits<std::size_t>::max());
+  std::vector<char> in_set(n, 0);
+  std::vector<std::size_t> queue;
   in_heights(c - r_max, c + r_max, [&](std::size_t i) {
-    if (ball_radius(i) > 0 && std::abs(ms.critical[i].height - c) < ball_radius(i)) {
-      cluster_of[i] = clusters.size();
-      clusters.push_back({{static_cast<Index>(i)}, i, ball_radius(i)});
-    }
+    if (ball_radius(i) > 0 && std::abs(ms.critical[i].height - c) < ball_radius(i)) in_set[i] = 1, queue.push_back(i);
   });
-  // Merge until no two balls overlap, and no ball overlaps a critical
-  // point's ball outside every cluster.
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (std::size_t a = 0; a < clusters.size(); ++a) {
-      if (clusters[a].members.empty()) continue;
-      const Vec3 q = ms.critical[clusters[a].center].position;
-      const double h = ms.critical[clusters[a].center].height, R = clusters[a].radius;
-      std::vector<std::size_t> absorb;
-      in_heights(h - R - r_max, h + R + r_max, [&](std::size_t i) {
-        if (cluster_of[i] == a || !(ball_radius(i) > 0)) return;
-        if ((ms.critical[i].position - q).norm() < R + ball_radius(i)) absorb.push_back(i);
-      });
-      for (std::size_t i : absorb) {
-        if (cluster_of[i] == a) continue;
-        if (cluster_of[i] < clusters.size()) {
-          Cluster& b = clusters[cluster_of[i]];
-          for (Index m : b.members) cluster_of[m] = a, clusters[a].members.push_back(m);
-          b.members.clear();
-        } else {
-          cluster_of[i] = a, clusters[a].members.push_back(static_cast<Index>(i));
-        }
-        changed = true;
-      }
-      if (changed) {
-        std::sort(clusters[a].members.begin(), clusters[a].members.end());
-        fit(clusters[a]);
-        if (clusters[a].radius > opt.max_radius * ms.critical[clusters[a].center].rho) return false;
-      }
-    }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::size_t a = queue[head];
+    const CriticalPoint& p = ms.critical[a];
+    const double R = ball_radius(a);
+    in_heights(p.height - R - r_max, p.height + R + r_max, [&](std::size_t b) {
+      if (b == a || !(ball_radius(b) > 0) || (ms.critical[b].position - p.position).norm() >= R + ball_radius(b))
+        return;
+      parent[find(a)] = find(b);
+      if (!in_set[b]) in_set[b] = 1, queue.push_back(b);
+    });
   }
-  for (const Cluster& k : clusters) {
-    if (k.members.empty()) continue;
-    CutDetour d;
-    d.center = ms.critical[k.center].position;
-    d.radius = k.radius;
-    d.upper = ms.critical[k.center].height > c;
-    d.critical.push_back(static_cast<Index>(k.center));
-    for (Index m : k.members)
-      if (m != k.center) d.critical.push_back(m);
-    out.push_back(std::move(d));
+  std::vector<CutDetour> out;
+  std::vector<std::size_t> cluster_of(n, std::numeric_limits<std::size_t>::max());
+  std::vector<double> height_sum;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!in_set[i]) continue;
+    std::size_t& k = cluster_of[find(i)];
+    if (k == std::numeric_limits<std::size_t>::max()) k = out.size(), out.emplace_back(), height_sum.push_back(0);
+    out[k].balls.push_back({ms.critical[i].position, ball_radius(i), static_cast<Index>(i)});
+    height_sum[k] += ms.critical[i].height;
   }
-  return true;
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k].upper = height_sum[k] / static_cast<double>(out[k].balls.size()) > c;
+  return out;
 }
 
 double cut_clearance(const MorseSmaleComplex& ms, double c) {

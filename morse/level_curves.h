@@ -25,42 +25,41 @@ struct LevelCurve {
   std::vector<Vec3> points;  ///< samples (Å), in the skin's coordinates
   std::vector<double> rho;   ///< local length scale at each sample (Å)
   std::vector<Index> cells;  ///< mixed cell of each sample
-  /// Per edge (sample i to i + 1, cyclically): the detour whose circle it
-  /// follows (an index into the detours cut_curves() was given), or
-  /// kInvalidIndex on the level set.
+  /// Per edge (sample i to i + 1, cyclically): the detour (an index into
+  /// the detours cut_curves() was given) along whose boundary it runs, and
+  /// the ball of that detour whose circle it follows; kInvalidIndex for both
+  /// on the level set.
   std::vector<Index> detour;
+  std::vector<Index> ball;
   double length = 0;  ///< length of the traced curve (Å), before sampling
 };
 
-/// A ball the cut passes around (papers/morse/level_curves.md, "Cuts that
-/// detour"): it holds the protecting spheres of one or more critical points,
-/// and the cut follows the circle F ∩ S(center, radius) instead of the level
-/// set inside it, on the side that puts the whole ball into one slab: the
-/// upper one if `upper`, else the lower one.
+/// One ball of a detour: a critical point's protecting sphere widened by the
+/// margin (CutDetourOptions).
+struct DetourBall {
+  Vec3 center = Vec3::Zero();      ///< the critical point (Å), on the skin
+  double radius = 0;               ///< Å, at most rho(center) / 2
+  Index critical = kInvalidIndex;  ///< the critical point
+};
+
+/// A cluster of balls the cut passes around (papers/morse/level_curves.md,
+/// "Cuts that detour"): balls that overlap, each holding a critical point's
+/// protecting sphere. The cut follows the boundary of their union on F (arcs
+/// of their circles F ∩ S(q, R)) instead of the level set inside it, on the
+/// side that puts the whole union into one slab: the upper one if `upper`,
+/// else the lower one.
 struct CutDetour {
-  Vec3 center = Vec3::Zero();   ///< a critical point (Å), on the skin
-  double radius = 0;            ///< Å
-  bool upper = false;           ///< the center lies above the cut
-  std::vector<Index> critical;  ///< the critical points whose spheres it holds, the center's first
+  std::vector<DetourBall> balls;
+  bool upper = false;
 };
 
 /// Tuning of cut_detours().
 struct CutDetourOptions {
   /// Each critical point p gets a ball of radius (1 + margin) s_p, s_p its
-  /// protecting radius: the cut stays margin · s_p outside every protecting
-  /// sphere.
+  /// protecting radius (0.25 rho_p by default, so the ball is at most rho_p
+  /// / 2 wide, and the skin meets it in one disc: papers/morse/level_curves.md).
+  /// The cut stays margin · s_p outside every protecting sphere.
   double margin = 0.1;
-  /// Balls that overlap are merged into one ball about a member's centre q
-  /// that holds them all; a merged ball wider than max_radius · rho(q)
-  /// refuses the height. At 1/2 the skin meets the ball in one disc, so the
-  /// circle is one closed curve: every point y of the ball has rho(y) >=
-  /// rho(q) - R >= R (rho is 1-Lipschitz), so the skin's sandwiching balls
-  /// at y, of radius rho(y), are at least as wide as the ball
-  /// (papers/morse/level_curves.md, "Cuts that detour"). [derived; measured:
-  /// on maltoporin at probe 1.4, 18 of 63 evenly spaced heights admit a cut,
-  /// against 2 without detours; at 1.5, 53, but then a ball can hold two
-  /// pieces of the skin and the cut misses one (a ring of balls)]
-  double max_radius = 0.5;
 };
 
 /// Tuning of level_curves(); every length is a multiple of the local length
@@ -104,33 +103,33 @@ struct LevelCurveOptions {
 std::vector<LevelCurve> level_curves(const skin::SkinSurface& skin, const MorseSmaleComplex& ms, double c,
                                      const LevelCurveOptions& opt = {});
 
-/// The cuts at height c that detour around the balls `detours` (disjoint,
-/// each centred on the skin with a radius at most half the local length
-/// scale at its centre, as cut_detours() makes them): the
-/// boundary, on F, of the part below the cut, ({h <= c} minus the balls that
-/// go up) plus the balls that go down. Each closed curve is made of stretches
-/// of the level set outside the balls and arcs of the balls' circles
-/// F ∩ S(p, R), joined at junctions (points on F, the plane and the sphere,
-/// which are samples); it is oriented with that part on its left seen from
-/// outside (n × e on the level set). Whole circles come first (in the balls'
-/// order), then the curves with junctions (in the order of their first
-/// junction: by ball, then along its circle), then the level curves that
-/// meet no ball (as level_curves() orders them). Without detours this is
-/// level_curves(), sample for sample.
+/// The cuts at height c that detour around the clusters of balls `detours`
+/// (as cut_detours() makes them: no two clusters' balls overlap, each ball
+/// centred on the skin and at most half the local length scale at its centre
+/// wide): the boundary, on F, of the part below the cut, ({h <= c} minus the
+/// unions that go up) plus the unions that go down. Each closed curve is made
+/// of stretches of the level set outside the balls and arcs of the balls'
+/// circles F ∩ S(q, R), joined at junctions (points on F and on two of the
+/// plane and the spheres, which are samples); it is oriented with that part
+/// on its left seen from outside (n × e on the level set). Whole loops of a
+/// union's boundary come first (in the detours' order), then the curves with
+/// junctions (in the order of their first junction), then the level curves
+/// that meet no ball (as level_curves() orders them). Without detours this
+/// is level_curves(), sample for sample.
 /// Pre: no critical point of h on F at height c outside the balls. Throws
 /// GeometryError as level_curves() does, and where a circle meets the plane
-/// too obliquely, a stretch between two junctions is shorter than half a
-/// spacing, or the level set and the circles do not join up.
+/// or another circle too obliquely, a stretch between two junctions is
+/// shorter than half a spacing, or the pieces do not join up.
 std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSmaleComplex& ms, double c,
                                    const std::vector<CutDetour>& detours, const LevelCurveOptions& opt = {});
 
 /// The detours a cut at height c needs: every critical point p (live or
-/// cancelled) whose ball of radius (1 + margin) s_p meets the plane gets one;
-/// overlapping balls, and balls that overlap them (meeting the plane or not),
-/// are merged until none overlap. Deterministic (in the critical points'
-/// order). Returns false (and leaves `out` empty) where a merged ball grows
-/// wider than opt.max_radius · rho: the cut at c is then refused.
-bool cut_detours(const MorseSmaleComplex& ms, double c, const CutDetourOptions& opt, std::vector<CutDetour>& out);
+/// cancelled) whose ball of radius (1 + margin) s_p meets the plane, in
+/// clusters of overlapping balls together with every ball (meeting the
+/// plane or not) that overlaps one of theirs. A cluster goes up if the mean
+/// height of its critical points is above c. Deterministic: clusters in the
+/// order of their first critical point, balls in the critical points' order.
+std::vector<CutDetour> cut_detours(const MorseSmaleComplex& ms, double c, const CutDetourOptions& opt = {});
 
 /// How far the height c stays from the critical points: the minimum over the
 /// critical points p of (|h(p) - c| - s_p) / rho_p, s_p the protecting radius
