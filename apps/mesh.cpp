@@ -228,7 +228,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
   return options_fit_algorithm(cmd, mesh.algorithm == "dynamic",
                                {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction",
                                 "--disc-factor", "--no-angle-improvement", "--no-fallback", "--no-patch",
-                                "--force-patch-every", "--slabs", "--no-growth", "--growth-step"},
+                                "--force-patch-every", "--slabs", "--cut-detours", "--no-growth", "--growth-step"},
                                {"--no-growth", "--growth-step"});
 }
 
@@ -305,6 +305,9 @@ Command add_mesh_command(CLI::App& app) {
                   "exists; 1: one sweep; 0: one slab per 2500 atoms (the mesh depends on N, never on --threads)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
+  cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
+                "with --slabs: cuts that pass around the critical points they meet, which large components need "
+                "(experimental; papers/mesher/decomposition.md, \"The detoured cut\")");
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
                   "this many seconds (nothing is written; 0: no limit)")

@@ -106,6 +106,30 @@ bool thick_enough(const Cut& a, const Cut& b, const DecompositionOptions& opt, d
   return true;
 }
 
+/// True if every sample of the cut `b` lies min_thickness disc radii (r at
+/// the sample) above every sample of the cut `a` below it: cuts that detour
+/// rise and dip around their balls, so their heights alone do not tell.
+bool apart(const Cut& a, const Cut& b, const Vec3& e, const DecompositionOptions& opt, double disc_factor) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (const morse::LevelCurve& curve : a.curves)
+    for (const Vec3& p : curve.points) top = std::max(top, p.dot(e));
+  for (const morse::LevelCurve& curve : b.curves)
+    for (std::size_t j = 0; j < curve.points.size(); ++j)
+      if (curve.points[j].dot(e) - top < opt.min_thickness * disc_factor * curve.rho[j]) return false;
+  return true;
+}
+
+/// Per critical point, whether it lies below the cut (in the part the slab
+/// below it meshes): by its cluster's side if a ball of the cut holds it,
+/// else by its height.
+std::vector<char> below_cut(const Cut& cut, const morse::MorseSmaleComplex& ms) {
+  std::vector<char> below(ms.critical.size());
+  for (std::size_t p = 0; p < below.size(); ++p) below[p] = ms.critical[p].height <= cut.height;
+  for (const morse::CutDetour& d : cut.detours)
+    for (const morse::DetourBall& b : d.balls) below[b.critical] = !d.upper;
+  return below;
+}
+
 void add_stats(SweepStats& a, const SweepStats& b) {
   a.creations += b.creations, a.creeps += b.creeps, a.wings += b.wings, a.bridges += b.bridges;
   a.seals += b.seals, a.held += b.held, a.deferred += b.deferred, a.bridge_rows += b.bridge_rows;
@@ -236,8 +260,21 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
       const int step = (j + 1) / 2 * (j % 2 ? 1 : -1);
       const double c = target + step * opt.search_step * slab_height;
       if (!cuts.empty() && c <= cuts.back().height) continue;
+      if (opt.detours) {
+        Cut cut{c, {}, morse::cut_detours(ms, c)};
+        try {
+          cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
+        } catch (const GeometryError&) {
+          continue;  // a near-tangency or an unjoined corner: not this height
+        }
+        if (cut.curves.empty() ||
+            (!cuts.empty() && !apart(cuts.back(), cut, ms.height_direction.normalized(), opt, sweep.disc_factor)))
+          continue;
+        cuts.push_back(std::move(cut));
+        break;
+      }
       if (!window_clear(ms, by_height, c, opt, sweep.disc_factor)) continue;
-      Cut cut{c, {}};
+      Cut cut{c, {}, {}};
       try {
         cut.curves = morse::level_curves(skin, ms, c, opt.curves);
       } catch (const GeometryError&) {
@@ -264,6 +301,11 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
   using SlabKey = std::pair<std::size_t, std::size_t>;
   std::map<SlabKey, SlabOutcome> swept;
   std::vector<char> kept(n_cuts, 1);
+  // Per cut, which critical points lie below it (for the slabs' ownership
+  // where cuts detour).
+  std::vector<std::vector<char>> below(n_cuts);
+  if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.detours.empty(); }))
+    for (std::size_t c = 0; c < n_cuts; ++c) below[c] = below_cut(cuts[c], ms);
   // The observers and the trace see one slab at a time, in order.
   const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, opt.threads);
 
@@ -303,6 +345,12 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       const auto [lower, upper] = todo[i];
       if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
       if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
+      if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
+        slab.owns.assign(ms.critical.size(), 1);
+        for (std::size_t p = 0; p < ms.critical.size(); ++p)
+          if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
+        if (upper != kNone) slab.upper_detours = cuts[upper].detours;
+      }
       SweepOptions slab_sweep = sweep;
       slab_sweep.progress = nullptr;
       if (sweep.progress && threads == 1)
@@ -409,7 +457,12 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
                                 std::to_string(cuts[live[k]].height) + ": " + e.what());
           }
         }
-    for (std::size_t c : live) out.cut_heights.push_back(cuts[c].height);
+    for (std::size_t c : live) {
+      out.cut_heights.push_back(cuts[c].height);
+      std::size_t balls = 0;
+      for (const morse::CutDetour& d : cuts[c].detours) balls += d.balls.size();
+      out.cut_balls.push_back(balls);
+    }
     for (geometry::Vertex v : seam)
       if (mesh.is_boundary(v) || !mesh.is_manifold(v)) {
         std::ostringstream os;

@@ -61,6 +61,11 @@ struct DecompositionOptions {
   double search_step = 0.01;
   /// The cut curves' tracing and sampling.
   morse::LevelCurveOptions curves;
+  /// Cuts that pass around the critical points they meet (morse::cut_detours,
+  /// morse::cut_curves) instead of level cuts clear of them: needed by large
+  /// components, whose critical points leave no clear height. Experimental:
+  /// off by default (papers/mesher/decomposition.md, "The detoured cut").
+  bool detours = false;
   /// Threads for the slabs and the bands (at least 1; the pipeline passes
   /// its --threads). The cuts and the mesh do not depend on it.
   int threads = 1;
@@ -75,6 +80,8 @@ int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt);
 struct Cut {
   double height = 0;
   std::vector<morse::LevelCurve> curves;
+  /// The clusters of balls the cut passes around (DecompositionOptions::detours).
+  std::vector<morse::CutDetour> detours;
 };
 
 /// The cut heights of opt.slabs slabs (automatic_slabs() if 0), in
@@ -123,6 +130,8 @@ struct DecomposedSweep {
   /// The heights (Å, along the complex's height direction) of the cuts the
   /// mesh was glued along, increasing.
   std::vector<double> cut_heights;
+  /// Per kept cut, the balls it passes around (0 for a level cut).
+  std::vector<std::size_t> cut_balls;
   /// The cuts dropped, in the order they were.
   std::vector<DroppedCut> dropped;
   /// The costs, empty for one sweep (no cut kept).

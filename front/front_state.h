@@ -21,6 +21,7 @@
 #include "geometry/kernel/tangent_angles.h"
 #include "geometry/mesh/surface_mesh.h"
 #include "geometry/triangulation/point_grid.h"
+#include "morse/level_curves.h"
 
 namespace skinmesh::front::detail {
 
@@ -187,6 +188,16 @@ struct FrontState {
   double slab_lower = -std::numeric_limits<double>::infinity();
   double slab_upper = std::numeric_limits<double>::infinity();
   double park_factor = 0;
+  /// With cuts that detour (morse::cut_curves): per critical point, 1 if the
+  /// slab owns it (its minima get bowls, its saddles and maxima hold); empty:
+  /// by height, strictly between the cuts.
+  std::vector<char> slab_owns;
+  bool owns(Index c) const { return slab_owns.empty() || slab_owns[c]; }
+  /// The balls the upper cut detours around, and its curves: a departure
+  /// vertex near a ball parks by its distance to the cut's polyline instead
+  /// of its height.
+  std::vector<morse::DetourBall> upper_balls;
+  std::vector<morse::LevelCurve> upper_cut;
   /// Per vertex index: 1 for a vertex of the ghost strip below a lower cut
   /// curve (never departs, deleted at the end), 2 for a parked vertex (on an
   /// upper rim, left open for the band). Shorter than the vertex count: the

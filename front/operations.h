@@ -148,6 +148,10 @@ Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index*
 /// The unresolved live saddle or maximum whose protecting sphere v's tangent
 /// disc meets (the nearest), or kInvalidIndex.
 Index hold_region(const FrontState& fs, Vertex v);
+/// In a slab whose upper cut detours (front/slab.h): 0 if v lies away from
+/// the balls of the detours (the height rule applies), else +1 if v lies
+/// within park_factor · r of the cut's polyline (it parks), -1 if not.
+int near_upper_detour(const FrontState& fs, Vertex v);
 /// Marks v held by critical point c; a saddle is bridged when it is ready.
 void hold(FrontState& fs, Vertex v, Index c);
 /// Releases every vertex held by c (after its bridge, or unbridged); with

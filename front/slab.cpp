@@ -46,13 +46,26 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
     for (std::size_t j = 0; j < curve.points.size(); ++j) p.push_back(new_vertex(fs, curve.points[j], curve.cells[j]));
   }
   std::vector<Face> ghost_faces;
-  for (const std::vector<Vertex>& p : samples) {
+  for (std::size_t ci = 0; ci < samples.size(); ++ci) {
+    const std::vector<Vertex>& p = samples[ci];
+    const morse::LevelCurve& curve = curves[ci];
     std::vector<Vertex> g;
-    for (Vertex x : p) {
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const Vertex x = p[j];
       // Down the slope: the tangent-plane direction of -e. A regular cut
       // (Slab's precondition) keeps the skin's normal away from ±e there.
+      // Next to a detour (an edge on a ball's circle) the cut is no level
+      // curve: the ghost goes to the cut's left, n × t for its tangent t,
+      // which is down the slope on a level curve.
       const Vec3 n = fs.normal[x];
-      const Vec3 down = -(fs.e - fs.e.dot(n) * n);
+      const std::size_t jp = (j + p.size() - 1) % p.size();
+      const bool detoured =
+          j < curve.detour.size() && (curve.detour[j] != kInvalidIndex || curve.detour[jp] != kInvalidIndex);
+      Vec3 down = -(fs.e - fs.e.dot(n) * n);
+      if (detoured) {
+        const Vec3 t = fs.mesh.position(p[(j + 1) % p.size()]) - fs.mesh.position(p[jp]);
+        down = n.cross(t - t.dot(n) * n);
+      }
       if (!(down.norm() > 1e-6)) {
         std::ostringstream os;
         os << "slab: the lower cut passes through a critical point near (" << fs.mesh.position(x).transpose()
@@ -234,6 +247,18 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   fs.slab_lower = slab.lower;
   fs.slab_upper = slab.upper;
   fs.park_factor = slab.park_factor;
+  if (!slab.owns.empty()) {
+    if (slab.owns.size() != ms.critical.size())
+      throw std::invalid_argument("sweep_slab: `owns` needs one entry per critical point");
+    fs.slab_owns = slab.owns;
+  }
+  for (const morse::CutDetour& d : slab.upper_detours)
+    fs.upper_balls.insert(fs.upper_balls.end(), d.balls.begin(), d.balls.end());
+  if (!fs.upper_balls.empty()) {
+    if (slab.upper_curves.empty())
+      throw std::invalid_argument("sweep_slab: an upper cut with detours needs its curves");
+    fs.upper_cut = slab.upper_curves;
+  }
   const std::vector<Face> ghost_faces = attach_lower_curves(fs, slab.lower_curves);
   create_initial_front(fs);
   sweep_and_seal(fs);

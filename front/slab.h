@@ -45,6 +45,15 @@ struct Slab {
   /// left between the parked rim and the upper cut is one to two edge lengths
   /// wide along the skin, the width of one strip of triangles.
   double park_factor = 2;
+  /// With cuts that detour around critical points (morse::cut_curves): per
+  /// critical point, 1 if it lies in this slab's part of the skin (between
+  /// the cuts, or in a cluster of balls a cut gives to this slab); empty for
+  /// level cuts (by height).
+  std::vector<char> owns;
+  /// The clusters of balls the upper cut passes around (empty for a level
+  /// cut): near them a departure vertex parks by its distance to
+  /// upper_curves, which must then be given.
+  std::vector<morse::CutDetour> upper_detours;
 };
 
 /// The mesh of one slab: a compact triangulated surface whose boundary is the

@@ -34,7 +34,8 @@ void create_initial_front(FrontState& fs) {
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Minimum) continue;
     const double h = fs.ms.critical[c].height;
-    if (h > fs.slab_lower && h < fs.slab_upper) minima.push_back(static_cast<Index>(c));
+    if (fs.slab_owns.empty() ? h > fs.slab_lower && h < fs.slab_upper : fs.slab_owns[c] != 0)
+      minima.push_back(static_cast<Index>(c));
   }
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return fs.ms.critical[a].position.dot(fs.e) < fs.ms.critical[b].position.dot(fs.e);
@@ -91,7 +92,14 @@ bool departure_step(FrontState& fs) {
     // by it: on a gentle slope a height bound alone would leave a band many
     // edges wide, which one strip of triangles cannot fill. Outside a slab
     // the bound is +infinity.
-    if (const double gap = fs.slab_upper - fs.height(v); gap < fs.park_factor * fs.disc_radius(v)) {
+    // Near a ball the upper cut passes around, the cut is no level curve:
+    // the vertex parks within park_factor · r of the cut's polyline.
+    if (const int near = near_upper_detour(fs, v); near != 0) {
+      if (near > 0) {
+        park(fs, v);
+        return true;
+      }
+    } else if (const double gap = fs.slab_upper - fs.height(v); gap < fs.park_factor * fs.disc_radius(v)) {
       const double cos_theta = fs.e.dot(fs.normal[v]);
       const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
       if (gap < fs.park_factor * fs.disc_radius(v) * sin_theta) {
@@ -129,6 +137,31 @@ bool departure_step(FrontState& fs) {
     return true;
   }
   return false;
+}
+
+int near_upper_detour(const FrontState& fs, Vertex v) {
+  if (fs.upper_balls.empty()) return 0;
+  const Vec3& p = fs.mesh.position(v);
+  const double r = fs.disc_radius(v), reach = 2 * fs.park_factor * r;
+  bool near = false;
+  for (const morse::DetourBall& b : fs.upper_balls)
+    if ((p - b.center).norm() < b.radius + reach) near = true;
+  if (!near) return 0;
+  // The distance to the cut's polyline, over all its edges: linear in the
+  // cut's length per vertex near a ball (a grid of the edges is the next
+  // step for large inputs).
+  double best = std::numeric_limits<double>::infinity();
+  for (const morse::LevelCurve& curve : fs.upper_cut) {
+    const std::size_t n = curve.points.size();
+    for (std::size_t j = 0; j < n; ++j) {
+      const Vec3& a = curve.points[j];
+      const Vec3& b = curve.points[(j + 1) % n];
+      const Vec3 ab = b - a;
+      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+      best = std::min(best, (p - (a + t * ab)).norm());
+    }
+  }
+  return best < fs.park_factor * r ? 1 : -1;
 }
 
 void park(FrontState& fs, Vertex v) {

@@ -162,6 +162,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   res.sweep = swept.stats;
   res.slabs = decomposed.cut_heights.size() + 1;
   res.cut_heights = std::move(decomposed.cut_heights);
+  res.cut_balls = std::move(decomposed.cut_balls);
   res.dropped_cuts = std::move(decomposed.dropped);
   res.decomposition_costs = std::move(decomposed.costs);
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);

@@ -172,6 +172,9 @@ struct MeshResult {
   /// The cut heights between the slabs (Å, e·x in the input's coordinates,
   /// e = MeshOptions::height_direction), increasing; empty for one sweep.
   std::vector<double> cut_heights;
+  /// Per cut, the balls about critical points it passes around (0 for a
+  /// level cut; MeshOptions' decomposition.detours).
+  std::vector<std::size_t> cut_balls;
   /// The cuts chosen but given up by the decomposed sweep (a slab next to it
   /// or its band failed; front::sweep_decomposed), heights as cut_heights',
   /// messages with positions in the input's coordinates frame noted.

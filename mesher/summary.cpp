@@ -3,6 +3,7 @@
 // Notes: papers/mesher/pipeline.md ("The result schema")
 #include "mesher/summary.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <utility>
@@ -102,6 +103,8 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
                           {"parked", s.parked},
                           {"dropped_cuts", dropped},
                           {"slab_triangles", slab_triangles}};
+    if (std::any_of(res.cut_balls.begin(), res.cut_balls.end(), [](std::size_t n) { return n > 0; }))
+      j["decomposition"]["cut_balls"] = res.cut_balls;
   }
   const refine::AngleImprovementStats& ai = res.angle_improvement;
   j["angle_improvement"] = {{"enabled", options.improve_angles},

@@ -8,6 +8,7 @@
 // [L], [U], restricted Delaunay, angles above 21.5°) must hold across them.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "mesher/pipeline.h"
@@ -78,6 +79,44 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
       CHECK(mesh_area(res.mesh) == doctest::Approx(mesh_area(one.mesh)).epsilon(2e-3));
     }
   }
+}
+
+TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cuts that pass around balls") {
+  // The cuts pass around the critical points they meet (morse::cut_curves):
+  // the slab above a cluster that goes up starts from the arcs below it and
+  // meshes the whole cluster; the slab below parks at those arcs. Every
+  // property must hold across such seams too, and the mesh must not depend
+  // on the thread count.
+  std::size_t detoured_cuts = 0, most_balls = 0;
+  for (const Case& c :
+       {Case{"crambin_1crn.pdb", 1.4, 7}, Case{"crambin_1crn.pdb", 0.0, 6}, Case{"gramicidinA_1grm_model1.pdb", 0.0, 5},
+        Case{"ligand_1hpv_amprenavir.pdb", 0.0, 5}, Case{"hivprotease_xk263_1hvr.pdb", 1.4, 6}}) {
+    CAPTURE(c.file);
+    CAPTURE(c.probe);
+    const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file);
+    mesher::MeshOptions options;
+    options.probe_radius = c.probe;
+    options.decomposition.slabs = 8;
+    options.decomposition.detours = true;
+    options.threads = 1;
+    const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    CHECK(res.slabs >= c.min_slabs);
+    REQUIRE(res.cut_balls.size() == res.cut_heights.size());
+    for (std::size_t balls : res.cut_balls) {
+      if (balls > 0) ++detoured_cuts;
+      most_balls = std::max(most_balls, balls);
+    }
+    REQUIRE(res.checked);
+    test::check_every_property(res.check);
+    options.threads = 2;
+    const mesher::MeshResult two = mesher::mesh_skin(mol, options);
+    CHECK(two.cut_heights == res.cut_heights);
+    CHECK(two.mesh.positions == res.mesh.positions);
+    CHECK(two.mesh.triangles == res.mesh.triangles);
+  }
+  MESSAGE("detoured cuts " << detoured_cuts << ", most balls in one cut " << most_balls);
+  CHECK(detoured_cuts >= 10);
+  CHECK(most_balls >= 10);
 }
 
 TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within its bounds") {
