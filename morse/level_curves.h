@@ -38,7 +38,7 @@ struct LevelCurve {
 /// margin (CutDetourOptions).
 struct DetourBall {
   Vec3 center = Vec3::Zero();      ///< the critical point (Å), on the skin
-  double radius = 0;               ///< Å, at most rho(center) / 2
+  double radius = 0;               ///< Å: (1 + margin) s_p, at most rho(center) / 2 with the defaults
   Index critical = kInvalidIndex;  ///< the critical point
 };
 
