@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <numeric>
 #include <random>
 #include <string>
