@@ -143,7 +143,8 @@ void add_stats(SweepStats& a, const SweepStats& b) {
 struct SlabOutcome {
   std::optional<SlabResult> result;
   std::string error;
-  double seconds = 0;  // wall clock of the sweep_slab() call
+  bool at_lower_cut = false;  // the failure was the lower cut's (LowerCutError)
+  double seconds = 0;         // wall clock of the sweep_slab() call
 };
 
 /// Wall-clock seconds since `start`.
@@ -160,6 +161,9 @@ SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   const auto start = std::chrono::steady_clock::now();
   try {
     o.result = sweep_slab(skin, ms, slab, sweep);
+  } catch (const LowerCutError& e) {
+    o.error = e.what();
+    o.at_lower_cut = true;
   } catch (const TopologyError& e) {
     o.error = e.what();
   } catch (const GeometryError& e) {
@@ -264,6 +268,26 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
         Cut cut{c, {}, morse::cut_detours(ms, c)};
         try {
           cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
+          // A cluster that goes down but whose union the level set enters
+          // (the cut runs along its arcs above c) goes up instead: below
+          // such arcs the slab below would have to bridge or seal the
+          // cluster's critical points within a disc radius or two of its
+          // parked rim, and its front parks before it reaches their
+          // protecting spheres (HIV protease at probe 0: a saddle 0.011 Å
+          // under the cut, the curves on its ball's boundary, the two
+          // curves' rims one loop). Above, the slab starts on the arcs
+          // below the cluster, inside its spheres' hold regions, as the
+          // sweep reaches any protecting sphere. A cluster the level set
+          // does not enter lies wholly on its side and keeps it.
+          std::vector<char> entered(cut.detours.size(), 0);
+          for (const morse::LevelCurve& curve : cut.curves)
+            for (Index d : curve.detour)
+              if (d != kInvalidIndex && !cut.detours[d].upper) entered[d] = 1;
+          if (std::find(entered.begin(), entered.end(), 1) != entered.end()) {
+            for (std::size_t d = 0; d < entered.size(); ++d)
+              if (entered[d]) cut.detours[d].upper = true;
+            cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
+          }
         } catch (const GeometryError&) {
           continue;  // a near-tangency or an unjoined corner: not this height
         }
@@ -342,6 +366,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     parallel_for(todo.size(), threads, 1, [&](std::size_t i) {
       Slab slab;
       slab.park_factor = opt.park_factor;
+      slab.holds_before_parking = opt.detours;
       const auto [lower, upper] = todo[i];
       if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
       if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
@@ -366,12 +391,14 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     for (std::size_t i = 0; i < todo.size(); ++i) swept.emplace(todo[i], std::move(fresh[i]));
 
     // 2. A slab that failed is merged with the slab above (the top one with
-    // the slab below) by dropping the cut between them, and swept again.
+    // the slab below, and one that failed at its lower cut with the slab
+    // below) by dropping the cut between them, and swept again.
     bool dropped = false;
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const SlabOutcome& o = swept.at(keys[k]);
       if (o.result) continue;
-      const std::size_t c = keys[k].second != kNone ? keys[k].second : keys[k].first;
+      const std::size_t c =
+          (o.at_lower_cut && keys[k].first != kNone) || keys[k].second == kNone ? keys[k].first : keys[k].second;
       if (!kept[c]) continue;  // the slab below dropped it already
       kept[c] = 0, dropped = true;
       out.dropped.push_back({cuts[c].height, o.error});

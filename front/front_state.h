@@ -193,6 +193,9 @@ struct FrontState {
   /// by height, strictly between the cuts.
   std::vector<char> slab_owns;
   bool owns(Index c) const { return slab_owns.empty() || slab_owns[c]; }
+  /// Slab::holds_before_parking: a departure vertex in the hold region of a
+  /// critical point the slab owns is held, never parked.
+  bool holds_before_parking = false;
   /// The balls the upper cut detours around, and its curves: a departure
   /// vertex near a ball parks by its distance to the cut's polyline instead
   /// of its height.

@@ -70,7 +70,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
         std::ostringstream os;
         os << "slab: the lower cut passes through a critical point near (" << fs.mesh.position(x).transpose()
            << "): the skin's normal is vertical there";
-        throw GeometryError(os.str());
+        throw LowerCutError(os.str());
       }
       Index cell = kInvalidIndex;
       const Vec3 q = project_tangent(fs, x, down.normalized(), kGhostDepth * fs.disc_radius(x), &cell);
@@ -89,7 +89,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
         std::ostringstream os;
         os << "slab: the lower cut curve through (" << pj.transpose()
            << ") is not oriented as n x e (morse::level_curves), or its ghost strip folds";
-        throw TopologyError(os.str());
+        throw LowerCutError(os.str());
       }
       ghost_faces.push_back(fs.add_triangle(p[j], p[j1], g[j1]));
       ghost_faces.push_back(fs.add_triangle(p[j], g[j1], g[j]));
@@ -104,7 +104,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
         std::ostringstream os;
         os << "slab: the ghost strip below the lower cut folds at (" << fs.mesh.position(x).transpose()
            << "): the cut curve bends more sharply than the strip is deep";
-        throw TopologyError(os.str());
+        throw LowerCutError(os.str());
       }
   return ghost_faces;
 }
@@ -247,6 +247,7 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   fs.slab_lower = slab.lower;
   fs.slab_upper = slab.upper;
   fs.park_factor = slab.park_factor;
+  fs.holds_before_parking = slab.holds_before_parking;
   if (!slab.owns.empty()) {
     if (slab.owns.size() != ms.critical.size())
       throw std::invalid_argument("sweep_slab: `owns` needs one entry per critical point");
@@ -274,7 +275,7 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   // would have changed the slab's boundary.
   for (Face f : ghost_faces)
     if (fs.mesh.is_deleted(f))
-      throw TopologyError("slab: a repair of the front reached below the lower cut (a ghost face was deleted)");
+      throw LowerCutError("slab: a repair of the front reached below the lower cut (a ghost face was deleted)");
   for (Face f : ghost_faces) fs.mesh.delete_face(f);
 
   // The boundary: each lower curve one loop, every other loop a parked rim.
@@ -316,15 +317,19 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   }
   for (std::size_t k = 0; k < curve_seen.size(); ++k)
     if (!curve_seen[k])
-      throw TopologyError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
+      throw LowerCutError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
   if (locator) {
     std::vector<int> rims_of(slab.upper_curves.size(), 0);
     for (const std::vector<Vertex>& rim : rims) ++rims_of[res.rim_curve.emplace_back(locator->vote(fs, rim))];
     for (std::size_t k = 0; k < rims_of.size(); ++k)
       if (rims_of[k] != 1) {
         std::ostringstream os;
-        os << "slab: the upper cut curve through (" << slab.upper_curves[k].points.front().transpose() << ") has "
-           << rims_of[k] << " parked rims below it instead of one";
+        const morse::LevelCurve& c = slab.upper_curves[k];
+        const bool island = !c.detour.empty() &&
+                            std::all_of(c.detour.begin(), c.detour.end(), [](Index d) { return d != kInvalidIndex; });
+        os << "slab: the upper cut curve through (" << c.points.front().transpose() << ") has " << rims_of[k]
+           << " parked rims below it instead of one" << (island ? " (a loop around balls only, " : " (")
+           << c.points.size() << " samples)";
         throw TopologyError(os.str());
       }
   }

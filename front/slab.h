@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/errors.h"
 #include "front/sweep.h"
 #include "morse/level_curves.h"
 
@@ -54,6 +55,17 @@ struct Slab {
   /// cut): near them a departure vertex parks by its distance to
   /// upper_curves, which must then be given.
   std::vector<morse::CutDetour> upper_detours;
+  /// A departure vertex in the hold region of a live critical point the slab
+  /// owns is held (and the saddle bridged, the maximum sealed) before the
+  /// parking test. Needed where the cuts detour: no height window keeps the
+  /// critical points away from such a cut, and a saddle whose ball misses
+  /// the plane can lie in the band under it (crambin at probe 0: 0.05 Å
+  /// below, 0.32 and 0.36 Å from two curves of the cut). Parked around, it
+  /// joined the two curves' rims into one loop
+  /// (papers/mesher/decomposition.md, "The slab sweep from and to such
+  /// cuts"). Off for level cuts, whose window keeps every critical point
+  /// two disc radii below them, so their meshes stay as they were.
+  bool holds_before_parking = false;
 };
 
 /// The mesh of one slab: a compact triangulated surface whose boundary is the
@@ -79,6 +91,16 @@ struct SlabResult {
   std::size_t parked = 0;
 };
 
+/// A failure of sweep_slab() at the slab's lower cut: the ghost strip below a
+/// lower curve folds or meets a critical point, a repair of the front
+/// reached below the cut, or a lower curve is no longer one boundary loop.
+/// The decomposed sweep drops that cut, not the upper one: merging the slab
+/// with the one above would meet the same lower cut again.
+class LowerCutError : public TopologyError {
+ public:
+  using TopologyError::TopologyError;
+};
+
 /// Meshes the slab by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
 /// the slab's lower cut curves and of bowls at the minima strictly inside
 /// (lower, upper); a ghost strip of triangles below each lower curve (deleted
@@ -89,11 +111,11 @@ struct SlabResult {
 /// (papers/mesher/decomposition.md, "Cuts"). Throws std::invalid_argument for
 /// lower >= upper, park_factor < 1, a curve of fewer than three samples or
 /// without rho and cells per sample, a slab thinner than (park_factor + 1) r
-/// at a lower sample (r its disc radius: the slab would be all band there); TopologyError (besides sweep_mesh's) if
-/// a repair of the front reached below the lower cut, a hole without a
-/// parked vertex was left open, or (with upper curves) an upper curve has no
-/// rim; GeometryError if a ghost vertex cannot be
-/// projected.
+/// at a lower sample (r its disc radius: the slab would be all band there);
+/// LowerCutError where the lower cut fails (above); TopologyError (besides
+/// sweep_mesh's) if a hole without a parked vertex was left open, or (with
+/// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
+/// cannot be projected.
 SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
                       const SweepOptions& opt = {});
 

@@ -94,6 +94,14 @@ bool departure_step(FrontState& fs) {
     // the bound is +infinity.
     // Near a ball the upper cut passes around, the cut is no level curve:
     // the vertex parks within park_factor · r of the cut's polyline.
+    // Where the slab must first resolve a critical point it owns under the
+    // cut, the hold comes first (Slab::holds_before_parking).
+    if (fs.holds_before_parking) {
+      if (const Index c = hold_region(fs, v); c != kInvalidIndex) {
+        hold(fs, v, c);
+        return true;
+      }
+    }
     if (const int near = near_upper_detour(fs, v); near != 0) {
       if (near > 0) {
         park(fs, v);

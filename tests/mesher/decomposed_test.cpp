@@ -87,10 +87,15 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
   // meshes the whole cluster; the slab below parks at those arcs. Every
   // property must hold across such seams too, and the mesh must not depend
   // on the thread count.
+  // Crambin at probe 0 dropped a cut when its slab parked around a live
+  // saddle 0.05 Å under it instead of bridging it (two curves, one rim:
+  // Slab::holds_before_parking); gramicidin A at probe 0 dropped two, one
+  // where the cut ran along the arcs of a cluster that went down (now up:
+  // front::choose_cuts). Neither may drop a cut now.
   std::size_t detoured_cuts = 0, most_balls = 0;
   for (const Case& c :
-       {Case{"crambin_1crn.pdb", 1.4, 7}, Case{"crambin_1crn.pdb", 0.0, 6}, Case{"gramicidinA_1grm_model1.pdb", 0.0, 5},
-        Case{"ligand_1hpv_amprenavir.pdb", 0.0, 5}, Case{"hivprotease_xk263_1hvr.pdb", 1.4, 6}}) {
+       {Case{"crambin_1crn.pdb", 1.4, 8}, Case{"crambin_1crn.pdb", 0.0, 8}, Case{"gramicidinA_1grm_model1.pdb", 0.0, 8},
+        Case{"ligand_1hpv_amprenavir.pdb", 0.0, 7}, Case{"hivprotease_xk263_1hvr.pdb", 1.4, 7}}) {
     CAPTURE(c.file);
     CAPTURE(c.probe);
     const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file);
@@ -101,6 +106,7 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
     options.threads = 1;
     const mesher::MeshResult res = mesher::mesh_skin(mol, options);
     CHECK(res.slabs >= c.min_slabs);
+    if (c.min_slabs == 8) CHECK(res.dropped_cuts.empty());
     REQUIRE(res.cut_balls.size() == res.cut_heights.size());
     for (std::size_t balls : res.cut_balls) {
       if (balls > 0) ++detoured_cuts;
