@@ -89,8 +89,11 @@ struct Cut {
 /// (DecompositionOptions' windows, sphere margin and thickness) with its
 /// curves traced. Needs the integral lines' polylines of `ms` (the seeds of
 /// level_curves()), so it runs before they are freed. A target without an
-/// admissible height nearby is skipped (fewer slabs). Throws
-/// std::invalid_argument if opt.slabs < 0.
+/// admissible height nearby is skipped (fewer slabs). With opt.detours, a
+/// cluster of morse::cut_detours() that goes down but whose union the level
+/// set enters is sent up, and the cut traced again (papers/mesher/
+/// decomposition.md, "The drops"). Throws std::invalid_argument if
+/// opt.slabs < 0.
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const SweepOptions& sweep);
 

@@ -62,8 +62,7 @@ struct Slab {
   /// the plane can lie in the band under it (crambin at probe 0: 0.05 Å
   /// below, 0.32 and 0.36 Å from two curves of the cut). Parked around, it
   /// joined the two curves' rims into one loop
-  /// (papers/mesher/decomposition.md, "The slab sweep from and to such
-  /// cuts"). Off for level cuts, whose window keeps every critical point
+  /// (papers/mesher/decomposition.md, "The drops"). Off for level cuts, whose window keeps every critical point
   /// two disc radii below them, so their meshes stay as they were.
   bool holds_before_parking = false;
 };
