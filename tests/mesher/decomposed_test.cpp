@@ -32,6 +32,17 @@ struct Case {
   std::size_t min_slabs;  ///< slabs the cut choice finds today out of 8 asked (fewer is a regression)
 };
 
+/// The case's bundled molecule.
+skin::Molecule read_case(const Case& c) { return skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file); }
+
+/// The pipeline's options at the case's probe, in 8 forced slabs.
+mesher::MeshOptions eight_slabs(const Case& c) {
+  mesher::MeshOptions options;
+  options.probe_radius = c.probe;
+  options.decomposition.slabs = 8;
+  return options;
+}
+
 }  // namespace
 
 TEST_SUITE("mesher") {
@@ -46,10 +57,8 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
                         Case{"ligand_2zmm.pdb", 0.0, 8}, Case{"crambin_1crn.pdb", 0.0, 3}}) {
     CAPTURE(c.file);
     CAPTURE(c.probe);
-    const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file);
-    mesher::MeshOptions options;
-    options.probe_radius = c.probe;
-    options.decomposition.slabs = 8;
+    const skin::Molecule mol = read_case(c);
+    mesher::MeshOptions options = eight_slabs(c);
     const mesher::MeshResult res = mesher::mesh_skin(mol, options);
     CHECK(res.slabs >= c.min_slabs);
     REQUIRE(res.cut_heights.size() + 1 == res.slabs);
@@ -98,10 +107,8 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
         Case{"ligand_1hpv_amprenavir.pdb", 0.0, 7}, Case{"hivprotease_xk263_1hvr.pdb", 1.4, 7}}) {
     CAPTURE(c.file);
     CAPTURE(c.probe);
-    const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file);
-    mesher::MeshOptions options;
-    options.probe_radius = c.probe;
-    options.decomposition.slabs = 8;
+    const skin::Molecule mol = read_case(c);
+    mesher::MeshOptions options = eight_slabs(c);
     options.decomposition.detours = true;
     options.threads = 1;
     const mesher::MeshResult res = mesher::mesh_skin(mol, options);
