@@ -21,6 +21,7 @@
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "front/band.h"
+#include "front/operations.h"
 #include "skin/vertex_data.h"
 
 namespace skinmesh::front {
@@ -173,6 +174,78 @@ SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   }
   o.seconds = seconds_since(start);
   return o;
+}
+
+/// The sweep of the whole skin (no cut): one sweep per group of whole
+/// components (morse::component_groups()), on up to `threads` threads, their
+/// meshes appended in group order; one sweep of everything when the skin
+/// is one group, or when a group's sweep fails (its error in `why`). A
+/// group's fronts never meet another group's surface, so nothing else is
+/// shared (papers/mesher/decomposition.md, "Components").
+SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                             const SweepOptions& sweep, int threads, DecompositionCosts& costs, std::string& why) {
+  const morse::ComponentGroups groups = morse::component_groups(ms);
+  if (groups.count < 2) return sweep_mesh(skin, ms, sweep);
+  std::vector<std::optional<SweepResult>> parts(groups.count);
+  std::vector<std::string> errors(groups.count);
+  std::vector<double> seconds(groups.count, 0.0);
+  std::mutex progress_mutex;
+  std::size_t finished = 0;
+  parallel_for(groups.count, threads, 1, [&](std::size_t g) {
+    const auto start = std::chrono::steady_clock::now();
+    SweepOptions part = sweep;
+    part.progress = nullptr;
+    try {
+      detail::FrontState fs(skin, ms, part);
+      fs.slab_owns.assign(ms.critical.size(), 0);
+      for (std::size_t p = 0; p < ms.critical.size(); ++p) fs.slab_owns[p] = groups.group[p] == g;
+      parts[g] = detail::run_sweep(fs);
+      parts[g]->mesh.garbage_collection();
+    } catch (const TopologyError& e) {
+      errors[g] = e.what();
+    } catch (const GeometryError& e) {
+      errors[g] = e.what();
+    }
+    seconds[g] = seconds_since(start);
+    if (sweep.progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      sweep.progress("sweep", static_cast<double>(++finished) / static_cast<double>(groups.count));
+    }
+  });
+  for (Index g = 0; g < groups.count; ++g)
+    if (!errors[g].empty()) {
+      why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
+      return sweep_mesh(skin, ms, sweep);
+    }
+  // The glue: every group's mesh appended, its vertex data with it.
+  const auto glue_start = std::chrono::steady_clock::now();
+  SweepResult out;
+  geometry::SurfaceMesh& mesh = out.mesh;
+  auto normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
+  auto rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
+  auto cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
+  {
+    std::size_t nv = 0, nf = 0;
+    for (const auto& part : parts) nv += part->mesh.vertices_size(), nf += part->mesh.faces_size();
+    mesh.reserve(nv, nf);
+  }
+  for (Index g = 0; g < groups.count; ++g) {
+    const SweepResult& r = *parts[g];
+    costs.components.push_back({seconds[g], r.mesh.n_faces()});
+    add_stats(out.stats, r.stats);
+    const Index base = static_cast<Index>(mesh.vertices_size());
+    mesh.append(r.mesh);
+    const auto r_normal = r.mesh.get_vertex_property(skin::kVertexNormal);
+    const auto r_rho = r.mesh.get_vertex_property(skin::kVertexRho);
+    const auto r_cell = r.mesh.get_vertex_property(skin::kVertexCell);
+    for (geometry::Vertex v : r.mesh.vertices()) {
+      const geometry::Vertex w(base + v.idx());
+      normal[w] = r_normal[v], rho[w] = r_rho[v], cell[w] = r_cell[v];
+    }
+    parts[g].reset();  // its copy is in the glued mesh
+  }
+  costs.glue = seconds_since(glue_start);
+  return out;
 }
 
 /// A vertex of a band: of the slab below the cut (a rim vertex) or of the
@@ -338,7 +411,12 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     for (std::size_t c = 0; c < n_cuts; ++c)
       if (kept[c]) live.push_back(c);
     if (live.empty()) {
-      out.sweep = sweep_mesh(skin, ms, sweep);
+      // An observer or a trace replays one front in one mesh: they get the
+      // one sweep of everything.
+      if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
+        out.sweep = sweep_components(skin, ms, sweep, threads, out.costs, out.components_fallback);
+      else
+        out.sweep = sweep_mesh(skin, ms, sweep);
       return out;
     }
     std::vector<SlabKey> keys;

@@ -69,6 +69,11 @@ struct DecompositionOptions {
   /// Threads for the slabs and the bands (at least 1; the pipeline passes
   /// its --threads). The cuts and the mesh do not depend on it.
   int threads = 1;
+  /// Without a cut: one sweep per group of whole skin components
+  /// (morse::component_groups()), on the threads, instead of one sweep of
+  /// the whole skin. The groups depend on the input only. Off where the
+  /// sweep has an observer or a trace (they follow one front in one mesh).
+  bool components = true;
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
@@ -120,6 +125,8 @@ struct SlabCost {
 /// cut was dropped (their time is lost).
 struct DecompositionCosts {
   std::vector<SlabCost> slabs;
+  /// Without a cut: per group of components swept on its own, in group order.
+  std::vector<SlabCost> components;
   double bands = 0;
   double glue = 0;
   double retried = 0;
@@ -137,8 +144,11 @@ struct DecomposedSweep {
   std::vector<std::size_t> cut_balls;
   /// The cuts dropped, in the order they were.
   std::vector<DroppedCut> dropped;
-  /// The costs, empty for one sweep (no cut kept).
+  /// The costs, empty for one sweep (no cut kept, one group of components).
   DecompositionCosts costs;
+  /// Why the groups of components were swept as one after all (a group's
+  /// sweep failed: its error), or empty.
+  std::string components_fallback;
 };
 
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as
@@ -151,7 +161,9 @@ struct DecomposedSweep {
 /// TopologyError, GeometryError or std::invalid_argument) the cut above it
 /// is dropped (below it for the top slab), and where a band has no outward
 /// strip the cut of the band: the two slabs become one, swept again, the
-/// others kept. With every cut dropped, or none given: sweep_mesh().
+/// others kept. With no cut given: one sweep per group of whole skin
+/// components (DecompositionOptions::components; sweep_mesh() if there is one
+/// group or a group's sweep fails); with every cut dropped: sweep_mesh().
 /// Throws what sweep_mesh() throws, and TopologyError if the glued mesh is
 /// not a closed manifold.
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,

@@ -165,6 +165,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   res.cut_balls = std::move(decomposed.cut_balls);
   res.dropped_cuts = std::move(decomposed.dropped);
   res.decomposition_costs = std::move(decomposed.costs);
+  res.components_fallback = std::move(decomposed.components_fallback);
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");

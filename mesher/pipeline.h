@@ -183,6 +183,9 @@ struct MeshResult {
   /// dropped cuts; wall-clock seconds) and each slab's triangles; empty for
   /// one sweep.
   front::DecompositionCosts decomposition_costs;
+  /// Why the skin's groups of components were swept as one after all (a
+  /// group's sweep failed), or empty (front::DecomposedSweep).
+  std::string components_fallback;
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).
   refine::AngleImprovementStats angle_improvement;

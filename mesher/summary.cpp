@@ -106,6 +106,13 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
     if (std::any_of(res.cut_balls.begin(), res.cut_balls.end(), [](std::size_t n) { return n > 0; }))
       j["decomposition"]["cut_balls"] = res.cut_balls;
   }
+  // Without cuts, the groups of skin components swept on their own.
+  if (!res.decomposition_costs.components.empty() || !res.components_fallback.empty()) {
+    std::vector<std::size_t> triangles;
+    for (const front::SlabCost& c : res.decomposition_costs.components) triangles.push_back(c.triangles);
+    j["component_sweeps"] = {{"groups", triangles.size()}, {"triangles", triangles}};
+    if (!res.components_fallback.empty()) j["component_sweeps"]["fallback"] = res.components_fallback;
+  }
   const refine::AngleImprovementStats& ai = res.angle_improvement;
   j["angle_improvement"] = {{"enabled", options.improve_angles},
                             {"low_triangles", ai.low_triangles},
@@ -194,6 +201,11 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
     std::vector<double> per_slab;
     for (const front::SlabCost& slab : c.slabs) per_slab.push_back(slab.seconds);
     seconds["sweep_parts"] = {{"slabs", per_slab}, {"bands", c.bands}, {"glue", c.glue}, {"retried", c.retried}};
+  } else if (!res.decomposition_costs.components.empty()) {
+    const front::DecompositionCosts& c = res.decomposition_costs;
+    std::vector<double> per_group;
+    for (const front::SlabCost& group : c.components) per_group.push_back(group.seconds);
+    seconds["sweep_parts"] = {{"components", per_group}, {"glue", c.glue}};
   }
   if (context.write_seconds >= 0) seconds["write"] = context.write_seconds;
   if (context.total_seconds >= 0) seconds["total"] = context.total_seconds;

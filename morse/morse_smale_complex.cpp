@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
@@ -241,6 +242,61 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
     });
   }
   return ms;
+}
+
+ComponentGroups component_groups(const MorseSmaleComplex& ms) {
+  const std::size_t n = ms.critical.size();
+  ComponentGroups one;
+  one.group.assign(n, 0);
+  one.count = n ? 1 : 0;
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::vector<char> linked(n, 0);
+  for (const IntegralLine& line : ms.lines) {
+    if (line.saddle == kInvalidIndex) continue;
+    if (line.end == kInvalidIndex || line.end >= n || line.saddle >= n) return one;
+    parent[find(line.saddle)] = find(line.end);
+    linked[line.saddle] = linked[line.end] = 1;
+  }
+  // A cancelled pair is one degenerate critical point, on one component
+  // (a coincident pair may have no arc between them).
+  for (const std::array<Index, 2>& pair : ms.cancelled) {
+    if (pair[0] >= n || pair[1] >= n) return one;
+    parent[find(pair[0])] = find(pair[1]);
+    linked[pair[0]] = linked[pair[1]] = 1;
+  }
+  // The extrema without a link: components without saddles, one group.
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::size_t rest = kNone;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (linked[i]) continue;
+    if (ms.critical[i].kind == CriticalKind::Saddle) return one;  // a saddle without lines
+    if (rest == kNone)
+      rest = i;
+    else
+      parent[find(i)] = find(rest);
+  }
+  ComponentGroups out;
+  out.group.assign(n, kInvalidIndex);
+  std::vector<Index> root_group(n, kInvalidIndex);
+  for (std::size_t i = 0; i < n; ++i) {
+    Index& g = root_group[find(i)];
+    if (g == kInvalidIndex) g = out.count++;
+    out.group[i] = g;
+  }
+  // Each group's Morse count must be that of whole closed surfaces.
+  std::vector<std::array<std::int64_t, 3>> count(out.count, {0, 0, 0});
+  for (std::size_t i = 0; i < n; ++i) ++count[out.group[i]][static_cast<int>(ms.critical[i].kind)];
+  for (Index g = 0; g < out.count; ++g) {
+    const auto& [minima, saddles, maxima] = count[g];
+    if (minima == 0 || maxima == 0 || (minima - saddles + maxima) % 2 != 0) return one;
+    if (rest != kNone && g == out.group[rest] && (saddles != 0 || minima != maxima)) return one;
+  }
+  return out;
 }
 
 }  // namespace skinmesh::morse

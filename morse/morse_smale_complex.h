@@ -95,6 +95,28 @@ struct MorseSmaleComplex {
   MorseCount live_count() const;
 };
 
+/// A partition of the critical points into groups that each cover whole
+/// components of the skin: `group[i]` is the group of critical point i, in
+/// 0 .. count - 1, numbered in the order of their first critical point.
+struct ComponentGroups {
+  std::vector<Index> group;
+  Index count = 0;
+};
+
+/// Groups the critical points of `ms` by the skin component they lie on, so
+/// that each group can be swept alone (papers/mesher/decomposition.md,
+/// "Components"). A saddle and the extrema its integral lines reach lie on
+/// one component, and on a connected surface with saddles these links join
+/// every critical point (the descending lines and the maxima's discs cover
+/// it); the extrema no line reaches belong to components without saddles
+/// (one minimum and one maximum each) and form one more group together.
+/// count = 1 (one group, the whole skin) when that reading is not safe: an
+/// integral line without an end, or a group whose Morse count cannot be that
+/// of whole components (no minimum or no maximum, an odd Euler
+/// characteristic, or unlinked extrema not in minimum–maximum pairs).
+/// Reads the lines' ends, not their polylines.
+ComponentGroups component_groups(const MorseSmaleComplex& ms);
+
 /// Traces one integral line from saddle `s` of `cps`, starting in tangent
 /// direction `dir` (unit), ascending (sgn = +1) or descending (sgn = -1), by
 /// Heun predictor–corrector steps with re-projection (papers/skin/skin_math.md

@@ -12,7 +12,9 @@
 #include <string>
 
 #include "mesher/pipeline.h"
+#include "morse/morse_smale_complex.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
 #include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
@@ -141,6 +143,98 @@ TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within 
   CHECK(front::automatic_slabs(100000000, opt) == opt.max_slabs);
   opt.atoms_per_slab = 100;
   CHECK(front::automatic_slabs(327, opt) == 3);
+}
+
+TEST_CASE("decomposed sweep: groups of whole skin components are swept on their own") {
+  // Two copies of crambin 60 Å apart at probe 1.4 (two bodies), and crambin
+  // at probe 0 (one body and its cavities). Each group's sweep sees only its
+  // own critical points; the appended meshes must pass every check, as one
+  // sweep of everything does, with the same components.
+  skin::Molecule two = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const std::size_t n = two.atoms.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    skin::Atom a = two.atoms[i];
+    a.centre += Vec3(60, 0, 0);
+    two.atoms.push_back(a);
+  }
+  const skin::Molecule one = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  struct Input {
+    const skin::Molecule* mol;
+    double probe;
+  };
+  for (const Input& in : {Input{&two, 1.4}, Input{&one, 0.0}}) {
+    CAPTURE(in.probe);
+    mesher::MeshOptions options;
+    options.probe_radius = in.probe;
+    options.threads = 1;
+    const mesher::MeshResult res = mesher::mesh_skin(*in.mol, options);
+    REQUIRE(res.checked);
+    test::check_every_property(res.check);
+    CHECK(res.components_fallback.empty());
+    CHECK(res.slabs == 1);
+    const std::size_t groups = res.decomposition_costs.components.size();
+    CHECK(groups >= 2);
+    CHECK(groups <= res.check.mesh.components.size());
+    std::size_t group_triangles = 0;
+    for (const front::SlabCost& g : res.decomposition_costs.components) {
+      CHECK(g.triangles > 0);
+      group_triangles += g.triangles;
+    }
+    CHECK(group_triangles > 0.8 * static_cast<double>(res.mesh.triangles.size()));
+
+    // One sweep of the whole skin: the same components and Euler
+    // characteristics, the same area to the meshes' accuracy.
+    options.decomposition.components = false;
+    const mesher::MeshResult whole = mesher::mesh_skin(*in.mol, options);
+    REQUIRE(whole.checked);
+    test::check_every_property(whole.check);
+    CHECK(whole.decomposition_costs.components.empty());
+    CHECK(res.check.component_euler == whole.check.component_euler);
+    CHECK(mesh_area(res.mesh) == doctest::Approx(mesh_area(whole.mesh)).epsilon(2e-3));
+
+    // The groups depend on the input only.
+    options.decomposition.components = true;
+    options.threads = 2;
+    const mesher::MeshResult two_threads = mesher::mesh_skin(*in.mol, options);
+    CHECK(two_threads.mesh.positions == res.mesh.positions);
+    CHECK(two_threads.mesh.triangles == res.mesh.triangles);
+  }
+}
+
+TEST_CASE("morse: component groups follow the integral lines, and refuse what they cannot vouch for") {
+  const auto complex_of = [](const std::vector<geometry::WeightedPoint>& pts) {
+    const skin::SkinSurface skin(pts);
+    return morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  };
+  {
+    // Two separate balls: two spheres without saddles (a minimum and a
+    // maximum each), which form one group together.
+    const morse::MorseSmaleComplex ms = complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(20, 0, 0), 4.0}});
+    REQUIRE(ms.critical.size() == 4);
+    const morse::ComponentGroups g = morse::component_groups(ms);
+    CHECK(g.count == 1);
+    CHECK(g.group == std::vector<Index>(4, 0));
+  }
+  // Two separate dumbbells lying across the height direction: each has two
+  // minima, two saddles (under and over its neck) and two maxima, all
+  // linked by the saddles' lines: one group per dumbbell.
+  const morse::MorseSmaleComplex ms =
+      complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(3.5, 0, 0), 4.0}, {Vec3(40, 0, 0), 4.0}, {Vec3(43.5, 0, 0), 4.0}});
+  REQUIRE(ms.critical.size() == 12);
+  const morse::ComponentGroups g = morse::component_groups(ms);
+  REQUIRE(g.count == 2);
+  for (std::size_t i = 0; i < ms.critical.size(); ++i) {
+    CAPTURE(i);
+    CHECK(g.group[i] == (ms.critical[i].position.x() < 20 ? g.group[0] : 1 - g.group[0]));
+  }
+  // A line without an end: the partition is refused (one group).
+  morse::MorseSmaleComplex broken = ms;
+  for (morse::IntegralLine& line : broken.lines)
+    if (line.saddle != kInvalidIndex) {
+      line.end = kInvalidIndex;
+      break;
+    }
+  CHECK(morse::component_groups(broken).count == 1);
 }
 
 TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
