@@ -217,19 +217,24 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
       why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
       return sweep_mesh(skin, ms, sweep);
     }
-  // The glue: every group's mesh appended, its vertex data with it.
+  // The glue: the first group's mesh taken as it is (no copy of it at the
+  // peak), every other group's appended, its vertex data with it.
   const auto glue_start = std::chrono::steady_clock::now();
   SweepResult out;
+  out.mesh = std::move(parts[0]->mesh);
+  out.stats = parts[0]->stats;
+  costs.components.push_back({seconds[0], out.mesh.n_faces()});
+  parts[0].reset();
   geometry::SurfaceMesh& mesh = out.mesh;
-  auto normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
-  auto rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
-  auto cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
+  auto normal = mesh.get_vertex_property(skin::kVertexNormal);
+  auto rho = mesh.get_vertex_property(skin::kVertexRho);
+  auto cell = mesh.get_vertex_property(skin::kVertexCell);
   {
-    std::size_t nv = 0, nf = 0;
-    for (const auto& part : parts) nv += part->mesh.vertices_size(), nf += part->mesh.faces_size();
+    std::size_t nv = mesh.vertices_size(), nf = mesh.faces_size();
+    for (Index g = 1; g < groups.count; ++g) nv += parts[g]->mesh.vertices_size(), nf += parts[g]->mesh.faces_size();
     mesh.reserve(nv, nf);
   }
-  for (Index g = 0; g < groups.count; ++g) {
+  for (Index g = 1; g < groups.count; ++g) {
     const SweepResult& r = *parts[g];
     costs.components.push_back({seconds[g], r.mesh.n_faces()});
     add_stats(out.stats, r.stats);
