@@ -176,6 +176,24 @@ SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComp
   return o;
 }
 
+/// Appends `part` (garbage-collected) to `mesh` with its vertex data
+/// (normal, rho, cell); returns the index its vertex 0 gets.
+Index append_with_vertex_data(geometry::SurfaceMesh& mesh, const geometry::SurfaceMesh& part) {
+  const Index base = static_cast<Index>(mesh.vertices_size());
+  mesh.append(part);
+  auto normal = mesh.get_vertex_property(skin::kVertexNormal);
+  auto rho = mesh.get_vertex_property(skin::kVertexRho);
+  auto cell = mesh.get_vertex_property(skin::kVertexCell);
+  const auto p_normal = part.get_vertex_property(skin::kVertexNormal);
+  const auto p_rho = part.get_vertex_property(skin::kVertexRho);
+  const auto p_cell = part.get_vertex_property(skin::kVertexCell);
+  for (geometry::Vertex v : part.vertices()) {
+    const geometry::Vertex w(base + v.idx());
+    normal[w] = p_normal[v], rho[w] = p_rho[v], cell[w] = p_cell[v];
+  }
+  return base;
+}
+
 /// The sweep of the whole skin (no cut): one sweep per group of whole
 /// components (morse::component_groups()), on up to `threads` threads, their
 /// meshes appended in group order; one sweep of everything when the skin
@@ -226,9 +244,6 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
   costs.components.push_back({seconds[0], out.mesh.n_faces()});
   parts[0].reset();
   geometry::SurfaceMesh& mesh = out.mesh;
-  auto normal = mesh.get_vertex_property(skin::kVertexNormal);
-  auto rho = mesh.get_vertex_property(skin::kVertexRho);
-  auto cell = mesh.get_vertex_property(skin::kVertexCell);
   {
     std::size_t nv = mesh.vertices_size(), nf = mesh.faces_size();
     for (Index g = 1; g < groups.count; ++g) nv += parts[g]->mesh.vertices_size(), nf += parts[g]->mesh.faces_size();
@@ -238,15 +253,7 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
     const SweepResult& r = *parts[g];
     costs.components.push_back({seconds[g], r.mesh.n_faces()});
     add_stats(out.stats, r.stats);
-    const Index base = static_cast<Index>(mesh.vertices_size());
-    mesh.append(r.mesh);
-    const auto r_normal = r.mesh.get_vertex_property(skin::kVertexNormal);
-    const auto r_rho = r.mesh.get_vertex_property(skin::kVertexRho);
-    const auto r_cell = r.mesh.get_vertex_property(skin::kVertexCell);
-    for (geometry::Vertex v : r.mesh.vertices()) {
-      const geometry::Vertex w(base + v.idx());
-      normal[w] = r_normal[v], rho[w] = r_rho[v], cell[w] = r_cell[v];
-    }
+    append_with_vertex_data(mesh, r.mesh);
     parts[g].reset();  // its copy is in the glued mesh
   }
   costs.glue = seconds_since(glue_start);
@@ -518,9 +525,9 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     const auto glue_start = std::chrono::steady_clock::now();
     out.costs.bands = bands_seconds;
     geometry::SurfaceMesh& mesh = out.sweep.mesh;
-    auto normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
-    auto rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
-    auto cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
+    mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
+    mesh.add_vertex_property(skin::kVertexRho, 0.0);
+    mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
     {
       std::size_t nv = 0, nf = 0;
       for (const SlabKey& key : keys) {
@@ -537,15 +544,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       const SlabResult& r = *o.result;
       out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
       add_stats(out.sweep.stats, r.stats);
-      base[k] = static_cast<Index>(mesh.vertices_size());
-      mesh.append(r.mesh);
-      const auto r_normal = r.mesh.get_vertex_property(skin::kVertexNormal);
-      const auto r_rho = r.mesh.get_vertex_property(skin::kVertexRho);
-      const auto r_cell = r.mesh.get_vertex_property(skin::kVertexCell);
-      for (geometry::Vertex v : r.mesh.vertices()) {
-        const geometry::Vertex g(base[k] + v.idx());
-        normal[g] = r_normal[v], rho[g] = r_rho[v], cell[g] = r_cell[v];
-      }
+      base[k] = append_with_vertex_data(mesh, r.mesh);
       swept.erase(keys[k]);  // its copy is in the glued mesh: the peak holds one copy of the slab at a time
     }
     // Each slab's mesh is a surface whose boundary is its lower curves'
