@@ -6,10 +6,10 @@
 #include <future>
 #include <numeric>
 #include <sstream>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "core/parallel.h"
 #include "geometry/triangulation/point_grid.h"
 #include "skin/restricted_delaunay.h"
 
@@ -131,8 +131,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   mopt.small_angle_threshold_deg = opt.min_angle_deg;
   // The mesh-only checks share nothing with the skin checks below but the
   // (read-only) mesh: with two threads they run beside them.
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::min(hw, 2u));
+  const int threads = thread_count(opt.threads);
+  mopt.threads = threads;
   std::future<geometry::MeshCheckReport> mesh_report;
   if (threads >= 2)
     mesh_report = std::async(std::launch::async, [&mesh, mopt] { return geometry::check_mesh(mesh, mopt); });
@@ -153,42 +153,64 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   // vertices of no triangle come last. (Hints change only the walk, not the
   // cell's patch at the point: f, grad f and rho are continuous across faces.)
   std::vector<Index> order;
-  std::vector<Index> order_hint;
+  std::vector<Index> order_hint;  // the position in `order` of v's hint vertex, or kInvalidIndex
   {
-    std::vector<std::uint8_t> seen(nv, 0);
+    std::vector<Index> position(nv, kInvalidIndex);
     order.reserve(nv);
     order_hint.reserve(nv);
     for (const auto& t : mesh.triangles) {
       Index from = kInvalidIndex;
       for (int i = 0; i < 3; ++i)
-        if (t[i] < nv && seen[t[i]]) from = t[i];
+        if (t[i] < nv && position[t[i]] != kInvalidIndex) from = position[t[i]];
       for (int i = 0; i < 3; ++i) {
         const Index v = t[i];
-        if (v >= nv || seen[v]) continue;
-        seen[v] = 1;
+        if (v >= nv || position[v] != kInvalidIndex) continue;
+        position[v] = static_cast<Index>(order.size());
         order.push_back(v);
         order_hint.push_back(from);
-        from = v;
+        from = position[v];
       }
     }
     for (std::size_t v = 0; v < nv; ++v)
-      if (!seen[v]) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
+      if (position[v] == kInvalidIndex) order.push_back(static_cast<Index>(v)), order_hint.push_back(kInvalidIndex);
   }
   rep.vertex_distance_tolerance =
       opt.max_vertex_distance * std::max(1.0, skin.length_scale() / kAbsoluteToleranceScale);
-  Index last = kInvalidIndex;
-  for (std::size_t k = 0; k < nv; ++k) {
-    const Index v = order[k];
-    if (!P[v].allFinite()) continue;
-    const Index h = order_hint[k] != kInvalidIndex && cell[order_hint[k]] != kInvalidIndex ? cell[order_hint[k]] : last;
-    const skin::SkinSample s = skin.sample(P[v], h);
-    last = cell[v] = s.cell;
-    rho[v] = s.rho;
-    const double g = s.gradient.norm();
-    normal[v] = s.gradient / g;
-    const double d = std::abs(s.f) / g;
-    if (d > rep.max_vertex_distance) rep.max_vertex_distance = d, rep.worst_vertex = static_cast<Index>(v);
-    if (d > rep.vertex_distance_tolerance) ++rep.num_far_vertices;
+  // The vertices in blocks of kSampleGrain consecutive ones of `order`, on the
+  // threads: a block takes hints only from its own vertices (a walk from
+  // another block's cell would race with that block), so the cells found, and
+  // every value below, do not depend on the thread count.
+  constexpr std::size_t kSampleGrain = 8192;  // [chosen] many walks per block, few cold starts
+  struct Farthest {
+    double distance = 0;
+    Index vertex = kInvalidIndex;
+    std::size_t far = 0;  // vertices beyond the tolerance
+  };
+  const std::size_t num_sample_blocks = (nv + kSampleGrain - 1) / kSampleGrain;
+  std::vector<Farthest> farthest(num_sample_blocks);
+  parallel_for(num_sample_blocks, threads, 1, [&](std::size_t blk) {
+    const std::size_t begin = blk * kSampleGrain, end = std::min(nv, begin + kSampleGrain);
+    Farthest& f = farthest[blk];
+    Index last = kInvalidIndex;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index v = order[k];
+      if (!P[v].allFinite()) continue;
+      const Index from = order_hint[k];
+      const Index h =
+          from != kInvalidIndex && from >= begin && cell[order[from]] != kInvalidIndex ? cell[order[from]] : last;
+      const skin::SkinSample s = skin.sample(P[v], h);
+      last = cell[v] = s.cell;
+      rho[v] = s.rho;
+      const double g = s.gradient.norm();
+      normal[v] = s.gradient / g;
+      const double d = std::abs(s.f) / g;
+      if (d > f.distance) f.distance = d, f.vertex = v;
+      if (d > rep.vertex_distance_tolerance) ++f.far;
+    }
+  });
+  for (const Farthest& f : farthest) {  // in block order: the first farthest vertex, as one loop finds it
+    if (f.distance > rep.max_vertex_distance) rep.max_vertex_distance = f.distance, rep.worst_vertex = f.vertex;
+    rep.num_far_vertices += f.far;
   }
   release(order);
   release(order_hint);
@@ -231,21 +253,37 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
       if (valid(t)) mean_edge += (P[t[0]] - P[t[1]]).norm(), ++ne;
     mean_edge = ne ? mean_edge / ne : 1.0;
     const geometry::FlatPointGrid grid(P, std::max(mean_edge, kMinGridCell));
-    for (std::size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
-      const auto& t = mesh.triangles[ti];
-      if (!valid(t)) continue;
-      Vec3 m;
-      Index c = cell[t[0]];
-      bool bad = !skin::surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], m, c);
-      if (!bad) {
-        const double r = (m - P[t[0]]).norm() * (1 - kBallShrink);
-        bad = grid.any_near(m, r, [&](Index v, const Vec3&) { return v != t[0] && v != t[1] && v != t[2]; });
+    // Triangles in blocks on the threads; counts and examples joined in block
+    // order, so the report is the one a single loop gives.
+    constexpr std::size_t kTriangleGrain = 16384;  // [chosen]
+    const std::size_t nt = mesh.triangles.size();
+    struct Violations {
+      std::size_t count = 0;
+      std::vector<Index> examples;
+    };
+    std::vector<Violations> found((nt + kTriangleGrain - 1) / kTriangleGrain);
+    parallel_for(found.size(), threads, 1, [&](std::size_t blk) {
+      Violations& out = found[blk];
+      for (std::size_t ti = blk * kTriangleGrain, end = std::min(nt, ti + kTriangleGrain); ti < end; ++ti) {
+        const auto& t = mesh.triangles[ti];
+        if (!valid(t)) continue;
+        Vec3 m;
+        Index c = cell[t[0]];
+        bool bad = !skin::surface_delaunay_centre(skin, P[t[0]], P[t[1]], P[t[2]], m, c);
+        if (!bad) {
+          const double r = (m - P[t[0]]).norm() * (1 - kBallShrink);
+          bad = grid.any_near(m, r, [&](Index v, const Vec3&) { return v != t[0] && v != t[1] && v != t[2]; });
+        }
+        if (bad) {
+          ++out.count;
+          if (out.examples.size() < kMaxExamples) out.examples.push_back(static_cast<Index>(ti));
+        }
       }
-      if (bad) {
-        ++rep.num_rdt_violations;
-        if (rep.rdt_violation_examples.size() < kMaxExamples)
-          rep.rdt_violation_examples.push_back(static_cast<Index>(ti));
-      }
+    });
+    for (const Violations& v : found) {
+      rep.num_rdt_violations += v.count;
+      for (Index ti : v.examples)
+        if (rep.rdt_violation_examples.size() < kMaxExamples) rep.rdt_violation_examples.push_back(ti);
     }
     if (rep.num_rdt_violations)
       skin_problems.push_back(std::to_string(rep.num_rdt_violations) +

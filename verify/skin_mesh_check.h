@@ -32,11 +32,13 @@ struct SkinCheckOptions {
   double min_angle_deg = 21.5;
   bool check_self_intersections = true;
   bool check_restricted_delaunay = true;
-  /// Threads: 1 runs everything on the calling thread; 2 (or 0 = as many as
-  /// the machine has, at most 2) runs the mesh-only checks of
-  /// geometry::check_mesh (closed, manifold, orientation, exact
-  /// self-intersections, angles) on a second thread while the calling thread
-  /// does the skin checks. The report is the same for every value.
+  /// Threads (0: every core of the machine): with 2 or more, the mesh-only
+  /// checks of geometry::check_mesh (closed, manifold, orientation, exact
+  /// self-intersections, angles) run on a thread of their own beside the skin
+  /// checks, and both split their loops (samples of the skin at the vertices,
+  /// restricted Delaunay balls, the self-intersection sweep) over `threads`
+  /// threads. 1 runs everything on the calling thread. The report is the same
+  /// for every value.
   int threads = 0;
   /// Expected Euler characteristic of each skin component (any order), if the
   /// caller knows it (from the Morse–Smale complex); empty: only the number of

@@ -101,7 +101,7 @@ MeshCheckReport check_mesh(const IndexedMesh& mesh, const MeshCheckOptions& opti
   std::vector<Index>().swap(component);  // freed before the self-intersection search, the peak
   mesh_checks_detail::measure_angles(mesh, classes, options.small_angle_threshold_deg, r);
   if (options.check_self_intersections)
-    mesh_checks_detail::find_self_intersections(mesh, classes, incidence, options.max_examples, r);
+    mesh_checks_detail::find_self_intersections(mesh, classes, incidence, options.max_examples, options.threads, r);
   list_problems(r);
   return r;
 }

@@ -36,6 +36,9 @@ struct MeshCheckOptions {
   /// At most this many examples of each kind of problem are listed in the
   /// report (the counts are always complete). Default: 16.
   std::size_t max_examples = 16;
+  /// Threads for the self-intersection test (the simple fans and the column
+  /// sweep); the report is the same for every count. Default: 1.
+  int threads = 1;
 };
 
 /// One connected component of the mesh: triangles joined through shared edges

@@ -91,21 +91,27 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
 /// first `max_examples` pairs (i < j, sorted) of `r`. Column-grid broad phase,
 /// then mesh_triangles_intersect() (geometry/kernel/triangle_intersection.h) on each
 /// candidate pair that is not the same triangle twice and not settled by
-/// simple_fan_vertices() (`incidence` from build_incidence()).
+/// simple_fan_vertices() (`incidence` from build_incidence()). Runs on up
+/// to `threads` threads (core/parallel.h); the report is the same for every
+/// thread count.
 void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
-                             std::size_t max_examples, MeshCheckReport& r);
+                             std::size_t max_examples, int threads, MeshCheckReport& r);
 
 /// Per vertex, 1 if the good triangles around it form a simple fan: one closed
 /// cycle of consistently oriented triangles that a coordinate projection maps
 /// one-to-one onto a disc around the vertex (orient2d of one strict sign,
 /// winding number 1). Two good triangles sharing such a vertex (or an edge with
 /// such an end) meet only in what they share. Exact. 0 for other vertices.
-/// `incidence` = build_incidence(mesh, classes).
+/// `incidence` = build_incidence(mesh, classes). On up to `threads` threads.
 std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const TriangleClasses& classes,
-                                              const VertexIncidence& incidence);
+                                              const VertexIncidence& incidence, int threads = 1);
 
 /// The broad phase of find_self_intersections(), for tests: every pair (i < j)
-/// of `boxes` (lo x, y, z, hi x, y, z) whose closed boxes overlap, sorted.
-std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes);
+/// of `boxes` (lo x, y, z, hi x, y, z) whose closed boxes overlap, sorted;
+/// the same list for every number of `threads` and every `entries_per_block`
+/// (the size of the blocks of columns swept on the threads; 0: the checks'
+/// own).
+std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes, int threads = 1,
+                                                    std::size_t entries_per_block = 0);
 
 }  // namespace skinmesh::geometry::mesh_checks_detail

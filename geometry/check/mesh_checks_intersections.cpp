@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geometry/check/mesh_checks_internal.h"
 #include "geometry/kernel/predicates.h"
 #include "geometry/kernel/triangle_intersection.h"
@@ -84,6 +85,10 @@ FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
   return f;
 }
 
+/// Column entries per block of the broad phase's sweep: enough that a block's
+/// sort and sweep outweigh handing it to a thread. [chosen]
+constexpr std::size_t kEntriesPerBlock = std::size_t{1} << 15;
+
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
 // called three times per box, so nothing is stored twice): a grid of square
 // columns (x, y) of side w about the mean extent of the boxes; each box is
@@ -93,14 +98,23 @@ FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
 // (4-byte indices) sorted by lower z and is swept along z; a pair is tested
 // only in the first column both ranges share (the componentwise maximum of
 // their first columns), so exactly once.
-// Calls test(p, q, maybe) with the payloads of candidate pairs (in either
-// order), maybe = true exactly once for every pair whose rounded boxes overlap
-// (closed boxes: touching counts), false for the others. The rounded boxes
-// contain the exact ones, so every pair of overlapping exact boxes is among
-// the `maybe` pairs; the caller decides exactly which of those overlap.
-template <class Tri, class MakeItem, class PairTest>
-void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
-  if (n < 2) return;
+// Calls test(block, p, q, maybe) with the payloads of candidate pairs (in
+// either order), maybe = true exactly once for every pair whose rounded boxes
+// overlap (closed boxes: touching counts), false for the others. The rounded
+// boxes contain the exact ones, so every pair of overlapping exact boxes is
+// among the `maybe` pairs; the caller decides exactly which of those overlap.
+// The columns are sorted and swept in blocks of consecutive columns, on up to
+// `threads` threads: blocks(k) is called first with their number k, and test
+// receives the block of the pair, so that a caller can keep one tally per block
+// and merge them in block order. The blocks depend on the boxes only (about
+// entries_per_block column entries each), never on the thread count.
+template <class Tri, class MakeItem, class Blocks, class PairTest>
+void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blocks, PairTest&& test,
+                       std::size_t entries_per_block = kEntriesPerBlock) {
+  if (n < 2) {
+    blocks(std::size_t{0});
+    return;
+  }
   Vec3 gmin = Vec3::Constant(std::numeric_limits<double>::infinity()), gmax = -gmin;
   double mean_extent = 0.0;
   // The grid's extent from the exact boxes (the rounded ones may stick out by
@@ -189,18 +203,29 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
         entry[start[std::size_t(x * dims[1] + y)]++] = std::uint32_t(i);
   }
   // start[c] now holds the end of column c (and its start is start[c - 1]).
-  auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
-  for (std::size_t c = 0; c < num_columns; ++c) {
-    const std::uint32_t b = c ? start[c - 1] : 0, e = start[c];
-    if (e - b > 1) std::sort(entry.begin() + b, entry.begin() + e, lower_z);
+  // Blocks: runs of consecutive columns holding about entries_per_block entries
+  // (a column is never split).
+  std::vector<std::size_t> block_begin{0};  // first column of each block, then num_columns
+  for (std::size_t c = 0, since = 0; c < num_columns; ++c) {
+    since += start[c] - (c ? start[c - 1] : 0);
+    if (since >= entries_per_block && c + 1 < num_columns) {
+      block_begin.push_back(c + 1);
+      since = 0;
+    }
   }
-  // In each column, sweep along z: pair each box only with those starting
-  // before it ends. Branch-free apart from the end of each run: the outcome
-  // of the box test is passed on, not branched on (it is hard to predict).
-  for (std::int32_t cx = 0; cx < dims[0]; ++cx)
-    for (std::int32_t cy = 0; cy < dims[1]; ++cy) {
-      const std::size_t c = std::size_t(cx * dims[1] + cy);
+  block_begin.push_back(num_columns);
+  const std::size_t num_blocks = block_begin.size() - 1;
+  blocks(num_blocks);
+  auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
+  parallel_for(num_blocks, threads, 1, [&](std::size_t blk) {
+    for (std::size_t c = block_begin[blk]; c < block_begin[blk + 1]; ++c) {
       const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
+      // Each column sorted by lower z, then swept along z: each box is paired
+      // only with those starting before it ends. Branch-free apart from the
+      // end of each run: the outcome of the box test is passed on, not
+      // branched on (it is hard to predict).
+      if (end - begin > 1) std::sort(entry.begin() + begin, entry.begin() + end, lower_z);
+      const auto cx = std::int32_t(c / std::size_t(dims[1])), cy = std::int32_t(c % std::size_t(dims[1]));
       for (std::uint32_t a = begin; a + 1 < end; ++a) {
         const FloatBoxItem<Tri>& p = item[entry[a]];
         for (std::uint32_t b = a + 1; b < end; ++b) {
@@ -209,10 +234,11 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, PairTest&& test) {
           const bool overlap =
               (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]);
           const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
-          test(p.tri, q.tri, overlap & first);
+          test(blk, p.tri, q.tri, overlap & first);
         }
       }
     }
+  });
 }
 
 // Fan Test ---------------------------------------------------------------------
@@ -289,39 +315,45 @@ bool simple_fan(const std::vector<Vec3>& P, const std::vector<std::array<Index, 
 }  // namespace
 
 std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const TriangleClasses& classes,
-                                              const VertexIncidence& incidence) {
+                                              const VertexIncidence& incidence, int threads) {
   const std::size_t nv = mesh.positions.size();
   std::vector<std::uint8_t> ok(nv, 0);
-  Index fan[64];
-  for (std::size_t v = 0; v < nv; ++v) {
+  constexpr std::size_t kGrain = 4096;  // vertices per block handed to a thread [chosen]
+  parallel_for(nv, threads, kGrain, [&](std::size_t v) {
     const Index b = incidence.start[v], e = incidence.start[v + 1];
-    if (e - b > 64) continue;
+    if (e - b > 64) return;
+    Index fan[64];
     std::size_t k = 0;
     for (Index j = b; j < e; ++j)
       if (classes.kind[incidence.incident[j]] == TriangleKind::kGood) fan[k++] = incidence.incident[j];
     ok[v] = simple_fan(mesh.positions, mesh.triangles, Index(v), fan, k) ? 1 : 0;
-  }
+  });
   return ok;
 }
 
-std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes) {
+std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes, int threads,
+                                                    std::size_t entries_per_block) {
   struct Id {
     Index id;
   };
-  std::vector<std::array<Index, 2>> pairs;
+  std::vector<std::vector<std::array<Index, 2>>> per_block;
   for_each_box_pair<Id>(
       boxes.size(),
       [&](std::size_t i) {
         const auto& b = boxes[i];
         return BoxItem<Id>{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, {Index(i)}};
       },
-      [&](const Id& i, const Id& j, bool maybe) {
+      threads, [&](std::size_t k) { per_block.resize(k); },
+      [&](std::size_t block, const Id& i, const Id& j, bool maybe) {
         if (!maybe) return;
         const auto &a = boxes[i.id], &b = boxes[j.id];
         bool overlap = true;
         for (int k = 0; k < 3; ++k) overlap = overlap && a[k] <= b[k + 3] && b[k] <= a[k + 3];
-        if (overlap) pairs.push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
-      });
+        if (overlap) per_block[block].push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
+      },
+      entries_per_block == 0 ? kEntriesPerBlock : entries_per_block);
+  std::vector<std::array<Index, 2>> pairs;
+  for (const auto& found : per_block) pairs.insert(pairs.end(), found.begin(), found.end());
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
@@ -343,7 +375,7 @@ bool exact_boxes_overlap(const std::vector<Vec3>& P, const std::array<Index, 3>&
 }  // namespace
 
 void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
-                             std::size_t max_examples, MeshCheckReport& r) {
+                             std::size_t max_examples, int threads, MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nt = T.size();
@@ -369,28 +401,41 @@ void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& cla
   // Pairs that share a vertex (or an edge) of a simple fan cannot meet beyond
   // what they share (simple_fan()): counted as tested, decided without the
   // exact test. Every other pair goes through mesh_triangles_intersect().
-  const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence);
+  const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence, threads);
+  // One tally per block of columns; the found pairs are sorted below, so the
+  // report does not depend on the thread count.
+  struct Tally {
+    std::vector<std::array<Index, 2>> found;
+    std::size_t tested = 0;
+  };
+  std::vector<Tally> tally;
+  auto blocks = [&](std::size_t k) { tally.resize(k); };
+  for_each_box_pair<Tri>(
+      good.size(), make, threads, blocks, [&](std::size_t block, const Tri& ti, const Tri& tj, bool maybe) {
+        // Shared vertices, without branches: m[k] = whether ti.v[k] is a vertex of tj.
+        bool m[3];
+        for (int k = 0; k < 3; ++k) m[k] = (ti.v[k] == tj.v[0]) | (ti.v[k] == tj.v[1]) | (ti.v[k] == tj.v[2]);
+        const int ns = int(m[0]) + int(m[1]) + int(m[2]);
+        // The exact boxes overlap: certainly if the triangles share a vertex (it
+        // lies in both), else decided from the positions (rare: such pairs go on
+        // to the exact triangle test anyway).
+        const bool hit = maybe & ((ns > 0) || (maybe && exact_boxes_overlap(P, ti.v, tj.v)));
+        const bool counted = hit & (ns != 3);  // a duplicate is counted separately
+        tally[block].tested += counted;
+        // One or two shared vertices, one of them a simple fan: settled.
+        const bool settled =
+            (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) | (m[2] & (fan_ok[ti.v[2]] != 0));
+        if (!(counted & !settled)) return;
+        const Tri& lo = ti.id < tj.id ? ti : tj;
+        const Tri& hi = ti.id < tj.id ? tj : ti;
+        if (mesh_triangles_intersect(lo.v, hi.v, P)) tally[block].found.push_back({lo.id, hi.id});
+      });
   std::vector<std::array<Index, 2>> found;
   std::size_t tested = 0;
-  for_each_box_pair<Tri>(good.size(), make, [&](const Tri& ti, const Tri& tj, bool maybe) {
-    // Shared vertices, without branches: m[k] = whether ti.v[k] is a vertex of tj.
-    bool m[3];
-    for (int k = 0; k < 3; ++k) m[k] = (ti.v[k] == tj.v[0]) | (ti.v[k] == tj.v[1]) | (ti.v[k] == tj.v[2]);
-    const int ns = int(m[0]) + int(m[1]) + int(m[2]);
-    // The exact boxes overlap: certainly if the triangles share a vertex (it
-    // lies in both), else decided from the positions (rare: such pairs go on
-    // to the exact triangle test anyway).
-    const bool hit = maybe & ((ns > 0) || (maybe && exact_boxes_overlap(P, ti.v, tj.v)));
-    const bool counted = hit & (ns != 3);  // a duplicate is counted separately
-    tested += counted;
-    // One or two shared vertices, one of them a simple fan: settled.
-    const bool settled =
-        (m[0] & (fan_ok[ti.v[0]] != 0)) | (m[1] & (fan_ok[ti.v[1]] != 0)) | (m[2] & (fan_ok[ti.v[2]] != 0));
-    if (!(counted & !settled)) return;
-    const Tri& lo = ti.id < tj.id ? ti : tj;
-    const Tri& hi = ti.id < tj.id ? tj : ti;
-    if (mesh_triangles_intersect(lo.v, hi.v, P)) found.push_back({lo.id, hi.id});
-  });
+  for (const Tally& t : tally) {
+    found.insert(found.end(), t.found.begin(), t.found.end());
+    tested += t.tested;
+  }
   r.num_pairs_tested = tested;
   r.num_self_intersections = found.size();
   std::sort(found.begin(), found.end());

@@ -134,6 +134,11 @@ TEST_CASE("mesh_checks broad phase: the column sweep reports exactly the overlap
       const auto expect = brute_force_pairs(boxes);
       INFO("round " << round << ", pairs " << expect.size());
       CHECK(box_overlap_pairs(boxes) == expect);
+      // Small blocks of columns on several threads: the same pairs.
+      for (const int threads : {1, 2, 3}) {
+        INFO("threads " << threads);
+        CHECK(box_overlap_pairs(boxes, threads, 64) == expect);
+      }
     }
   }
 

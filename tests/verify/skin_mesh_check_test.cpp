@@ -178,7 +178,7 @@ TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, fl
 
 TEST_SUITE("verify") {
 
-TEST_CASE("the report is the same with one thread and with two") {
+TEST_CASE("the report is the same with one, two and three threads") {
   // verify::SkinCheckOptions::threads: the mesh-only checks on a second thread must
   // not change a single byte of the report, including the order of the
   // problems, on clean and defective meshes.
@@ -204,16 +204,27 @@ TEST_CASE("the report is the same with one thread and with two") {
     m.positions[5] = m.positions[6] * 0.999 + m.positions[5] * 0.001;
     meshes.push_back(m);
   }
+  {
+    // Fine enough that the vertex samples and the restricted Delaunay test
+    // run in several blocks on the threads (10,242 vertices, 20,480
+    // triangles), with defects in the first and the last: the counts and the
+    // examples must be joined in order.
+    auto m = icosphere(c, R, 5);
+    for (const std::size_t v : {std::size_t{40}, m.positions.size() - 40}) m.positions[v] *= 1.01;
+    meshes.push_back(m);
+  }
   int defective = 0;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     INFO("mesh " << i);
-    verify::SkinCheckOptions one, two;
+    verify::SkinCheckOptions one, two, three;
     one.threads = 1;
     two.threads = 2;
+    three.threads = 3;
     const auto a = verify::check_skin_mesh(skin, meshes[i], one);
     const auto b = verify::check_skin_mesh(skin, meshes[i], two);
     CHECK(a.to_json() == b.to_json());
     CHECK(a.problems == b.problems);
+    CHECK(a.to_json() == verify::check_skin_mesh(skin, meshes[i], three).to_json());
     defective += !a.ok();
     if (i > 0) CHECK(a.problems.size() >= 1);
   }
