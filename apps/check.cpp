@@ -71,7 +71,7 @@ Command add_check_command(CLI::App& app) {
   add_size_options(*cmd, check.opt.size);
   cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
       ->capture_default_str();
-  add_threads_option(*cmd, check.opt.threads, "0: every core, at most 2 are used", "report is");
+  add_threads_option(*cmd, check.opt.threads, "0: every core", "report is");
   cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
   cmd->add_option("--max-vertex-distance", check.opt.max_vertex_distance,

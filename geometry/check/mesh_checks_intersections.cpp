@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -40,7 +41,7 @@ template <class Tri>
 struct FloatBoxItem {
   float lo[3], hi[3];
   Tri tri;
-  std::int32_t first[2] = {0, 0};
+  std::int32_t first[2];
 };
 
 /// The largest float <= x (-inf below the float range); NaN stays NaN.
@@ -77,6 +78,7 @@ inline float float_up(double x) {
 template <class Tri>
 FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
   FloatBoxItem<Tri> f;
+  f.first[0] = f.first[1] = 0;
   for (int k = 0; k < 3; ++k) {
     f.lo[k] = float_down(b.lo[k]);
     f.hi[k] = float_up(b.hi[k]);
@@ -90,11 +92,11 @@ FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
 constexpr std::size_t kEntriesPerBlock = std::size_t{1} << 15;
 
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
-// called three times per box, so nothing is stored twice): a grid of square
+// called four times per box, so nothing is stored twice): a grid of square
 // columns (x, y) of side w about the mean extent of the boxes; each box is
 // entered in every column its (x, y) range meets. The boxes are stored once,
-// rounded outwards to single precision (FloatBoxItem), renumbered by their
-// first column (a counting sort, for locality); each column lists its boxes
+// rounded outwards to single precision (FloatBoxItem), renumbered by the strip
+// (x index) of their first column (a counting sort, for locality); each column lists its boxes
 // (4-byte indices) sorted by lower z and is swept along z; a pair is tested
 // only in the first column both ranges share (the componentwise maximum of
 // their first columns), so exactly once.
@@ -115,17 +117,39 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     blocks(std::size_t{0});
     return;
   }
+  // The boxes are visited in fixed chunks of consecutive indices, on the
+  // threads; each chunk keeps its own partial results, joined in chunk order.
+  constexpr std::size_t kBoxesPerChunk = std::size_t{1} << 16;  // [chosen]
+  const std::size_t num_chunks = (n + kBoxesPerChunk - 1) / kBoxesPerChunk;
+  auto chunk_range = [&](std::size_t c) {
+    return std::pair<std::size_t, std::size_t>(c * kBoxesPerChunk, std::min(n, (c + 1) * kBoxesPerChunk));
+  };
   Vec3 gmin = Vec3::Constant(std::numeric_limits<double>::infinity()), gmax = -gmin;
   double mean_extent = 0.0;
   // The grid's extent from the exact boxes (the rounded ones may stick out by
   // a unit in the last place: col() clamps them to the grid).
-  for (std::size_t i = 0; i < n; ++i) {
-    const BoxItem<Tri> b = make(i);
-    for (int k = 0; k < 3; ++k) {
-      gmin[k] = std::min(gmin[k], b.lo[k]);
-      gmax[k] = std::max(gmax[k], b.hi[k]);
+  {
+    struct Extent {
+      Vec3 lo, hi;
+      double sum;
+    };
+    std::vector<Extent> extent(num_chunks, Extent{gmin, gmax, 0.0});
+    parallel_for(num_chunks, threads, 1, [&](std::size_t c) {
+      Extent& e = extent[c];
+      for (auto [i, end] = chunk_range(c); i < end; ++i) {
+        const BoxItem<Tri> b = make(i);
+        for (int k = 0; k < 3; ++k) {
+          e.lo[k] = std::min(e.lo[k], b.lo[k]);
+          e.hi[k] = std::max(e.hi[k], b.hi[k]);
+        }
+        e.sum += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+      }
+    });
+    for (const Extent& e : extent) {
+      gmin = gmin.cwiseMin(e.lo);
+      gmax = gmax.cwiseMax(e.hi);
+      mean_extent += e.sum;
     }
-    mean_extent += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
   }
   mean_extent /= double(n);
   const double span = std::max(gmax[0] - gmin[0], gmax[1] - gmin[1]);
@@ -160,11 +184,16 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     }
     dims[0] = std::int64_t(dx);
     dims[1] = std::int64_t(dy);
+    std::vector<double> chunk_entries(num_chunks, 0.0);  // whole numbers: the sum is exact
+    parallel_for(num_chunks, threads, 1, [&](std::size_t c) {
+      for (auto [i, end] = chunk_range(c); i < end; ++i) {
+        const FloatBoxItem<Tri> b = rounded_out(make(i));
+        chunk_entries[c] +=
+            double(col(b.hi[0], 0) - col(b.lo[0], 0) + 1) * double(col(b.hi[1], 1) - col(b.lo[1], 1) + 1);
+      }
+    });
     double entries = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const FloatBoxItem<Tri> b = rounded_out(make(i));
-      entries += double(col(b.hi[0], 0) - col(b.lo[0], 0) + 1) * double(col(b.hi[1], 1) - col(b.lo[1], 1) + 1);
-    }
+    for (double e : chunk_entries) entries += e;
     if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) {
       num_entries = std::size_t(entries);
       break;
@@ -172,28 +201,58 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     w *= 2.0;
   }
   const std::size_t num_columns = std::size_t(dims[0] * dims[1]);
-  auto column = [&](double x, double y) { return std::size_t(col(x, 0) * dims[1] + col(y, 1)); };
-  // The boxes renumbered by their first column (counting sort, stable).
-  std::vector<std::uint32_t> start(num_columns + 1, 0);
-  std::vector<FloatBoxItem<Tri>> item(n);
+  // The boxes renumbered by their first strip (the x index of their first
+  // column), for locality: a strip's boxes are swept together. A counting
+  // sort, stable, on the threads: each chunk counts its boxes per strip, and
+  // writes them from its own offsets (the strips in order, within a strip the
+  // chunks in order). The strip's sort is as local as the column's for the
+  // sweep and needs counts per strip, not per column, in every chunk; chunks
+  // are merged in pairs while those counts would outnumber the boxes.
+  const auto num_strips = std::size_t(dims[0]);
+  std::size_t per_chunk = 1;  // chunks of the sort = runs of per_chunk chunks
+  while (per_chunk < num_chunks && ((num_chunks + per_chunk - 1) / per_chunk) * num_strips > 2 * n + 65536)
+    per_chunk *= 2;
+  const std::size_t sort_chunks = (num_chunks + per_chunk - 1) / per_chunk;
+  auto sort_range = [&](std::size_t c) {
+    return std::pair<std::size_t, std::size_t>(c * per_chunk * kBoxesPerChunk,
+                                               std::min(n, (c + 1) * per_chunk * kBoxesPerChunk));
+  };
+  // Both passes read the strip of the rounded box (the one stored), which may
+  // differ from the exact box's by a unit in the last place.
+  std::vector<std::uint32_t> offset(sort_chunks * num_strips, 0);  // [chunk][strip]
+  parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {
+    for (auto [i, end] = sort_range(c); i < end; ++i)
+      ++offset[c * num_strips + std::size_t(col(rounded_out(make(i)).lo[0], 0))];
+  });
   {
-    for (std::size_t i = 0; i < n; ++i) {
-      const FloatBoxItem<Tri> b = rounded_out(make(i));
-      ++start[column(b.lo[0], b.lo[1]) + 1];
-    }
-    for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
-    for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t at = 0;
+    for (std::size_t x = 0; x < num_strips; ++x)
+      for (std::size_t c = 0; c < sort_chunks; ++c) {
+        const std::uint32_t count = offset[c * num_strips + x];
+        offset[c * num_strips + x] = at;
+        at += count;
+      }
+  }
+  // Not value-initialised: every slot is written below (a first pass of
+  // zeros over the largest array of the check would cost a tenth of it).
+  std::unique_ptr<FloatBoxItem<Tri>[]> item(new FloatBoxItem<Tri>[n]);
+  parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {
+    for (auto [i, end] = sort_range(c); i < end; ++i) {
       FloatBoxItem<Tri> b = rounded_out(make(i));
       b.first[0] = std::int32_t(col(b.lo[0], 0));
       b.first[1] = std::int32_t(col(b.lo[1], 1));
-      item[start[std::size_t(b.first[0] * dims[1] + b.first[1])]++] = b;
+      item[offset[c * num_strips + std::size_t(b.first[0])]++] = b;
     }
-  }
+  });
+  std::vector<std::uint32_t>().swap(offset);
+  std::vector<std::uint32_t> start(num_columns + 1, 0);
   // Entries per column (CSR of renumbered boxes), each column then sorted by lower z.
   std::fill(start.begin(), start.end(), 0);
-  for (const FloatBoxItem<Tri>& b : item)
+  for (std::size_t i = 0; i < n; ++i) {
+    const FloatBoxItem<Tri>& b = item[i];
     for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
       for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y) ++start[std::size_t(x * dims[1] + y) + 1];
+  }
   for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
   std::vector<std::uint32_t> entry(num_entries);
   for (std::size_t i = 0; i < n; ++i) {
