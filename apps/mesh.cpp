@@ -225,11 +225,12 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
     return false;
   }
   if (!batch_run) mesh.mol.input = mesh.mol.inputs.front();
-  return options_fit_algorithm(cmd, mesh.algorithm == "dynamic",
-                               {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction",
-                                "--disc-factor", "--no-angle-improvement", "--no-fallback", "--no-patch",
-                                "--force-patch-every", "--slabs", "--cut-detours", "--no-growth", "--growth-step"},
-                               {"--no-growth", "--growth-step"});
+  return options_fit_algorithm(
+      cmd, mesh.algorithm == "dynamic",
+      {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
+       "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--slabs", "--cut-detours",
+       "--no-component-sweeps", "--no-growth", "--growth-step"},
+      {"--no-growth", "--growth-step"});
 }
 
 }  // namespace
@@ -241,6 +242,7 @@ mesher::MeshOptions mesh_options(const MeshArgs& a) {
   options.height_direction = height_direction(a.direction);
   options.check = !a.no_check;
   options.improve_angles = !a.no_angle_improvement;
+  options.decomposition.components = !a.no_component_sweeps;
   options.dynamic.growth = !a.no_growth;
   options.sweep.patch_fallback = !a.no_fallback && !a.no_patch;
   options.static_fallback = !a.no_fallback;
@@ -308,6 +310,10 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
                 "with --slabs: cuts that pass around the critical points they meet, which large components need "
                 "(experimental; papers/mesher/decomposition.md, \"The detoured cut\")");
+  cmd->add_flag("--no-component-sweeps", mesh.no_component_sweeps,
+                "sweep every skin component in one front (default without --slabs: each group of whole "
+                "components is swept on its own, on the threads, and the meshes appended; "
+                "papers/mesher/decomposition.md, \"Components\")");
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
                   "this many seconds (nothing is written; 0: no limit)")

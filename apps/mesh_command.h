@@ -26,6 +26,8 @@ struct MeshArgs {
   /// "sweep" (Cheng & Shi 2004, default) or "dynamic" (the dynamic-skin baseline).
   std::string algorithm = "sweep";
   bool no_growth = false;
+  /// --no-component-sweeps: every skin component in one front.
+  bool no_component_sweeps = false;
   // Batch runs (several IN or --list): outputs DIR/<name>.<format>.
   std::string out_dir, list, batch_format = "ply";
   int jobs = 1;

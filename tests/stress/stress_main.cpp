@@ -79,6 +79,9 @@ struct Options {
   int slabs = 1;
   /// MeshOptions::decomposition.detours of every case (cuts that pass around critical points).
   bool cut_detours = false;
+  /// MeshOptions::decomposition.components of every case (false: every skin
+  /// component in one sweep, never one sweep per group of components).
+  bool component_sweeps = true;
 };
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -98,7 +101,9 @@ struct Options {
                "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n"
                "  --slabs N        mesh every case decomposed into (up to) N slabs, 0: automatic "
                "(papers/mesher/decomposition.md)\n"
-               "  --cut-detours    with --slabs: cuts that pass around the critical points they meet\n",
+               "  --cut-detours    with --slabs: cuts that pass around the critical points they meet\n"
+               "  --no-component-sweeps  every skin component in one sweep (default: one sweep per group of\n"
+               "                   whole components, papers/mesher/decomposition.md)\n",
                static_cast<unsigned long long>(kDefaultSeed));
   std::exit(problem.empty() ? 0 : 2);
 }
@@ -152,6 +157,8 @@ Options parse(int argc, char** argv) {
       if (o.slabs < 0) usage("--slabs must be 0 (automatic) or more");
     } else if (a == "--cut-detours")
       o.cut_detours = true;
+    else if (a == "--no-component-sweeps")
+      o.component_sweeps = false;
     else if (a == "-h" || a == "--help")
       usage("");
     else
@@ -212,7 +219,7 @@ std::string unescape(const std::string& s) {
 /// Runs the project's topology and the pipeline on `c`, emitting one
 /// "key\tvalue" line per fact through `emit`.
 template <class Emit>
-void run_case(const StressCase& c, int slabs, bool cut_detours, Emit emit) {
+void run_case(const StressCase& c, int slabs, bool cut_detours, bool component_sweeps, Emit emit) {
   const std::vector<geometry::WeightedPoint> points = weighted_points(c);
   try {
     const Topology t = project_topology(points);
@@ -226,6 +233,7 @@ void run_case(const StressCase& c, int slabs, bool cut_detours, Emit emit) {
     options.probe_radius = c.probe;
     options.decomposition.slabs = slabs;
     options.decomposition.detours = cut_detours;
+    options.decomposition.components = component_sweeps;
     if (c.direction != Vec3::Zero()) options.height_direction = c.direction;
     const mesher::MeshResult res = mesher::mesh_skin(to_molecule(c), options);
     emit("check_ok", res.check.ok() ? "1" : "0");
@@ -312,12 +320,14 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
 
 /// Runs `c` in a child process with a time limit (and at most 4 GB more
 /// address space), or in this process with fork = false.
-RunResult run_isolated(const StressCase& c, double timeout, bool fork_child, int slabs, bool cut_detours) {
+RunResult run_isolated(const StressCase& c, double timeout, bool fork_child, int slabs, bool cut_detours,
+                       bool component_sweeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   RunResult r;
   if (!fork_child) {
-    run_case(c, slabs, cut_detours, [&](const std::string& k, const std::string& v) { absorb(r, k, v); });
+    run_case(c, slabs, cut_detours, component_sweeps,
+             [&](const std::string& k, const std::string& v) { absorb(r, k, v); });
     r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return r;
   }
@@ -349,7 +359,7 @@ RunResult run_isolated(const StressCase& c, double timeout, bool fork_child, int
       }
     };
     try {
-      run_case(c, slabs, cut_detours, emit);
+      run_case(c, slabs, cut_detours, component_sweeps, emit);
     } catch (...) {
       _exit(4);
     }
@@ -610,7 +620,7 @@ int main(int argc, char** argv) {
     const auto b0 = Clock::now();
     rep.brute = brute_force_topology(points);
     rep.brute_seconds = std::chrono::duration<double>(Clock::now() - b0).count();
-    rep.run = run_isolated(cases[i], opt.timeout, opt.fork, opt.slabs, opt.cut_detours);
+    rep.run = run_isolated(cases[i], opt.timeout, opt.fork, opt.slabs, opt.cut_detours, opt.component_sweeps);
     judge(rep, opt.cost_bound_us);
     const StressCase& c = cases[i];
     const std::string verdict = rep.passed ? (c.singular ? "pass*" : "PASS") : (c.singular ? "FAIL*" : "FAIL");
