@@ -5,15 +5,15 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
-#include <unordered_map>
 
 #include "core/assert.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "geometry/kernel/predicates.h"
-#include "geometry/triangulation/key_index.h"
 
 namespace skinmesh::skin {
 
@@ -69,15 +69,86 @@ void focus_of(std::span<const WeightedPoint> pts, Vec3& z, double& w) {
 
 namespace {
 
-/// Key of a sorted edge or triangle: vertex ids packed in 21-bit fields, so
-/// below 2^63 as geometry::KeyIndex requires.
-std::uint64_t simplex_key(const std::array<Index, 4>& v, int dim) {
-  std::uint64_t k = 0;
-  for (int i = 0; i <= dim; ++i) k = (k << 21) | static_cast<std::uint64_t>(v[i]);
-  return k;
+using RT = geometry::RegularTriangulation;
+
+/// A tetrahedron's vertices in increasing order (the order of its mixed
+/// cell's `vertices`), with the local index in rt.tet(t) of each.
+struct SortedTet {
+  std::array<Index, 4> v;
+  std::array<int, 4> local;
+};
+
+SortedTet sorted_tet(const RT& rt, Index t) {
+  const std::array<Index, 4>& tv = rt.tet(t);
+  std::array<int, 4> order{0, 1, 2, 3};
+  std::sort(order.begin(), order.end(), [&tv](int a, int b) { return tv[a] < tv[b]; });
+  SortedTet s;
+  for (int i = 0; i < 4; ++i) s.v[i] = tv[order[i]], s.local[i] = order[i];
+  return s;
 }
 
-constexpr Index kMaxPoints = (1u << 21) - 1;
+/// Position of vertex w among the sorted vertices of tetrahedron u (w is one
+/// of them).
+int rank_in(const RT& rt, Index u, Index w) {
+  int r = 0;
+  for (Index x : rt.tet(u)) r += x < w ? 1 : 0;
+  return r;
+}
+
+/// The six edges of a tetrahedron as pairs (p, q), p < q, of sorted vertex
+/// positions; slot of the edge (p, q).
+constexpr std::array<std::array<int, 2>, 6> kTetEdges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+constexpr int edge_slot(int p, int q) { return p == 0 ? q - 1 : (p == 1 ? q + 1 : 5); }
+/// The first facet (by the sorted position it leaves out) of a tetrahedron
+/// that contains its edge (p, q): the smallest position other than p and q.
+constexpr int first_facet(int p, int q) { return p != 0 ? 0 : (q == 1 ? 2 : 1); }
+/// The sorted positions of facet s (the three positions other than s).
+constexpr std::array<int, 3> facet_positions(int s) {
+  return s == 0 ? std::array<int, 3>{1, 2, 3}
+                : (s == 1 ? std::array<int, 3>{0, 2, 3}
+                          : (s == 2 ? std::array<int, 3>{0, 1, 3} : std::array<int, 3>{0, 1, 2}));
+}
+
+/// Result of around_edge().
+struct Ring {
+  bool stopped = false;  ///< visit returned false
+  bool open = false;     ///< the ring meets the boundary of the bounding tetrahedron
+};
+
+/// Calls visit(u) for every tetrahedron u other than t around the edge (a, b)
+/// of tetrahedron t: one way round from t, and where that meets the boundary
+/// of the bounding tetrahedron (an open ring), the other way from t. Stops
+/// as soon as visit returns false.
+template <class Visit>
+Ring around_edge(const RT& rt, Index t, Index a, Index b, Visit&& visit) {
+  Index c = kInvalidIndex, d = kInvalidIndex;
+  for (Index w : rt.tet(t))
+    if (w != a && w != b) (c == kInvalidIndex ? c : d) = w;
+  // From tetrahedron {a, b, x, y} across its face {a, b, y} (opposite x) to
+  // {a, b, y, z}, whose face {a, b, z} is crossed next.
+  auto go = [&](Index x, Index y) -> int {  // 0 closed, 1 open, 2 stopped
+    Index cur = t;
+    for (Index step = 0;; ++step) {
+      SKINMESH_ASSERT_MSG(step <= rt.num_tets(), "the tetrahedra around an edge do not close");
+      const Index next = rt.neighbor(cur, rt.local_index(cur, x));
+      if (next == kInvalidIndex) return 1;
+      if (next == t) return 0;
+      if (!visit(next)) return 2;
+      Index z = kInvalidIndex;
+      for (Index w : rt.tet(next))
+        if (w != a && w != b && w != y) z = w;
+      cur = next, x = y, y = z;
+    }
+  };
+  Ring r;
+  const int one_way = go(c, d);
+  r.stopped = one_way == 2;
+  if (one_way == 1) {
+    r.open = true;
+    r.stopped = go(d, c) == 2;
+  }
+  return r;
+}
 
 /// Unit normal of the plane shared by mu_X and mu_Y, Y = X ∪ {k}: the unit
 /// vector of lin Y orthogonal to lin X, pointing from aff X towards z_k (the
@@ -127,7 +198,7 @@ std::array<Vec3, 4> facet_normals(const geometry::RegularTriangulation& rt, Inde
 
 }  // namespace
 
-void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
+void MixedComplex::order_flat_foci(Index first_tet_cell) {
   const geometry::RegularTriangulation& rt = *rt_;
   constexpr double kParallel = 1e-12;  // 1 - |cos|: about 1.4e-6 rad
   // Candidates: 6 |vol| <= 1e-5 diam³ (every flat tetrahedron, as defined
@@ -160,13 +231,13 @@ void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
   for (int pass = 0; pass < 4; ++pass) {
     bool moved = false;
     for (const Flat& F : flat) {
-      MixedCell& T = cells_[tet_cell[F.t]];
+      MixedCell& T = cells_[first_tet_cell + F.t];
       double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
       for (int i = 0; i < 4; ++i) {
         const Index nb = rt.neighbor(F.t, i);
         if (nb == kInvalidIndex) continue;
         const double c = F.m[i].dot(F.n);
-        const double bound = F.m[i].dot(cells_[tet_cell[nb]].focus - T.focus) / c;
+        const double bound = F.m[i].dot(cells_[first_tet_cell + nb].focus - T.focus) / c;
         if (c > 0)
           hi = std::min(hi, bound);
         else
@@ -184,10 +255,10 @@ void MixedComplex::order_flat_foci(const std::vector<Index>& tet_cell) {
   }
 }
 
-MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) {
+MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads) : rt_(&rt) {
   const Index np = rt.num_points();
-  SKINMESH_ASSERT_MSG(np <= kMaxPoints, "at most 2^21 - 1 weighted points are supported");
   const Index nt = rt.num_tets();
+  constexpr std::size_t kGrain = 4096;  // [measured] items per block of the loops below: a few hundred µs
 
   // Length scale of the input (papers/skin/skin_math.md §9).
   {
@@ -203,91 +274,166 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
     length_scale_ = std::max((hi - lo).norm() + 2 * rmax, 1.0);
   }
 
-  // Enumerate the simplices: vertices, then edges, triangles, tetrahedra.
+  // The cells are numbered as a scan of the triangulation meets the simplices:
+  // the vertices in index order, the tetrahedra in index order, then for each
+  // tetrahedron t in order and each of its facets (leaving out its sorted
+  // vertices 0, 1, 2, 3 in turn) the facet if t meets it first, followed by
+  // its edges (in the facet's order 01, 02, 12) that t meets first. Every
+  // simplex is met first by the lowest-numbered tetrahedron that contains it,
+  // so a tetrahedron can tell which of its facets and edges are its own from
+  // its neighbours alone, and all of them can number their simplices at once
+  // (papers/skin/mixed_complex.md, "Construction").
   vertex_cell_.assign(np, kInvalidIndex);
-  auto add_cell = [&](int dim, std::array<Index, 4> v) {
-    MixedCell c;
+  Index nv = 0;
+  for (Index v = 0; v < np; ++v)
+    if (rt.is_vertex(v)) vertex_cell_[v] = nv++;
+
+  // Per tetrahedron: bit s (0..3) if it owns the facet leaving out sorted
+  // vertex s, bit 4 + e if it owns edge slot e; and per facet and edge slot,
+  // the cell (once numbered). Before the numbering, an edge slot holds the
+  // number of triangles around the edge (owned) or a lower tetrahedron around
+  // it (not owned).
+  std::vector<std::uint16_t> owns(nt);
+  std::vector<Index> tet_tri(4 * std::size_t(nt)), tet_edge(6 * std::size_t(nt));
+  parallel_for(nt, threads, kGrain, [&](std::size_t ti) {
+    const Index t = static_cast<Index>(ti);
+    const SortedTet st = sorted_tet(rt, t);
+    std::uint16_t own = 0;
+    std::array<Index, 4> below{};  // the tetrahedron across facet s if lower
+    for (int s = 0; s < 4; ++s) {
+      const Index nb = rt.neighbor(t, st.local[s]);
+      below[s] = nb != kInvalidIndex && nb < t ? nb : kInvalidIndex;
+      if (below[s] == kInvalidIndex) own |= std::uint16_t(1u << s);
+    }
+    for (int e = 0; e < 6; ++e) {
+      const auto [p, q] = kTetEdges[e];
+      // The two facets through the edge leave out the other two positions;
+      // a lower tetrahedron across either of them contains the edge.
+      Index lower = kInvalidIndex;
+      for (int s = 0; s < 4; ++s)
+        if (s != p && s != q && below[s] != kInvalidIndex) lower = below[s];
+      Index triangles = 1;  // k tetrahedra around the edge: k triangles, k + 1 if the ring is open
+      if (lower == kInvalidIndex) {
+        const Ring ring = around_edge(rt, t, st.v[p], st.v[q], [&](Index u) {
+          if (u < t) lower = u;
+          ++triangles;
+          return u > t;
+        });
+        triangles += ring.open ? 1 : 0;
+      }
+      if (lower == kInvalidIndex) {
+        own |= std::uint16_t(1u << (4 + e));
+        tet_edge[6 * ti + e] = triangles;
+      } else {
+        tet_edge[6 * ti + e] = lower;
+      }
+    }
+    owns[ti] = own;
+  });
+
+  // The numbering: per tetrahedron, its first new cell and its first new
+  // shared plane (the tetrahedra's own planes come first, four each).
+  const Index first_tet_cell = nv;
+  std::vector<Index> cell_base(nt), plane_base_of_tet(nt);
+  std::size_t num_cells = std::size_t(nv) + nt, num_planes = 4 * std::size_t(nt);
+  for (Index t = 0; t < nt; ++t) {
+    cell_base[t] = static_cast<Index>(num_cells);
+    plane_base_of_tet[t] = static_cast<Index>(num_planes);
+    const int facets = std::popcount(unsigned(owns[t] & 0xFu)), edges = std::popcount(unsigned(owns[t] >> 4));
+    num_cells += std::size_t(facets) + edges;
+    num_planes += 3 * std::size_t(facets) + 2 * std::size_t(edges);
+    SKINMESH_ASSERT_MSG(num_planes < (std::size_t{1} << 31) && num_cells < kInvalidIndex,
+                        "too many mixed cells for 32-bit indices");
+  }
+  // The triangulation fills the bounding tetrahedron, a ball: with V vertices
+  // and T tetrahedra it has F = 2T + 2 triangles (4T facets, 4 on the hull)
+  // and, by Euler (V - E + F - T = 1), E = V + T + 1 edges.
+  SKINMESH_ASSERT_MSG(num_cells == 2 * std::size_t(nv) + 4 * std::size_t(nt) + 3,
+                      "the triangulation is not a triangulated ball");
+  cells_.resize(num_cells);
+  // Per triangle and edge cell, its first shared plane (the planes with its
+  // facets, which it sees as the coface).
+  std::vector<Index> plane_base(num_cells, 0);
+  for (Index v = 0; v < np; ++v) {
+    if (vertex_cell_[v] == kInvalidIndex) continue;
+    MixedCell& c = cells_[vertex_cell_[v]];
+    c.vertices[0] = v;
+    c.bounding = rt.is_bounding(v);
+  }
+  auto make_cell = [&](Index id, int dim, std::array<Index, 4> v) {
+    MixedCell& c = cells_[id];
     c.dim = static_cast<std::uint8_t>(dim);
     c.vertices = v;
     for (int i = 0; i <= dim; ++i) c.bounding = c.bounding || rt.is_bounding(v[i]);
-    cells_.push_back(c);
-    return static_cast<Index>(cells_.size() - 1);
   };
-  {
-    // The triangulation fills the bounding tetrahedron, a ball: with V vertices
-    // and T tetrahedra it has F = 2T + 2 triangles (4T facets, 4 on the hull)
-    // and, by Euler (V - E + F - T = 1), E = V + T + 1 edges. Reserving the
-    // exact count saves the vector's growth (up to half of the complex's
-    // memory on large inputs).
-    std::size_t nv = 0;
-    for (Index v = 0; v < np; ++v) nv += rt.is_vertex(v) ? 1 : 0;
-    cells_.reserve(2 * nv + 4 * std::size_t(nt) + 3);
-  }
-  for (Index v = 0; v < np; ++v)
-    if (rt.is_vertex(v)) vertex_cell_[v] = add_cell(0, {v, kInvalidIndex, kInvalidIndex, kInvalidIndex});
-
-  // Euler's formula for the triangulated ball (below): E = V + T + 1 edges and
-  // F = 2T + 2 triangles, V <= np.
-  // Keys of the edges and triangles met so far, numbered in order; the cell
-  // of number i is edge_cell[i] (tri_cell[i]).
-  geometry::KeyIndex edge_id(std::size_t(np) + nt + 1), tri_id(2 * std::size_t(nt) + 2);
-  std::vector<Index> edge_cell, tri_cell;
-  edge_cell.reserve(std::size_t(np) + nt + 1);
-  tri_cell.reserve(2 * std::size_t(nt) + 2);
-  // Facet/coface pairs (X, Y, k) with Y = X + {k}: one shared plane each.
-  struct Pair {
-    Index x, y, k;
-  };
-  std::vector<Pair> pairs;
-  pairs.reserve(static_cast<std::size_t>(nt) * 10);
-
-  std::vector<Index> tet_cell(nt);
-  for (Index t = 0; t < nt; ++t) {
-    std::array<Index, 4> tv = rt.tet(t);
-    std::sort(tv.begin(), tv.end());
-    tet_cell[t] = add_cell(3, tv);
-  }
-  auto edge_of = [&](Index a, Index b) {
-    std::array<Index, 4> v{std::min(a, b), std::max(a, b), kInvalidIndex, kInvalidIndex};
-    const auto [i, fresh] = edge_id.find_or_add(simplex_key(v, 1));
-    if (fresh) {
-      edge_cell.push_back(add_cell(1, v));
-      pairs.push_back({vertex_cell_[v[0]], edge_cell[i], v[1]});
-      pairs.push_back({vertex_cell_[v[1]], edge_cell[i], v[0]});
-    }
-    return edge_cell[i];
-  };
-  for (Index t = 0; t < nt; ++t) {
-    const std::array<Index, 4> tv = cells_[tet_cell[t]].vertices;
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<Index, 4> f{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
-      for (int i = 0, j = 0; i < 4; ++i)
-        if (i != skip) f[j++] = tv[i];
-      const auto [i, fresh] = tri_id.find_or_add(simplex_key(f, 2));
-      if (fresh) tri_cell.push_back(add_cell(2, f));
-      const Index tc = tri_cell[i];
-      if (fresh) {
-        pairs.push_back({edge_of(f[0], f[1]), tc, f[2]});
-        pairs.push_back({edge_of(f[0], f[2]), tc, f[1]});
-        pairs.push_back({edge_of(f[1], f[2]), tc, f[0]});
+  parallel_for(nt, threads, kGrain, [&](std::size_t ti) {
+    const Index t = static_cast<Index>(ti);
+    const SortedTet st = sorted_tet(rt, t);
+    const std::uint16_t own = owns[ti];
+    make_cell(first_tet_cell + t, 3, st.v);
+    cells_[first_tet_cell + t].num_planes = 4;
+    Index id = cell_base[t], plane = plane_base_of_tet[t];
+    for (int s = 0; s < 4; ++s) {
+      if (!(own & (1u << s))) continue;
+      const std::array<int, 3> f = facet_positions(s);
+      make_cell(id, 2, {st.v[f[0]], st.v[f[1]], st.v[f[2]], kInvalidIndex});
+      cells_[id].num_planes = rt.neighbor(t, st.local[s]) == kInvalidIndex ? 4 : 5;  // 3 edges, 1 or 2 tetrahedra
+      plane_base[id] = plane;
+      plane += 3;
+      tet_tri[4 * ti + s] = id++;
+      for (const auto& [p, q] : {std::array<int, 2>{f[0], f[1]}, {f[0], f[2]}, {f[1], f[2]}}) {
+        const int e = edge_slot(p, q);
+        if (!(own & (1u << (4 + e))) || first_facet(p, q) != s) continue;
+        make_cell(id, 1, {st.v[p], st.v[q], kInvalidIndex, kInvalidIndex});
+        cells_[id].num_planes = 2 + tet_edge[6 * ti + e];  // 2 vertices, its triangles
+        plane_base[id] = plane;
+        plane += 2;
+        tet_edge[6 * ti + e] = id++;
+        // A vertex cell's planes are those with its edges.
+        for (Index w : {st.v[p], st.v[q]})
+          std::atomic_ref<Index>(cells_[vertex_cell_[w]].num_planes).fetch_add(1, std::memory_order_relaxed);
       }
-      pairs.push_back({tc, tet_cell[t], tv[skip]});
+    }
+  });
+  // The facets and edges a tetrahedron does not own: the owner's cell. A
+  // facet's owner is the lower tetrahedron across it; an edge slot holds some
+  // lower tetrahedron around the edge, whose slot is final once the lower
+  // tetrahedra are done (hence in order, on one thread).
+  parallel_for(nt, threads, kGrain, [&](std::size_t ti) {
+    const Index t = static_cast<Index>(ti);
+    const SortedTet st = sorted_tet(rt, t);
+    for (int s = 0; s < 4; ++s) {
+      if (owns[ti] & (1u << s)) continue;
+      const Index nb = rt.neighbor(t, st.local[s]);
+      Index apex = kInvalidIndex;  // the vertex of nb off the facet
+      for (Index w : rt.tet(nb))
+        if (std::find(st.v.begin(), st.v.end(), w) == st.v.end()) apex = w;
+      tet_tri[4 * ti + s] = tet_tri[4 * std::size_t(nb) + rank_in(rt, nb, apex)];
+    }
+  });
+  for (Index t = 0; t < nt; ++t) {
+    for (int e = 0; e < 6; ++e) {
+      if (owns[t] & (1u << (4 + e))) continue;
+      const Index u = tet_edge[6 * std::size_t(t) + e];
+      const SortedTet st = sorted_tet(rt, t);
+      const int p = rank_in(rt, u, st.v[kTetEdges[e][0]]), q = rank_in(rt, u, st.v[kTetEdges[e][1]]);
+      tet_edge[6 * std::size_t(t) + e] = tet_edge[6 * std::size_t(u) + edge_slot(p, q)];
     }
   }
 
-  cells_.shrink_to_fit();  // a no-op when the count above was exact
   // Foci and axes.
-  for (MixedCell& c : cells_) {
+  parallel_for(cells_.size(), threads, kGrain, [&](std::size_t i) {
+    MixedCell& c = cells_[i];
     std::array<WeightedPoint, 4> p;
-    for (int i = 0; i <= c.dim; ++i) p[i] = rt.point(c.vertices[i]);
+    for (int j = 0; j <= c.dim; ++j) p[j] = rt.point(c.vertices[j]);
     focus_of(std::span<const WeightedPoint>(p.data(), c.dim + 1), c.focus, c.focus_weight);
     if (c.dim == 1) c.axis = (p[1].z - p[0].z).normalized();
     if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
-  }
+  });
 
   // Foci of flat tetrahedra (slivers) put back in the order their Voronoi
   // edges require (papers/skin/mixed_complex.md, "Flat tetrahedra").
-  order_flat_foci(tet_cell);
+  order_flat_foci(first_tet_cell);
 
   // The walk bound of locate() (computed here: a cube root per query was 4 %
   // of the sweep).
@@ -310,39 +456,111 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt) : rt_(&rt) 
   // flat coface (coplanar atoms, a rotated lattice) |m| and pi_k(z_X) - w_X both
   // vanish, z_Y may coincide with z_X, and the quotient is 0/0, while n, z_a and
   // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
-  constexpr double s = 0.5;
-  std::vector<Index> count(cells_.size(), 0);
-  for (const Pair& pr : pairs) {
-    ++count[pr.x];
-    ++count[pr.y];
-  }
+  //
+  // Each plane is stored once, as X sees it (Y reads it negated). A cell lists
+  // its planes with its facets first (in the order of its vertices left out:
+  // a tetrahedron's four, a triangle's edges 01, 02, 12, an edge's two
+  // vertices), then those with its cofaces by increasing cell number.
   Index total = 0;
-  for (std::size_t c = 0; c < cells_.size(); ++c) {
-    cells_[c].first_plane = total;
-    cells_[c].num_planes = count[c];
-    total += count[c];
+  for (MixedCell& c : cells_) {
+    c.first_plane = total;
+    total += c.num_planes;
   }
-  // Each plane stored once (as X sees it; Y reads it negated), its uses listed
-  // per cell in the order of `pairs`.
-  SKINMESH_ASSERT_MSG(pairs.size() < (std::size_t{1} << 31), "too many mixed-cell planes");
-  shared_planes_.resize(pairs.size());
-  plane_extra_.resize(pairs.size());
+  shared_planes_.resize(num_planes);
   plane_uses_.resize(total);
-  std::vector<Index> fill(cells_.size(), 0);
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const Pair& pr = pairs[i];
-    const MixedCell& X = cells_[pr.x];
-    const MixedCell& Y = cells_[pr.y];
+  auto set_plane = [&](Index plane, Index x, Index y, Index k) {
+    constexpr double s = 0.5;
+    const MixedCell& X = cells_[x];
     const Vec3& za = rt.point(X.vertices[0]).z;
-    const Vec3 n = facet_coface_normal(rt, X, pr.k);
-    const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
+    const Vec3 n = facet_coface_normal(rt, X, k);
+    const double off = (1.0 - s) * n.dot(za) + s * n.dot(cells_[y].focus);
     SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-    shared_planes_[i] = {n, off};
-    plane_extra_[i] = pr.k;
-    const auto id = static_cast<std::uint32_t>(2 * i);
-    plane_uses_[X.first_plane + fill[pr.x]++] = {id, pr.y};
-    plane_uses_[Y.first_plane + fill[pr.y]++] = {id + 1, pr.x};
-  }
+    shared_planes_[plane] = {n, off};
+  };
+  std::vector<Index> vertex_fill(nv, 0);
+  auto fill_tet_planes = [&](std::size_t ti, std::vector<Index>& triangles) {
+    const Index t = static_cast<Index>(ti);
+    const SortedTet st = sorted_tet(rt, t);
+    const std::uint16_t own = owns[ti];
+    const Index tc = first_tet_cell + t;
+    // The tetrahedron's planes with its facets; a facet lists its tetrahedra
+    // after its three edges, the lower (its owner) first.
+    for (int s = 0; s < 4; ++s) {
+      const Index f = tet_tri[4 * ti + s];
+      const Index plane = 4 * t + Index(s);
+      set_plane(plane, f, tc, st.v[s]);
+      plane_uses_[cells_[tc].first_plane + s] = {2 * plane + 1, f};
+      plane_uses_[cells_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = {2 * plane, tc};
+    }
+    // Its own triangles' planes with their edges.
+    for (int s = 0; s < 4; ++s) {
+      if (!(own & (1u << s))) continue;
+      const Index f = tet_tri[4 * ti + s];
+      const std::array<int, 3> fp = facet_positions(s);
+      const std::array<std::array<int, 3>, 3> edges{
+          {{fp[0], fp[1], fp[2]}, {fp[0], fp[2], fp[1]}, {fp[1], fp[2], fp[0]}}};
+      for (int j = 0; j < 3; ++j) {
+        const Index e = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
+        const Index plane = plane_base[f] + Index(j);
+        set_plane(plane, e, f, st.v[edges[j][2]]);
+        plane_uses_[cells_[f].first_plane + j] = {2 * plane + 1, e};
+      }
+    }
+    // Its own edges' planes with their two vertices, and their planes with
+    // their triangles (by increasing cell number).
+    for (int k = 0; k < 6; ++k) {
+      if (!(own & (1u << (4 + k)))) continue;
+      const Index e = tet_edge[6 * ti + k];
+      const Index a = st.v[kTetEdges[k][0]], b = st.v[kTetEdges[k][1]];
+      for (int j = 0; j < 2; ++j) {
+        const Index v = j == 0 ? a : b;
+        const Index plane = plane_base[e] + Index(j);
+        set_plane(plane, vertex_cell_[v], e, j == 0 ? b : a);
+        plane_uses_[cells_[e].first_plane + j] = {2 * plane + 1, vertex_cell_[v]};
+        const Index slot = std::atomic_ref<Index>(vertex_fill[vertex_cell_[v]]).fetch_add(1, std::memory_order_relaxed);
+        plane_uses_[cells_[vertex_cell_[v]].first_plane + slot] = {2 * plane, e};
+      }
+      triangles.clear();
+      auto add_triangles = [&](Index u) {
+        for (Index w : rt.tet(u))
+          if (w != a && w != b) triangles.push_back(tet_tri[4 * std::size_t(u) + rank_in(rt, u, w)]);
+        return true;
+      };
+      add_triangles(t);
+      around_edge(rt, t, a, b, add_triangles);
+      std::sort(triangles.begin(), triangles.end());
+      triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
+      SKINMESH_ASSERT_MSG(triangles.size() + 2 == cells_[e].num_planes, "the triangles around an edge miscounted");
+      for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const MixedCell& F = cells_[triangles[i]];
+        // The edge's place in the triangle's list: 01, 02, 12 leave out
+        // vertex 2, 1, 0.
+        const Index apex =
+            F.vertices[0] != a && F.vertices[0] != b ? 0 : (F.vertices[1] != a && F.vertices[1] != b ? 1 : 2);
+        plane_uses_[cells_[e].first_plane + 2 + i] = {2 * (plane_base[triangles[i]] + (2 - apex)), triangles[i]};
+      }
+    }
+  };
+  // The planes' orient3d calls are counted as the calling thread's (the
+  // baseline reports them with its own), whatever thread made them.
+  const std::size_t blocks = (std::size_t(nt) + kGrain - 1) / kGrain;
+  std::vector<geometry::PredicateStats> block_predicates(blocks);
+  parallel_for(blocks, threads, 1, [&](std::size_t block) {
+    const geometry::PredicateStats before = geometry::take_predicate_stats();
+    std::vector<Index> triangles;
+    for (std::size_t ti = block * kGrain, end = std::min<std::size_t>(nt, ti + kGrain); ti < end; ++ti)
+      fill_tet_planes(ti, triangles);
+    block_predicates[block] = geometry::take_predicate_stats();
+    geometry::add_predicate_stats(before);
+  });
+  for (const geometry::PredicateStats& d : block_predicates) geometry::add_predicate_stats(d);
+  // A vertex's planes with its edges, by increasing cell number.
+  parallel_for(nv, threads, kGrain, [&](std::size_t v) {
+    const MixedCell& c = cells_[v];
+    SKINMESH_ASSERT_MSG(vertex_fill[v] == c.num_planes, "the edges of a vertex miscounted");
+    PlaneUse* b = plane_uses_.data() + c.first_plane;
+    std::sort(b, b + c.num_planes, [](const PlaneUse& x, const PlaneUse& y) { return x.neighbor < y.neighbor; });
+  });
 }
 
 Index MixedComplex::num_cells_of_dim(int d) const {

@@ -73,9 +73,12 @@ static_assert(sizeof(MixedCell) == 88, "MixedCell: dim and bounding share the la
 /// costs one point location (a walk from a nearby cell) plus O(1).
 class MixedComplex {
  public:
-  /// Builds every cell (foci, axes, bounding planes) from the triangulation.
-  /// The shrink factor is fixed at s = 1/2 (Cheng & Shi §2.1).
-  explicit MixedComplex(const geometry::RegularTriangulation& rt);
+  /// Builds every cell (foci, axes, bounding planes) from the triangulation,
+  /// on up to `threads` threads (0: every core); the complex, its numbering
+  /// included, does not depend on the count. The shrink factor is fixed at
+  /// s = 1/2 (Cheng & Shi §2.1). Throws AssertionError if the complex needs
+  /// more than 2^31 planes (about 25 million points).
+  explicit MixedComplex(const geometry::RegularTriangulation& rt, int threads = 1);
 
   Index num_cells() const { return static_cast<Index>(cells_.size()); }
   const MixedCell& cell(Index c) const { return cells_[c]; }
@@ -123,8 +126,8 @@ class MixedComplex {
  private:
   /// Moves the focus of every flat tetrahedron (all facet normals within
   /// ~1.4e-6 rad of one line) along that line into the slab its four Voronoi
-  /// edges allow. tet_cell maps a tetrahedron of the triangulation to its cell.
-  void order_flat_foci(const std::vector<Index>& tet_cell);
+  /// edges allow. Tetrahedron t of the triangulation is cell first_tet_cell + t.
+  void order_flat_foci(Index first_tet_cell);
 
   /// A plane shared by a simplex X and a coface Y = X ∪ {k}, as seen from X.
   struct SharedPlane {
@@ -148,7 +151,6 @@ class MixedComplex {
   const geometry::RegularTriangulation* rt_;
   std::vector<MixedCell> cells_;
   std::vector<SharedPlane> shared_planes_;  ///< one per facet/coface pair (X, Y)
-  std::vector<Index> plane_extra_;          ///< per shared plane: k, Y = X ∪ {k}
   std::vector<PlaneUse> plane_uses_;        ///< per cell, its planes (first_plane, num_planes)
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
@@ -164,12 +166,12 @@ class MixedComplex::PlaneRange {
     using value_type = CellPlane;
     using difference_type = std::ptrdiff_t;
     iterator() = default;
-    iterator(const MixedComplex* mc, const PlaneUse* u) : mc_(mc), u_(u) {}
+    iterator(const MixedComplex* mc, Index cell, const PlaneUse* u) : mc_(mc), cell_(cell), u_(u) {}
     CellPlane operator*() const {
       const SharedPlane& p = mc_->shared_planes_[u_->plane_side >> 1];
       const std::uint32_t side = u_->plane_side;
       return {Vec3(on_side(p.normal.x(), side), on_side(p.normal.y(), side), on_side(p.normal.z(), side)),
-              on_side(p.offset, side), u_->neighbor, mc_->plane_extra_[side >> 1]};
+              on_side(p.offset, side), u_->neighbor, extra(side)};
     }
     iterator& operator++() {
       ++u_;
@@ -183,23 +185,36 @@ class MixedComplex::PlaneRange {
     bool operator==(const iterator& o) const { return u_ == o.u_; }
 
    private:
+    /// k, the vertex of Y = X ∪ {k} not in X: the first place where the
+    /// sorted vertices of Y and X differ (made here, not stored: 4 bytes per
+    /// plane saved).
+    Index extra(std::uint32_t side) const {
+      const MixedCell& X = mc_->cells_[(side & 1u) ? u_->neighbor : cell_];
+      const MixedCell& Y = mc_->cells_[(side & 1u) ? cell_ : u_->neighbor];
+      for (int i = 0; i < Y.dim; ++i)
+        if (Y.vertices[i] != X.vertices[i]) return Y.vertices[i];
+      return Y.vertices[Y.dim];
+    }
     const MixedComplex* mc_ = nullptr;
+    Index cell_ = kInvalidIndex;
     const PlaneUse* u_ = nullptr;
   };
-  PlaneRange(const MixedComplex* mc, const PlaneUse* b, const PlaneUse* e) : mc_(mc), b_(b), e_(e) {}
-  iterator begin() const { return {mc_, b_}; }
-  iterator end() const { return {mc_, e_}; }
+  PlaneRange(const MixedComplex* mc, Index cell, const PlaneUse* b, const PlaneUse* e)
+      : mc_(mc), cell_(cell), b_(b), e_(e) {}
+  iterator begin() const { return {mc_, cell_, b_}; }
+  iterator end() const { return {mc_, cell_, e_}; }
   std::size_t size() const { return static_cast<std::size_t>(e_ - b_); }
 
  private:
   const MixedComplex* mc_;
+  Index cell_;
   const PlaneUse *b_, *e_;
 };
 
 inline MixedComplex::PlaneRange MixedComplex::planes(Index c) const {
   const MixedCell& m = cells_[c];
   const PlaneUse* b = plane_uses_.data() + m.first_plane;
-  return {this, b, b + m.num_planes};
+  return {this, c, b, b + m.num_planes};
 }
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices

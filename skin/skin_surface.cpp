@@ -42,12 +42,12 @@ constexpr double kPullBackFallback = 1e-11;
 
 }  // namespace
 
-SkinSurface::SkinSurface(std::vector<geometry::WeightedPoint> points) : points_(std::move(points)) {
+SkinSurface::SkinSurface(std::vector<geometry::WeightedPoint> points, int threads) : points_(std::move(points)) {
   if (points_.empty()) throw InputError("", 0, "no weighted points (no atoms)");
   for (const auto& p : points_)
     if (!p.z.allFinite() || !std::isfinite(p.w)) throw InputError("", 0, "non-finite weighted point");
   rt_ = std::make_unique<geometry::RegularTriangulation>(points_);
-  mc_ = std::make_unique<MixedComplex>(*rt_);
+  mc_ = std::make_unique<MixedComplex>(*rt_, threads);
 }
 
 SkinSample SkinSurface::sample(const Vec3& x, Index hint) const {

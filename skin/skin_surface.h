@@ -85,9 +85,10 @@ struct PrincipalCurvatures {
 class SkinSurface {
  public:
   /// Builds the regular triangulation and the mixed complex of `points`
-  /// (weights w = squared radii, Å²; non-empty; finite). Throws InputError on
-  /// an empty or non-finite input.
-  explicit SkinSurface(std::vector<geometry::WeightedPoint> points);
+  /// (weights w = squared radii, Å²; non-empty; finite); the mixed complex
+  /// on up to `threads` threads (0: every core; the result does not depend on
+  /// the count). Throws InputError on an empty or non-finite input.
+  explicit SkinSurface(std::vector<geometry::WeightedPoint> points, int threads = 1);
 
   const std::vector<geometry::WeightedPoint>& points() const { return points_; }
   const geometry::RegularTriangulation& triangulation() const { return *rt_; }

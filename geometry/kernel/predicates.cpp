@@ -83,6 +83,23 @@ PredicateStats predicate_stats() { return tl_stats; }
 
 void reset_predicate_stats() { tl_stats = PredicateStats{}; }
 
+PredicateStats take_predicate_stats() {
+  const PredicateStats s = tl_stats;
+  tl_stats = PredicateStats{};
+  return s;
+}
+
+void add_predicate_stats(const PredicateStats& d) {
+  auto add = [](PredicateCounters& a, const PredicateCounters& b) {
+    a.calls += b.calls;
+    a.exact += b.exact;
+    a.sos += b.sos;
+  };
+  add(tl_stats.orient2d, d.orient2d);
+  add(tl_stats.orient3d, d.orient3d);
+  add(tl_stats.power_test, d.power_test);
+}
+
 // Floating-Point Filters ------------------------------------------------------
 namespace {
 

@@ -56,6 +56,15 @@ PredicateStats predicate_stats();
 /// Sets the calling thread's predicate counters to zero. Throws nothing.
 void reset_predicate_stats();
 
+/// The calling thread's predicate counters, which are set to zero. With
+/// add_predicate_stats(), a parallel loop moves its blocks' counts to the
+/// thread that called it, so that thread's statistics do not depend on the
+/// thread count. Throws nothing.
+PredicateStats take_predicate_stats();
+
+/// Adds d to the calling thread's predicate counters. Throws nothing.
+void add_predicate_stats(const PredicateStats& d);
+
 // Orientation Predicates ----------------------------------------------------------
 
 /// Sign of the 2D cross product (b - a) x (c - a): Positive iff c lies to the

@@ -1,7 +1,6 @@
 // geometry/triangulation/key_index.h: KeyIndex, a table numbering 63-bit keys densely in the
 // order they are first added — the hash behind the point grids' cells
-// (geometry/triangulation/point_grid.h) and the mixed complex's edge and triangle ids
-// (skin/mixed_complex.cpp).
+// (geometry/triangulation/point_grid.h).
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,191 @@
+// tests/skin/mixed_complex_construction_test.cpp: the mixed complex's cells and
+// planes against a plain scan of the triangulation with ordered maps (the
+// definition of their numbering and order, papers/skin/mixed_complex.md
+// "Construction"), its planes against their geometric definition, and the
+// complex built on 1, 2 and 3 threads against itself bit for bit.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
+#include "tests/skin/skin_test_util.h"
+
+using namespace skinmesh;
+
+namespace {
+
+/// The complex as a scan defines it: cells numbered as met (vertices, then
+/// tetrahedra, then per tetrahedron in order and per facet leaving out its
+/// sorted vertex 0..3: the facet if new, then its new edges 01, 02, 12), and
+/// per cell its planes' (neighbour, extra vertex) in the order the facet /
+/// coface pairs are met.
+struct ScanComplex {
+  std::vector<std::array<Index, 4>> vertices;
+  std::vector<int> dim;
+  std::vector<std::vector<std::pair<Index, Index>>> planes;
+};
+
+ScanComplex scan(const geometry::RegularTriangulation& rt) {
+  ScanComplex sc;
+  auto add = [&](int d, std::array<Index, 4> v) {
+    sc.vertices.push_back(v);
+    sc.dim.push_back(d);
+    sc.planes.emplace_back();
+    return static_cast<Index>(sc.vertices.size() - 1);
+  };
+  std::vector<Index> vertex_cell(rt.num_points(), kInvalidIndex);
+  for (Index v = 0; v < rt.num_points(); ++v)
+    if (rt.is_vertex(v)) vertex_cell[v] = add(0, {v, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+  std::vector<Index> tet_cell(rt.num_tets());
+  for (Index t = 0; t < rt.num_tets(); ++t) {
+    std::array<Index, 4> tv = rt.tet(t);
+    std::sort(tv.begin(), tv.end());
+    tet_cell[t] = add(3, tv);
+  }
+  auto pair = [&](Index x, Index y, Index k) {
+    sc.planes[x].push_back({y, k});
+    sc.planes[y].push_back({x, k});
+  };
+  std::map<std::array<Index, 2>, Index> edges;
+  std::map<std::array<Index, 3>, Index> triangles;
+  auto edge = [&](Index a, Index b) {
+    auto [it, fresh] = edges.try_emplace({a, b}, 0);
+    if (fresh) {
+      it->second = add(1, {a, b, kInvalidIndex, kInvalidIndex});
+      pair(vertex_cell[a], it->second, b);
+      pair(vertex_cell[b], it->second, a);
+    }
+    return it->second;
+  };
+  for (Index t = 0; t < rt.num_tets(); ++t) {
+    const std::array<Index, 4> tv = sc.vertices[tet_cell[t]];
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 3> f{};
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (i != skip) f[j++] = tv[i];
+      auto [it, fresh] = triangles.try_emplace(f, 0);
+      if (fresh) {
+        it->second = add(2, {f[0], f[1], f[2], kInvalidIndex});
+        const Index e01 = edge(f[0], f[1]);
+        pair(e01, it->second, f[2]);
+        const Index e02 = edge(f[0], f[2]);
+        pair(e02, it->second, f[1]);
+        const Index e12 = edge(f[1], f[2]);
+        pair(e12, it->second, f[0]);
+      }
+      pair(it->second, tet_cell[t], tv[skip]);
+    }
+  }
+  return sc;
+}
+
+/// The complex of `pts` against the scan, and its planes against their
+/// definition (papers/skin/skin_math.md §2.3): n is a unit vector orthogonal
+/// to lin X and pointing from aff X towards z_k, the plane passes through
+/// (z_a + z_Y) / 2, and the neighbour sees the same plane negated exactly.
+void check_against_scan(const std::vector<geometry::WeightedPoint>& pts, int threads) {
+  const skin::SkinSurface skin(pts, threads);
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  const geometry::RegularTriangulation& rt = skin.triangulation();
+  const ScanComplex sc = scan(rt);
+  REQUIRE(mc.num_cells() == sc.vertices.size());
+  const double L = mc.length_scale();
+  std::size_t mismatches = 0;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    const skin::MixedCell& m = mc.cell(c);
+    if (m.dim != sc.dim[c] || m.vertices != sc.vertices[c]) ++mismatches;
+    const auto range = mc.planes(c);
+    if (range.size() != sc.planes[c].size()) {
+      ++mismatches;
+      continue;
+    }
+    std::size_t i = 0;
+    for (const skin::CellPlane& p : range) {
+      const auto [nb, extra] = sc.planes[c][i++];
+      if (p.neighbor != nb || p.extra != extra) ++mismatches;
+      // The neighbour's copy is this plane negated, bit for bit.
+      bool mirrored = false;
+      for (const skin::CellPlane& q : mc.planes(nb))
+        mirrored = mirrored || (q.neighbor == c && q.offset == -p.offset && q.normal == -p.normal);
+      CHECK(mirrored);
+      const bool coface = mc.cell(nb).dim < m.dim;  // this cell is Y
+      const skin::MixedCell& X = coface ? mc.cell(nb) : m;
+      const skin::MixedCell& Y = coface ? m : mc.cell(nb);
+      const Vec3 n = coface ? Vec3(-p.normal) : p.normal;
+      const double off = coface ? -p.offset : p.offset;
+      CHECK(std::abs(n.norm() - 1) <= 1e-12);
+      for (int j = 1; j <= X.dim; ++j)
+        CHECK(std::abs(n.dot((rt.point(X.vertices[j]).z - rt.point(X.vertices[0]).z).normalized())) <= 1e-9);
+      CHECK(n.dot(rt.point(extra).z - rt.point(X.vertices[0]).z) > 0);
+      CHECK(std::abs(n.dot(0.5 * (rt.point(X.vertices[0]).z + Y.focus)) - off) <= 1e-12 * L);
+    }
+  }
+  CHECK(mismatches == 0);
+}
+
+/// True if the two complexes hold the same cells and planes, bit for bit.
+bool same_complex(const skin::MixedComplex& a, const skin::MixedComplex& b) {
+  if (a.num_cells() != b.num_cells() || a.num_reordered_foci() != b.num_reordered_foci()) return false;
+  for (Index c = 0; c < a.num_cells(); ++c) {
+    const skin::MixedCell &x = a.cell(c), &y = b.cell(c);
+    if (x.vertices != y.vertices || x.dim != y.dim || x.bounding != y.bounding || x.first_plane != y.first_plane ||
+        x.num_planes != y.num_planes || std::memcmp(x.focus.data(), y.focus.data(), sizeof(double) * 3) != 0 ||
+        std::memcmp(x.axis.data(), y.axis.data(), sizeof(double) * 3) != 0 ||
+        std::memcmp(&x.focus_weight, &y.focus_weight, sizeof(double)) != 0)
+      return false;
+    auto pb = b.planes(c).begin();
+    for (const skin::CellPlane& p : a.planes(c)) {
+      const skin::CellPlane q = *pb;
+      ++pb;
+      if (p.neighbor != q.neighbor || p.extra != q.extra ||
+          std::memcmp(p.normal.data(), q.normal.data(), sizeof(double) * 3) != 0 ||
+          std::memcmp(&p.offset, &q.offset, sizeof(double)) != 0)
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_SUITE("skin") {
+
+TEST_CASE("mixed complex: cells and planes as the scan of the triangulation numbers them") {
+  std::mt19937 rng(2004);
+  SUBCASE("random weighted points") { check_against_scan(test::random_points(40, 6.0, 0.5, 2.5, rng), 1); }
+  SUBCASE("a coplanar ring (flat tetrahedra)") {
+    const skin::Molecule mol =
+        skin::read_molecule(std::string(SKINMESH_TEST_DATA) + "/regression/ring8_probe3_coplanar_facets.xyzr");
+    check_against_scan(skin::weighted_points(mol, 3.0), 2);
+  }
+  SUBCASE("crambin at probes 0 and 1.4, on 2 threads") {
+    const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+    check_against_scan(skin::weighted_points(mol, 0.0), 2);
+    check_against_scan(skin::weighted_points(mol, 1.4), 2);
+  }
+  SUBCASE("one atom, two atoms (only bounding tetrahedra around them)") {
+    check_against_scan({{Vec3(1, 2, 3), 4.0}}, 1);
+    check_against_scan({{Vec3(0, 0, 0), 4.0}, {Vec3(1.5, 0, 0), 2.0}}, 1);
+  }
+}
+
+TEST_CASE("mixed complex: the same on 1, 2 and 3 threads, bit for bit") {
+  // Enough tetrahedra (about 14,000) for every loop of the construction to
+  // split into several blocks.
+  std::mt19937 rng(42);
+  const std::vector<geometry::WeightedPoint> pts = test::random_points(2000, 30.0, 0.8, 2.0, rng);
+  const skin::SkinSurface one(pts, 1);
+  REQUIRE(one.triangulation().num_tets() > 3 * 4096);
+  for (int threads : {2, 3}) {
+    const skin::SkinSurface many(pts, threads);
+    CHECK(same_complex(one.mixed_complex(), many.mixed_complex()));
+  }
+}
+
+}  // TEST_SUITE
