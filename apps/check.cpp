@@ -43,7 +43,7 @@ int run_check(CheckArgs& a) {
   const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
   const Vec3 centre = skin::local_frame_centre(points);
   for (Vec3& p : mesh.positions) p -= centre;
-  const skin::SkinSurface skin(skin::translated(points, centre));
+  const skin::SkinSurface skin(skin::translated(points, centre), a.opt.threads);
   a.opt.check_self_intersections = !a.no_self_intersections;
   a.opt.check_restricted_delaunay = !a.no_rdt;
   const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt);

@@ -30,10 +30,11 @@ int run_info(const InfoArgs& a) {
   // In the molecule's local frame, as the mesher works: the same triangulation,
   // critical points and expected topology as `skinmesh mesh` sees.
   const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
-  const skin::SkinSurface skin(skin::translated(points, skin::local_frame_centre(points)));
+  // Every core: none of the report depends on the thread count.
+  const skin::SkinSurface skin(skin::translated(points, skin::local_frame_centre(points)), 0);
   const auto& rt = skin.triangulation();
   const auto& mc = skin.mixed_complex();
-  const skin::SkinTopology topo = skin::dual_complex_topology(mc);
+  const skin::SkinTopology topo = skin::dual_complex_topology(mc, 0);
   const Vec3 e = height_direction(a.direction);
   const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, e);
   const morse::MorseCount all = morse::count_critical_points(ms.critical);

@@ -216,7 +216,7 @@ void remesh_static(const skin::SkinSurface& skin, const MeshOptions& options, St
   MeshResult fresh;
   fresh.algorithm = Algorithm::Dynamic;
   fresh.static_fallback = std::move(why);
-  fresh.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+  fresh.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), thread_count(options.threads));
   dynamic::DynamicOptions static_options = options.dynamic;
   static_options.growth = false;
   static_options.observer = nullptr;
@@ -249,7 +249,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   const bool may_fall_back = !dynamic && options.static_fallback && options.sweep.max_steps < 0 &&
                              !options.sweep.paranoid && options.sweep.dump_path.empty();
   if (dynamic) {
-    res.expected_topology = skin::dual_complex_topology(skin.mixed_complex());
+    res.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), thread_count(options.threads));
     clock.end("skin");
     res.mesh = dynamic::mesh_dynamic(skin, options.size, options.dynamic, clock, res.dynamic, res.vertex_data);
     res.dynamic.predicates = predicates_since(predicates_before);

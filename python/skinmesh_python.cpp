@@ -161,7 +161,7 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
     const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, probe);
     const Vec3 centre = skin::local_frame_centre(points);
     for (Vec3& p : m.positions) p -= centre;
-    const skin::SkinSurface skin(skin::translated(points, centre));
+    const skin::SkinSurface skin(skin::translated(points, centre), options.threads);
     json = verify::check_skin_mesh(skin, m, options).to_json();
   }
   return py::module_::import("json").attr("loads")(json);

@@ -49,7 +49,9 @@ struct SkinTopology {
 /// (geometry/kernel/orthosphere_predicates.h), so the result does not depend on
 /// rounding, however flat the simplices; exact ties are resolved as documented
 /// on singular_simplices and orthogonal_ties. Simplices with a bounding point
-/// are never in K0. Counts components and voids with union–find.
-SkinTopology dual_complex_topology(const MixedComplex& mc);
+/// are never in K0. Counts components and voids with union–find. The
+/// membership tests run on up to `threads` threads (0: every core); the
+/// result, its lists' order included, does not depend on the count.
+SkinTopology dual_complex_topology(const MixedComplex& mc, int threads = 1);
 
 }  // namespace skinmesh::skin

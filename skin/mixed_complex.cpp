@@ -79,11 +79,12 @@ struct SortedTet {
 };
 
 SortedTet sorted_tet(const RT& rt, Index t) {
-  const std::array<Index, 4>& tv = rt.tet(t);
-  std::array<int, 4> order{0, 1, 2, 3};
-  std::sort(order.begin(), order.end(), [&tv](int a, int b) { return tv[a] < tv[b]; });
-  SortedTet s;
-  for (int i = 0; i < 4; ++i) s.v[i] = tv[order[i]], s.local[i] = order[i];
+  SortedTet s{rt.tet(t), {0, 1, 2, 3}};
+  // A sorting network of five compare-exchanges (the vertices are distinct).
+  auto order = [&s](int i, int j) {
+    if (s.v[j] < s.v[i]) std::swap(s.v[i], s.v[j]), std::swap(s.local[i], s.local[j]);
+  };
+  order(0, 1), order(2, 3), order(0, 2), order(1, 3), order(1, 2);
   return s;
 }
 
@@ -331,19 +332,22 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     owns[ti] = own;
   });
 
-  // The numbering: per tetrahedron, its first new cell and its first new
-  // shared plane (the tetrahedra's own planes come first, four each).
+  // The numbering: per tetrahedron, its first new cell and its triangles'
+  // first shared plane (after the planes of the vertices, one per vertex and
+  // edge, and of the tetrahedra, four each; see the planes below).
   const Index first_tet_cell = nv;
   std::vector<Index> cell_base(nt), plane_base_of_tet(nt);
-  std::size_t num_cells = std::size_t(nv) + nt, num_planes = 4 * std::size_t(nt);
+  std::size_t num_cells = std::size_t(nv) + nt, num_edges = 0, triangle_planes = 0;
   for (Index t = 0; t < nt; ++t) {
     cell_base[t] = static_cast<Index>(num_cells);
-    plane_base_of_tet[t] = static_cast<Index>(num_planes);
+    plane_base_of_tet[t] = static_cast<Index>(triangle_planes);
     const int facets = std::popcount(unsigned(owns[t] & 0xFu)), edges = std::popcount(unsigned(owns[t] >> 4));
     num_cells += std::size_t(facets) + edges;
-    num_planes += 3 * std::size_t(facets) + 2 * std::size_t(edges);
-    SKINMESH_ASSERT_MSG(num_planes < (std::size_t{1} << 31) && num_cells < kInvalidIndex,
-                        "too many mixed cells for 32-bit indices");
+    num_edges += std::size_t(edges);
+    triangle_planes += 3 * std::size_t(facets);
+    SKINMESH_ASSERT_MSG(
+        2 * num_edges + 4 * std::size_t(nt) + triangle_planes < (std::size_t{1} << 31) && num_cells < kInvalidIndex,
+        "too many mixed cells for 32-bit indices");
   }
   // The triangulation fills the bounding tetrahedron, a ball: with V vertices
   // and T tetrahedra it has F = 2T + 2 triangles (4T facets, 4 on the hull)
@@ -351,8 +355,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   SKINMESH_ASSERT_MSG(num_cells == 2 * std::size_t(nv) + 4 * std::size_t(nt) + 3,
                       "the triangulation is not a triangulated ball");
   cells_.resize(num_cells);
-  // Per triangle and edge cell, its first shared plane (the planes with its
-  // facets, which it sees as the coface).
+  // Per triangle cell, its first shared plane (the planes with its edges,
+  // which it sees as the coface), counted from the first triangle plane.
   std::vector<Index> plane_base(num_cells, 0);
   for (Index v = 0; v < np; ++v) {
     if (vertex_cell_[v] == kInvalidIndex) continue;
@@ -386,8 +390,6 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
         if (!(own & (1u << (4 + e))) || first_facet(p, q) != s) continue;
         make_cell(id, 1, {st.v[p], st.v[q], kInvalidIndex, kInvalidIndex});
         cells_[id].num_planes = 2 + tet_edge[6 * ti + e];  // 2 vertices, its triangles
-        plane_base[id] = plane;
-        plane += 2;
         tet_edge[6 * ti + e] = id++;
         // A vertex cell's planes are those with its edges.
         for (Index w : {st.v[p], st.v[q]})
@@ -412,10 +414,11 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     }
   });
   for (Index t = 0; t < nt; ++t) {
+    if ((owns[t] >> 4) == 0x3Fu) continue;
+    const SortedTet st = sorted_tet(rt, t);
     for (int e = 0; e < 6; ++e) {
       if (owns[t] & (1u << (4 + e))) continue;
       const Index u = tet_edge[6 * std::size_t(t) + e];
-      const SortedTet st = sorted_tet(rt, t);
       const int p = rank_in(rt, u, st.v[kTetEdges[e][0]]), q = rank_in(rt, u, st.v[kTetEdges[e][1]]);
       tet_edge[6 * std::size_t(t) + e] = tet_edge[6 * std::size_t(u) + edge_slot(p, q)];
     }
@@ -466,7 +469,15 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     c.first_plane = total;
     total += c.num_planes;
   }
-  shared_planes_.resize(num_planes);
+  // The shared planes: first those of the vertices with their edges, each at
+  // the place of its use in the vertex's list (a vertex cell, where the walk
+  // spends most of its steps, reads its planes from one stretch of memory),
+  // then the tetrahedra's four each, then the triangles' three with their
+  // edges, by tetrahedron.
+  const Index vertex_planes = cells_[first_tet_cell].first_plane;  // the vertex cells' uses come first
+  SKINMESH_ASSERT_MSG(vertex_planes == 2 * num_edges, "the edges of the vertices miscounted");
+  const Index first_tet_plane = vertex_planes, first_triangle_plane = vertex_planes + 4 * nt;
+  shared_planes_.resize(std::size_t(first_triangle_plane) + triangle_planes);
   plane_uses_.resize(total);
   auto set_plane = [&](Index plane, Index x, Index y, Index k) {
     constexpr double s = 0.5;
@@ -487,7 +498,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     // after its three edges, the lower (its owner) first.
     for (int s = 0; s < 4; ++s) {
       const Index f = tet_tri[4 * ti + s];
-      const Index plane = 4 * t + Index(s);
+      const Index plane = first_tet_plane + 4 * t + Index(s);
       set_plane(plane, f, tc, st.v[s]);
       plane_uses_[cells_[tc].first_plane + s] = {2 * plane + 1, f};
       plane_uses_[cells_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = {2 * plane, tc};
@@ -501,7 +512,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
           {{fp[0], fp[1], fp[2]}, {fp[0], fp[2], fp[1]}, {fp[1], fp[2], fp[0]}}};
       for (int j = 0; j < 3; ++j) {
         const Index e = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
-        const Index plane = plane_base[f] + Index(j);
+        const Index plane = first_triangle_plane + plane_base[f] + Index(j);
         set_plane(plane, e, f, st.v[edges[j][2]]);
         plane_uses_[cells_[f].first_plane + j] = {2 * plane + 1, e};
       }
@@ -514,11 +525,11 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       const Index a = st.v[kTetEdges[k][0]], b = st.v[kTetEdges[k][1]];
       for (int j = 0; j < 2; ++j) {
         const Index v = j == 0 ? a : b;
-        const Index plane = plane_base[e] + Index(j);
+        const Index slot = std::atomic_ref<Index>(vertex_fill[vertex_cell_[v]]).fetch_add(1, std::memory_order_relaxed);
+        const Index plane = cells_[vertex_cell_[v]].first_plane + slot;
         set_plane(plane, vertex_cell_[v], e, j == 0 ? b : a);
         plane_uses_[cells_[e].first_plane + j] = {2 * plane + 1, vertex_cell_[v]};
-        const Index slot = std::atomic_ref<Index>(vertex_fill[vertex_cell_[v]]).fetch_add(1, std::memory_order_relaxed);
-        plane_uses_[cells_[vertex_cell_[v]].first_plane + slot] = {2 * plane, e};
+        plane_uses_[plane] = {2 * plane, e};
       }
       triangles.clear();
       auto add_triangles = [&](Index u) {
@@ -537,7 +548,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
         // vertex 2, 1, 0.
         const Index apex =
             F.vertices[0] != a && F.vertices[0] != b ? 0 : (F.vertices[1] != a && F.vertices[1] != b ? 1 : 2);
-        plane_uses_[cells_[e].first_plane + 2 + i] = {2 * (plane_base[triangles[i]] + (2 - apex)), triangles[i]};
+        plane_uses_[cells_[e].first_plane + 2 + i] = {
+            2 * (first_triangle_plane + plane_base[triangles[i]] + (2 - apex)), triangles[i]};
       }
     }
   };

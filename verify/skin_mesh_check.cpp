@@ -301,7 +301,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   }
 
   // Topology against K0 (and the caller's per-component expectation).
-  rep.expected = opt.expected_topology ? *opt.expected_topology : skin::dual_complex_topology(skin.mixed_complex());
+  rep.expected =
+      opt.expected_topology ? *opt.expected_topology : skin::dual_complex_topology(skin.mixed_complex(), threads);
   for (const auto& comp : rep.mesh.components) rep.component_euler.push_back(comp.euler);
   std::sort(rep.component_euler.begin(), rep.component_euler.end());
   rep.expected_component_euler = opt.expected_component_euler;

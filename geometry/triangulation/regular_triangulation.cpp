@@ -347,11 +347,6 @@ void RegularTriangulation::compact() {
 
 // Accessors and queries ---------------------------------------------------------
 
-const WeightedPoint& RegularTriangulation::point(Index v) const {
-  SKINMESH_DEBUG_ASSERT(v < points_.size());
-  return points_[v];
-}
-
 bool RegularTriangulation::is_vertex(Index v) const {
   SKINMESH_DEBUG_ASSERT(v < points_.size());
   return vertex_state_[v] == PointState::Vertex;
@@ -365,27 +360,9 @@ std::vector<Index> RegularTriangulation::redundant_points() const {
   return out;
 }
 
-const std::array<Index, 4>& RegularTriangulation::tet(Index t) const {
-  SKINMESH_DEBUG_ASSERT(t < cells_.size());
-  return cells_[t].v;
-}
-
-Index RegularTriangulation::neighbor(Index t, int i) const {
-  SKINMESH_DEBUG_ASSERT(t < cells_.size() && i >= 0 && i < 4);
-  return cells_[t].n[i];
-}
-
 Index RegularTriangulation::vertex_tet(Index v) const {
   SKINMESH_DEBUG_ASSERT(v < vertex_tet_.size());
   return vertex_tet_[v];
-}
-
-int RegularTriangulation::local_index(Index t, Index v) const {
-  const std::array<Index, 4>& tv = tet(t);
-  for (int i = 0; i < 4; ++i) {
-    if (tv[i] == v) return i;
-  }
-  return -1;
 }
 
 Index RegularTriangulation::locate(const Vec3& p, Index hint) const {

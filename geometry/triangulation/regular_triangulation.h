@@ -43,6 +43,7 @@
 #include <span>
 #include <vector>
 
+#include "core/assert.h"
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/triangulation/cavity.h"
@@ -228,5 +229,29 @@ class RegularTriangulation {
   Index last_tet_ = 0;
   std::uint64_t walk_rng_ = 0;
 };
+
+// The accessors are inline: the mixed complex's construction and the walks
+// call them a few times per step.
+inline const WeightedPoint& RegularTriangulation::point(Index v) const {
+  SKINMESH_DEBUG_ASSERT(v < points_.size());
+  return points_[v];
+}
+
+inline const std::array<Index, 4>& RegularTriangulation::tet(Index t) const {
+  SKINMESH_DEBUG_ASSERT(t < cells_.size());
+  return cells_[t].v;
+}
+
+inline Index RegularTriangulation::neighbor(Index t, int i) const {
+  SKINMESH_DEBUG_ASSERT(t < cells_.size() && i >= 0 && i < 4);
+  return cells_[t].n[i];
+}
+
+inline int RegularTriangulation::local_index(Index t, Index v) const {
+  const std::array<Index, 4>& tv = tet(t);
+  for (int i = 0; i < 4; ++i)
+    if (tv[i] == v) return i;
+  return -1;
+}
 
 }  // namespace skinmesh::geometry

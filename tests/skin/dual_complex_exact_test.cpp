@@ -115,4 +115,26 @@ TEST_CASE("K0 reports simplices whose balls meet in exactly one point") {
   }
 }
 
+TEST_CASE("K0 on 1, 2 and 3 threads: the same counts, ties and singular simplices in the same order") {
+  // A cubic lattice of touching balls (spacing 2, radius 1): every lattice
+  // edge is singular and every cell of the lattice cospherical (ties), with
+  // enough cells of each dimension (over 4,096) for several blocks per pass.
+  std::vector<WeightedPoint> pts;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      for (int k = 0; k < 12; ++k) pts.push_back({Vec3(2.0 * i, 2.0 * j, 2.0 * k), 1.0});
+  const skin::SkinSurface skin(pts, 2);
+  const skin::SkinTopology one = skin::dual_complex_topology(skin.mixed_complex(), 1);
+  REQUIRE(one.singular_simplices.size() > 4096);
+  REQUIRE(one.orthogonal_ties > 0);
+  for (int threads : {2, 3}) {
+    const skin::SkinTopology many = skin::dual_complex_topology(skin.mixed_complex(), threads);
+    for (int d = 0; d < 4; ++d) CHECK(many.k0_simplices[d] == one.k0_simplices[d]);
+    CHECK(many.betti0 == one.betti0);
+    CHECK(many.betti2 == one.betti2);
+    CHECK(many.orthogonal_ties == one.orthogonal_ties);
+    CHECK(many.singular_simplices == one.singular_simplices);
+  }
+}
+
 }  // TEST_SUITE
