@@ -397,10 +397,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       }
     }
   });
-  // The facets and edges a tetrahedron does not own: the owner's cell. A
-  // facet's owner is the lower tetrahedron across it; an edge slot holds some
-  // lower tetrahedron around the edge, whose slot is final once the lower
-  // tetrahedra are done (hence in order, on one thread).
+  // The facets a tetrahedron does not own: the cell of their owner, the
+  // lower tetrahedron across them (its slot was set above).
   parallel_for(nt, threads, kGrain, [&](std::size_t ti) {
     const Index t = static_cast<Index>(ti);
     const SortedTet st = sorted_tet(rt, t);
@@ -413,6 +411,9 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       tet_tri[4 * ti + s] = tet_tri[4 * std::size_t(nb) + rank_in(rt, nb, apex)];
     }
   });
+  // The edges it does not own: the slot holds some lower tetrahedron around
+  // the edge, whose own slot is final once the lower tetrahedra are done
+  // (hence in increasing order, on one thread).
   for (Index t = 0; t < nt; ++t) {
     if ((owns[t] >> 4) == 0x3Fu) continue;
     const SortedTet st = sorted_tet(rt, t);

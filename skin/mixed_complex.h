@@ -76,8 +76,9 @@ class MixedComplex {
   /// Builds every cell (foci, axes, bounding planes) from the triangulation,
   /// on up to `threads` threads (0: every core); the complex, its numbering
   /// included, does not depend on the count. The shrink factor is fixed at
-  /// s = 1/2 (Cheng & Shi §2.1). Throws AssertionError if the complex needs
-  /// more than 2^31 planes (about 25 million points).
+  /// s = 1/2 (Cheng & Shi §2.1). Throws std::logic_error (a failed
+  /// SKINMESH_ASSERT) if the complex needs more than 2^31 planes (about 25
+  /// million points).
   explicit MixedComplex(const geometry::RegularTriangulation& rt, int threads = 1);
 
   Index num_cells() const { return static_cast<Index>(cells_.size()); }
