@@ -199,9 +199,12 @@ Index append_with_vertex_data(geometry::SurfaceMesh& mesh, const geometry::Surfa
 /// meshes appended in group order; one sweep of everything when the skin
 /// is one group, or when a group's sweep fails (its error in `why`). A
 /// group's fronts never meet another group's surface, so nothing else is
-/// shared (papers/mesher/decomposition.md, "Components").
+/// shared (papers/mesher/decomposition.md, "Components"). With `unglued`,
+/// two or more groups' meshes are moved there in group order instead of
+/// appended, and the result holds their summed stats only.
 SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const SweepOptions& sweep, int threads, DecompositionCosts& costs, std::string& why) {
+                             const SweepOptions& sweep, int threads, DecompositionCosts& costs, std::string& why,
+                             std::vector<SweepResult>* unglued) {
   const morse::ComponentGroups groups = morse::component_groups(ms);
   if (groups.count < 2) return sweep_mesh(skin, ms, sweep);
   std::vector<std::optional<SweepResult>> parts(groups.count);
@@ -235,6 +238,19 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
       why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
       return sweep_mesh(skin, ms, sweep);
     }
+  if (unglued) {
+    SweepResult out;
+    unglued->reserve(groups.count);
+    for (Index g = 0; g < groups.count; ++g) {
+      costs.components.push_back({seconds[g], parts[g]->mesh.n_faces()});
+      if (g == 0)
+        out.stats = parts[g]->stats;
+      else
+        add_stats(out.stats, parts[g]->stats);
+      unglued->push_back(std::move(*parts[g]));
+    }
+    return out;
+  }
   // The glue: the first group's mesh taken as it is (no copy of it at the
   // peak), every other group's appended, its vertex data with it.
   const auto glue_start = std::chrono::steady_clock::now();
@@ -426,7 +442,8 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       // An observer or a trace replays one front in one mesh: they get the
       // one sweep of everything.
       if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
-        out.sweep = sweep_components(skin, ms, sweep, threads, out.costs, out.components_fallback);
+        out.sweep = sweep_components(skin, ms, sweep, threads, out.costs, out.components_fallback,
+                                     opt.glue_groups ? nullptr : &out.groups);
       else
         out.sweep = sweep_mesh(skin, ms, sweep);
       return out;

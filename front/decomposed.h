@@ -74,6 +74,14 @@ struct DecompositionOptions {
   /// the whole skin. The groups depend on the input only. Off where the
   /// sweep has an observer or a trace (they follow one front in one mesh).
   bool components = true;
+  /// With components: append the groups' meshes into one (true), or hand
+  /// them back one by one in DecomposedSweep::groups (false), for a caller
+  /// that refines each group on its own and joins the output meshes: no
+  /// copy of the whole mesh, and each group's half-edge mesh can be freed
+  /// once its output is made (papers/mesher/decomposition.md, "Groups to the
+  /// end"). mesher::mesh_skin() sets it itself: false unless an observer
+  /// watches the whole mesh between the stages.
+  bool glue_groups = true;
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
@@ -149,6 +157,11 @@ struct DecomposedSweep {
   /// Why the groups of components were swept as one after all (a group's
   /// sweep failed: its error), or empty.
   std::string components_fallback;
+  /// With DecompositionOptions::glue_groups false and at least two groups
+  /// swept: each group's mesh (garbage-collected, with sweep_mesh()'s vertex
+  /// properties), in group order; `sweep` then holds the summed stats and
+  /// an empty mesh. Empty otherwise (the mesh is in `sweep`).
+  std::vector<SweepResult> groups;
 };
 
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as

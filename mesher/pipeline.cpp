@@ -5,6 +5,7 @@
 // Notes: papers/mesher/pipeline.md
 #include "mesher/pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <future>
@@ -26,31 +27,56 @@ namespace skinmesh::mesher {
 
 namespace {
 
-/// The output mesh of a closed SurfaceMesh of the skin: positions, triangles
-/// and per vertex the normal (skin::kVertexNormal); into `data` per vertex the
-/// atom and the dimension of its mixed cell (skin::kVertexCell) and rho
-/// (skin::kVertexRho). Deleted elements are left out.
-geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
-                                  skin::SkinVertexData& data) {
-  // No garbage_collection(): to_indexed_mesh() and vertices() skip deleted
-  // elements in index order, which is the order the compaction keeps (the same
-  // output without moving every property array of the mesh once more).
-  geometry::IndexedMesh out = mesh.to_indexed_mesh();
+/// Writes the output of a closed SurfaceMesh of the skin into `out` and
+/// `data` (every array already sized), its vertices from index `vbase` on and
+/// its triangles from `fbase` on: positions, triangles (vertex indices offset
+/// by vbase) and per vertex the normal (skin::kVertexNormal); into `data` per
+/// vertex the atom and the dimension of its mixed cell (skin::kVertexCell)
+/// and rho (skin::kVertexRho). Deleted elements are left out, the others keep
+/// their order.
+void output_mesh_into(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh, geometry::IndexedMesh& out,
+                      skin::SkinVertexData& data, std::size_t vbase, std::size_t fbase) {
+  // No garbage_collection(): vertices() and faces() skip deleted elements in
+  // index order, which is the order the compaction keeps (the same output
+  // without moving every property array of the mesh once more).
   const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
   const auto cell = mesh.get_vertex_property(skin::kVertexCell);
   const auto rho = mesh.get_vertex_property(skin::kVertexRho);
-  out.normals.resize(out.positions.size());
-  data.atom.resize(out.positions.size());
-  data.rho.resize(out.positions.size());
-  data.patch.resize(out.positions.size());
-  Index i = 0;
+  std::vector<Index> map(mesh.vertices_size(), kInvalidIndex);
+  std::size_t i = vbase;
   for (geometry::Vertex v : mesh.vertices()) {
+    map[v.idx()] = static_cast<Index>(i);
+    out.positions[i] = mesh.position(v);
     out.normals[i] = normal[v];
     data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
     data.rho[i] = rho[v];
     data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
     ++i;
   }
+  std::size_t t = fbase;
+  for (geometry::Face f : mesh.faces()) {
+    geometry::Halfedge h = mesh.halfedge(f);
+    for (int k = 0; k < 3; ++k, h = mesh.next(h)) out.triangles[t][k] = map[mesh.from_vertex(h).idx()];
+    ++t;
+  }
+}
+
+/// Sizes the output arrays for `vertices` vertices and `triangles` triangles.
+void size_output(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out, skin::SkinVertexData& data) {
+  out.positions.resize(vertices);
+  out.normals.resize(vertices);
+  out.triangles.resize(triangles);
+  data.atom.resize(vertices);
+  data.rho.resize(vertices);
+  data.patch.resize(vertices);
+}
+
+/// The output mesh of a closed SurfaceMesh of the skin (output_mesh_into()).
+geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
+                                  skin::SkinVertexData& data) {
+  geometry::IndexedMesh out;
+  size_output(mesh.n_vertices(), mesh.n_faces(), out, data);
+  output_mesh_into(skin, mesh, out, data, 0, 0);
   return out;
 }
 
@@ -116,6 +142,84 @@ geometry::PredicateStats predicates_since(const geometry::PredicateStats& before
   return d;
 }
 
+/// The sum of two refinements' counts (rounds: the larger).
+void add_refine_stats(refine::RefineStats& a, const refine::RefineStats& b) {
+  a.flips += b.flips, a.contractions += b.contractions, a.insertions += b.insertions;
+  a.rounds = std::max(a.rounds, b.rounds);
+  a.refused_contractions += b.refused_contractions, a.refused_insertions += b.refused_insertions;
+  a.crowded_insertions += b.crowded_insertions, a.protected_contractions += b.protected_contractions;
+  a.flip_caps += b.flip_caps;
+  a.L_left += b.L_left, a.U_left += b.U_left;
+}
+
+/// The sum of two angle improvements' counts (passes: the larger; skipped:
+/// either; the smallest angles before and after: the smaller).
+void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprovementStats& b) {
+  a.low_triangles += b.low_triangles;
+  a.passes = std::max(a.passes, b.passes);
+  a.attempts += b.attempts, a.moves += b.moves, a.refused += b.refused;
+  a.refused_orientation += b.refused_orientation, a.refused_rdt += b.refused_rdt;
+  a.refused_intersection += b.refused_intersection;
+  a.refused_L += b.refused_L, a.refused_U += b.refused_U;
+  a.skipped = a.skipped || b.skipped;
+  a.min_angle_before_deg = std::min(a.min_angle_before_deg, b.min_angle_before_deg);
+  a.min_angle_after_deg = std::min(a.min_angle_after_deg, b.min_angle_after_deg);
+}
+
+/// Stages 4, 4b and the output for groups of whole skin components swept on
+/// their own (front::DecomposedSweep::groups): each group's mesh is refined
+/// and angle-improved on its own, and the output meshes are joined in group
+/// order, each written straight into its place in res.mesh and its half-edge
+/// mesh freed at once. No step reads another group's mesh: [L], [U], the
+/// restricted Delaunay property and the angles are conditions on a triangle
+/// and its own component's neighbours (papers/mesher/decomposition.md,
+/// "Groups to the end"). The groups run on the threads, one each, unless one
+/// holds more than half of the triangles: then one after the other, each
+/// with every thread for the refinement's scans. Neither choice changes the
+/// mesh, which depends on the groups only.
+void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, int threads, StageClock& clock,
+                   std::vector<front::SweepResult>& groups, MeshResult& res) {
+  const std::size_t n = groups.size();
+  std::size_t faces = 0, largest = 0;
+  for (const front::SweepResult& g : groups) {
+    faces += g.mesh.n_faces();
+    largest = std::max(largest, g.mesh.n_faces());
+  }
+  const bool one_large = 2 * largest > faces;
+  const int outer = one_large ? 1 : threads, inner = one_large ? threads : 1;
+  if (options.refine) {
+    clock.begin("refine");
+    refine::RefineOptions refinement = with_size(options.refinement, options.size);
+    if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = inner;
+    std::vector<refine::RefineStats> refined(n);
+    parallel_for(n, outer, 1,
+                 [&](std::size_t g) { refined[g] = refine::refine_mesh(skin, groups[g].mesh, refinement); });
+    res.refinement = refined[0];
+    for (std::size_t g = 1; g < n; ++g) add_refine_stats(res.refinement, refined[g]);
+    clock.end("refine");
+    if (options.improve_angles) {
+      clock.begin("angles");
+      const refine::AngleImprovementOptions angles = with_size(options.angle_improvement, options.size);
+      std::vector<refine::AngleImprovementStats> improved(n);
+      parallel_for(n, threads, 1,
+                   [&](std::size_t g) { improved[g] = refine::improve_angles(skin, groups[g].mesh, angles); });
+      res.angle_improvement = improved[0];
+      for (std::size_t g = 1; g < n; ++g) add_angle_stats(res.angle_improvement, improved[g]);
+      clock.end("angles");
+    }
+  }
+  std::vector<std::size_t> vbase(n + 1, 0), fbase(n + 1, 0);
+  for (std::size_t g = 0; g < n; ++g) {
+    vbase[g + 1] = vbase[g] + groups[g].mesh.n_vertices();
+    fbase[g + 1] = fbase[g] + groups[g].mesh.n_faces();
+  }
+  size_output(vbase[n], fbase[n], res.mesh, res.vertex_data);
+  parallel_for(n, threads, 1, [&](std::size_t g) {
+    output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, vbase[g], fbase[g]);
+    groups[g].mesh = geometry::SurfaceMesh();
+  });
+}
+
 /// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
 /// refinement and the angle improvement; fills res.mesh.
 void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
@@ -157,6 +261,9 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (!sweep_options.progress) sweep_options.progress = options.progress;
   front::DecompositionOptions decomposition = options.decomposition;
   decomposition.threads = threads;
+  // The groups of components are refined on their own unless someone
+  // watches the whole mesh between the stages.
+  decomposition.glue_groups = options.observers.stage_end || options.refinement.observer;
   front::DecomposedSweep decomposed = front::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
   front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
@@ -169,6 +276,12 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");
+  if (!decomposed.groups.empty()) {
+    finish_groups(skin, options, threads, clock, decomposed.groups, res);
+    if (options.observers.memory_released) options.observers.memory_released();
+    clock.end("output");
+    return;
+  }
 
   // 4. The local refinement (§4.3).
   if (options.refine) {

@@ -9,7 +9,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "mesher/pipeline.h"
 #include "morse/morse_smale_complex.h"
@@ -26,6 +29,28 @@ double mesh_area(const geometry::IndexedMesh& m) {
   for (const auto& t : m.triangles)
     a += 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
   return a;
+}
+
+/// The mesh as a set of oriented triangles by their corners' positions, each
+/// started at its lexicographically smallest corner, sorted: equal for two
+/// meshes that differ only in the order of their vertices and triangles.
+std::vector<std::array<double, 9>> triangle_set(const geometry::IndexedMesh& m) {
+  auto less = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end());
+  };
+  std::vector<std::array<double, 9>> out;
+  out.reserve(m.triangles.size());
+  for (const auto& t : m.triangles) {
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+      if (less(m.positions[t[k]], m.positions[t[first]])) first = k;
+    std::array<double, 9> c{};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) c[3 * k + d] = m.positions[t[(first + k) % 3]][d];
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 struct Case {
@@ -198,6 +223,40 @@ TEST_CASE("decomposed sweep: groups of whole skin components are swept on their 
     const mesher::MeshResult two_threads = mesher::mesh_skin(*in.mol, options);
     CHECK(two_threads.mesh.positions == res.mesh.positions);
     CHECK(two_threads.mesh.triangles == res.mesh.triangles);
+    CHECK(two_threads.vertex_data.atom == res.vertex_data.atom);
+
+    // Each group refined on its own, its output written in its place, gives
+    // the triangles that refining the glued groups as one mesh gives (an
+    // observer of the stages keeps them glued): nothing in the refinement or
+    // the angle improvement reads another component's mesh. Each group's
+    // vertices and triangles are contiguous, in group order.
+    int stages_seen = 0;
+    options.observers.stage_end = [&](const char*, const skin::SkinSurface&, const geometry::SurfaceMesh&) {
+      ++stages_seen;
+    };
+    const mesher::MeshResult glued = mesher::mesh_skin(*in.mol, options);
+    options.observers.stage_end = nullptr;
+    CHECK(stages_seen == 3);
+    REQUIRE(glued.checked);
+    test::check_every_property(glued.check);
+    CHECK(glued.mesh.triangles.size() == res.mesh.triangles.size());
+    CHECK(triangle_set(glued.mesh) == triangle_set(res.mesh));
+    CHECK(glued.refinement.insertions == res.refinement.insertions);
+    CHECK(glued.refinement.contractions == res.refinement.contractions);
+    CHECK(glued.angle_improvement.moves == res.angle_improvement.moves);
+    // Blocks: places where every triangle before uses only vertices below
+    // every vertex of every triangle after. Groups written one after the
+    // other give at least one block per group.
+    const auto& T = res.mesh.triangles;
+    std::vector<Index> suffix_min(T.size() + 1, std::numeric_limits<Index>::max());
+    for (std::size_t t = T.size(); t-- > 0;) suffix_min[t] = std::min({suffix_min[t + 1], T[t][0], T[t][1], T[t][2]});
+    std::size_t blocks = 1;
+    Index prefix_max = 0;
+    for (std::size_t t = 0; t + 1 < T.size(); ++t) {
+      prefix_max = std::max({prefix_max, T[t][0], T[t][1], T[t][2]});
+      if (prefix_max < suffix_min[t + 1]) ++blocks;
+    }
+    CHECK(blocks >= groups);
   }
 }
 
