@@ -213,11 +213,26 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
     vbase[g + 1] = vbase[g] + groups[g].mesh.n_vertices();
     fbase[g + 1] = fbase[g] + groups[g].mesh.n_faces();
   }
-  size_output(vbase[n], fbase[n], res.mesh, res.vertex_data);
-  parallel_for(n, threads, 1, [&](std::size_t g) {
-    output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, vbase[g], fbase[g]);
-    groups[g].mesh = geometry::SurfaceMesh();
-  });
+  // The output arrays are reserved whole but sized (and so touched) one
+  // window of `threads` groups at a time, and each window's half-edge meshes
+  // are freed before the next: the output grows as the half-edge meshes
+  // shrink, instead of both being whole at once.
+  res.mesh.positions.reserve(vbase[n]);
+  res.mesh.normals.reserve(vbase[n]);
+  res.mesh.triangles.reserve(fbase[n]);
+  res.vertex_data.atom.reserve(vbase[n]);
+  res.vertex_data.rho.reserve(vbase[n]);
+  res.vertex_data.patch.reserve(vbase[n]);
+  const auto window = static_cast<std::size_t>(std::max(threads, 1));
+  for (std::size_t w = 0; w < n; w += window) {
+    const std::size_t end = std::min(n, w + window);
+    size_output(vbase[end], fbase[end], res.mesh, res.vertex_data);
+    parallel_for(end - w, threads, 1, [&](std::size_t i) {
+      const std::size_t g = w + i;
+      output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, vbase[g], fbase[g]);
+      groups[g].mesh = geometry::SurfaceMesh();
+    });
+  }
 }
 
 /// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
