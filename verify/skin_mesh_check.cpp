@@ -252,7 +252,9 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (const auto& t : mesh.triangles)
       if (valid(t)) mean_edge += (P[t[0]] - P[t[1]]).norm(), ++ne;
     mean_edge = ne ? mean_edge / ne : 1.0;
-    const geometry::FlatPointGrid grid(P, std::max(mean_edge, kMinGridCell));
+    // Indices only: the mesh's positions stay put while the grid is read, and
+    // the grid is built beside the broad phase's boxes, at the check's peak.
+    const geometry::FlatIndexGrid grid(P, std::max(mean_edge, kMinGridCell));
     // Triangles in blocks on the threads; counts and examples joined in block
     // order, so the report is the one a single loop gives.
     constexpr std::size_t kTriangleGrain = 16384;  // [chosen]

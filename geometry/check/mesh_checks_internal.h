@@ -70,7 +70,7 @@ void add_example(List& list, const Item& item, std::size_t max_examples) {
 /// component of every triangle (an index into r.components; kInvalidIndex for
 /// triangles outside the topology). Exact: index comparisons only. `incidence`
 /// = build_incidence(mesh, classes), kept by the caller for
-/// find_self_intersections().
+/// simple_fan_vertices().
 std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses& classes,
                                   const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r);
 
@@ -91,11 +91,13 @@ void measure_angles(const IndexedMesh& mesh, const TriangleClasses& classes, dou
 /// first `max_examples` pairs (i < j, sorted) of `r`. Column-grid broad phase,
 /// then mesh_triangles_intersect() (geometry/kernel/triangle_intersection.h) on each
 /// candidate pair that is not the same triangle twice and not settled by
-/// simple_fan_vertices() (`incidence` from build_incidence()). Runs on up
-/// to `threads` threads (core/parallel.h); the report is the same for every
-/// thread count.
-void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
-                             std::size_t max_examples, int threads, MeshCheckReport& r);
+/// `fan_ok` (simple_fan_vertices(), one flag per vertex: the caller computes
+/// it first, so that the vertex incidence is freed before the broad phase's
+/// boxes are made, the peak of the check's memory). Runs on up to `threads`
+/// threads (core/parallel.h); the report is the same for every thread count.
+void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
+                             const std::vector<std::uint8_t>& fan_ok, std::size_t max_examples, int threads,
+                             MeshCheckReport& r);
 
 /// Per vertex, 1 if the good triangles around it form a simple fan: one closed
 /// cycle of consistently oriented triangles that a coordinate projection maps

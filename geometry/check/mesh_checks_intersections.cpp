@@ -433,8 +433,9 @@ bool exact_boxes_overlap(const std::vector<Vec3>& P, const std::array<Index, 3>&
 
 }  // namespace
 
-void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes, const VertexIncidence& incidence,
-                             std::size_t max_examples, int threads, MeshCheckReport& r) {
+void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& classes,
+                             const std::vector<std::uint8_t>& fan_ok, std::size_t max_examples, int threads,
+                             MeshCheckReport& r) {
   const auto& P = mesh.positions;
   const auto& T = mesh.triangles;
   const std::size_t nt = T.size();
@@ -460,7 +461,6 @@ void find_self_intersections(const IndexedMesh& mesh, const TriangleClasses& cla
   // Pairs that share a vertex (or an edge) of a simple fan cannot meet beyond
   // what they share (simple_fan()): counted as tested, decided without the
   // exact test. Every other pair goes through mesh_triangles_intersect().
-  const std::vector<std::uint8_t> fan_ok = simple_fan_vertices(mesh, classes, incidence, threads);
   // One tally per block of columns; the found pairs are sorted below, so the
   // report does not depend on the thread count.
   struct Tally {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "core/assert.h"
@@ -317,14 +318,20 @@ class LeveledPointGrid {
 /// kMaxCellsPerPoint cells per point (plus 4096), so memory stays O(n).
 /// Queries report exactly the points a linear scan with the same distance test
 /// reports (tests/geometry/point_grid_test.cpp).
-class FlatPointGrid {
+///
+/// kCopies: each entry holds a copy of its point (32 bytes, read in order by
+/// a query; the points may change or go after the build), or only its index
+/// (4 bytes; a query reads the point from the span the grid was built on,
+/// which must outlive the grid unchanged). FlatPointGrid and FlatIndexGrid.
+template <bool kCopies>
+class BasicFlatPointGrid {
  public:
   /// Bound on the number of cells per point (see the class comment).
   static constexpr double kMaxCellsPerPoint = 8.0;
 
   /// Grid over points[i], with id i, for every point with finite coordinates
   /// (the others are left out). Pre: cell_size > 0 (Å).
-  FlatPointGrid(std::span<const Vec3> points, double cell_size) {
+  BasicFlatPointGrid(std::span<const Vec3> points, double cell_size) : points_(points) {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     std::size_t n = 0;
     for (const Vec3& p : points)
@@ -360,7 +367,7 @@ class FlatPointGrid {
     // as large as the first, at the peak of the check's memory.)
     entries_.resize(n);
     for (std::size_t i = points.size(); i-- > 0;)
-      if (points[i].allFinite()) entries_[--offsets_[cell_of_point[i] + 1]] = {points[i], Index(i)};
+      if (points[i].allFinite()) entries_[--offsets_[cell_of_point[i] + 1]] = make_entry(i);
     // offsets_[c + 1] = start of cell c; shift down one place, end = n.
     for (std::size_t c = 0; c + 1 < offsets_.size(); ++c) offsets_[c] = offsets_[c + 1];
     offsets_.back() = static_cast<std::uint32_t>(n);
@@ -394,8 +401,10 @@ class FlatPointGrid {
       for (std::int64_t y = a[1]; y <= b[1]; ++y) {
         const std::int64_t column = (x * dims_[1] + y) * dims_[2];
         const std::uint32_t end = offsets_[std::size_t(column + b[2]) + 1];
-        for (std::uint32_t e = offsets_[std::size_t(column + a[2])]; e < end; ++e)
-          if ((entries_[e].p - q).squaredNorm() <= r2 && pred(entries_[e].id, entries_[e].p)) return true;
+        for (std::uint32_t e = offsets_[std::size_t(column + a[2])]; e < end; ++e) {
+          const Vec3& p = position(entries_[e]);
+          if ((p - q).squaredNorm() <= r2 && pred(id(entries_[e]), p)) return true;
+        }
       }
     return false;
   }
@@ -406,20 +415,46 @@ class FlatPointGrid {
   std::size_t num_cells() const { return offsets_.size() - 1; }
 
  private:
-  struct Entry {
+  struct CopyEntry {
     Vec3 p;
     Index id;
   };
+  using Entry = std::conditional_t<kCopies, CopyEntry, Index>;
+  Entry make_entry(std::size_t i) const {
+    if constexpr (kCopies)
+      return {points_[i], Index(i)};
+    else
+      return Index(i);
+  }
+  const Vec3& position(const Entry& e) const {
+    if constexpr (kCopies)
+      return e.p;
+    else
+      return points_[e];
+  }
+  static Index id(const Entry& e) {
+    if constexpr (kCopies)
+      return e.id;
+    else
+      return e;
+  }
   /// Cell coordinate along axis k, clamped to the grid: monotone in x.
   std::int64_t cell(double x, int k) const {
     const double t = std::floor((x - lo_[k]) * inv_);
     return std::int64_t(std::clamp(t, 0.0, double(dims_[k] - 1)));
   }
+  std::span<const Vec3> points_;  ///< read by queries only without copies
   Vec3 lo_ = Vec3::Zero();
   double h_ = 1.0, inv_ = 1.0;
   std::int64_t dims_[3] = {1, 1, 1};
   std::vector<std::uint32_t> offsets_;  ///< points of cell c: entries_[offsets_[c] .. offsets_[c + 1])
   std::vector<Entry> entries_;
 };
+
+/// The grid with a copy of every point in its entries.
+using FlatPointGrid = BasicFlatPointGrid<true>;
+/// The grid with only the points' indices in its entries (8 times smaller):
+/// the points must outlive it unchanged.
+using FlatIndexGrid = BasicFlatPointGrid<false>;
 
 }  // namespace skinmesh::geometry

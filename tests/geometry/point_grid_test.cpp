@@ -49,14 +49,16 @@ std::vector<Vec3> cloud(std::mt19937_64& rng, int kind, std::size_t n) {
 
 TEST_SUITE("geometry") {
 
-TEST_CASE("point_grid: FlatPointGrid and PointGrid queries equal a linear scan") {
+TEST_CASE("point_grid: FlatPointGrid, FlatIndexGrid and PointGrid queries equal a linear scan") {
   std::mt19937_64 rng(20261122);
   std::uniform_real_distribution<double> u(-12, 12), ur(0, 3);
   for (int kind = 0; kind < 3; ++kind)
     for (double cell : {1e-3, 0.05, 0.7, 5.0, 100.0}) {
       const std::vector<Vec3> pts = cloud(rng, kind, 600);
       const FlatPointGrid flat(pts, cell);
+      const FlatIndexGrid index_grid(pts, cell);
       CHECK(flat.cell_size() >= cell);
+      CHECK(index_grid.num_cells() == flat.num_cells());
       CHECK(double(flat.num_cells()) <= FlatPointGrid::kMaxCellsPerPoint * double(pts.size()) + 4096.0);
       PointGrid hashed(cell);
       for (std::size_t i = 0; i < pts.size(); ++i)
@@ -68,11 +70,17 @@ TEST_CASE("point_grid: FlatPointGrid and PointGrid queries equal a linear scan")
         if (k % 10 == 9) q *= 100;
         const double r = k % 7 == 0 ? 0.0 : ur(rng) * (k % 5 == 0 ? 10 : 1);
         const std::vector<Index> want = scan(pts, q, r);
-        std::vector<Index> got_flat, got_hashed;
+        std::vector<Index> got_flat, got_hashed, got_index;
         flat.for_each_near(q, r, [&](Index id, const Vec3& p) {
           CHECK(p == pts[id]);
           got_flat.push_back(id);
         });
+        // The grid of indices visits the same points in the same order.
+        index_grid.for_each_near(q, r, [&](Index id, const Vec3& p) {
+          CHECK(&p == &pts[id]);
+          got_index.push_back(id);
+        });
+        CHECK(got_index == got_flat);
         // PointGrid visits every cell of the query box: only for boxes of few cells.
         const bool small_box = std::pow(2 * r / cell + 2, 3) < 1e5;
         if (small_box) hashed.for_each_near(q, r, [&](Index id, const Vec3&) { got_hashed.push_back(id); });
