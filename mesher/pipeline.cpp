@@ -242,11 +242,14 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   //    Euler characteristic of the skin from its dual complex.
   clock.begin("morse");
   // The dual complex (for the Euler characteristic and the check) needs only
-  // the skin: with two threads it is computed beside the Morse–Smale complex.
+  // the skin: with two threads it is computed beside the Morse–Smale complex,
+  // on every thread as well (alone on one it outlasted the Morse–Smale
+  // complex by half: papers/mesher/decomposition.md, "Groups to the end").
   const int threads = thread_count(options.threads);
   std::future<skin::SkinTopology> topology;
   if (threads >= 2)
-    topology = std::async(std::launch::async, [&skin] { return skin::dual_complex_topology(skin.mixed_complex()); });
+    topology = std::async(std::launch::async,
+                          [&skin, threads] { return skin::dual_complex_topology(skin.mixed_complex(), threads); });
   morse::MorseSmaleOptions morse_options = options.morse;
   if (morse_options.threads == morse::MorseSmaleOptions{}.threads) morse_options.threads = threads;
   auto ms = std::make_unique<morse::MorseSmaleComplex>(
