@@ -487,7 +487,7 @@ SkinMeasures skin_measures(const SkinSurface& skin, int threads) {
 }
 
 SkinMeasures skin_measures(const std::vector<geometry::WeightedPoint>& points, int threads) {
-  const SkinSurface skin(translated(points, local_frame_centre(points)));
+  const SkinSurface skin(translated(points, local_frame_centre(points)), threads);
   return skin_measures(skin, threads);
 }
 

@@ -55,8 +55,9 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c);
 SkinMeasures skin_measures(const SkinSurface& skin, int threads = 1);
 
 /// The same for weighted points (centres in Å, weights in Å²), in the local
-/// frame of local_frame_centre(), as the mesher sees them. Throws InputError
-/// for an empty or non-finite input.
+/// frame of local_frame_centre(), as the mesher sees them; the skin, too, is
+/// built on `threads` threads. Throws InputError for an empty or non-finite
+/// input.
 SkinMeasures skin_measures(const std::vector<geometry::WeightedPoint>& points, int threads = 1);
 
 }  // namespace skinmesh::skin
