@@ -166,6 +166,17 @@ void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprov
   a.min_angle_after_deg = std::min(a.min_angle_after_deg, b.min_angle_after_deg);
 }
 
+/// run(g) for every group g in [0, n) (n >= 1) on up to `threads` threads,
+/// and the results joined in group order with add(sum, next).
+template <class Stats, class Run, class Add>
+Stats per_group(std::size_t n, int threads, Run&& run, Add&& add) {
+  std::vector<Stats> each(n);
+  parallel_for(n, threads, 1, [&](std::size_t g) { each[g] = run(g); });
+  Stats sum = each[0];
+  for (std::size_t g = 1; g < n; ++g) add(sum, each[g]);
+  return sum;
+}
+
 /// Stages 4, 4b and the output for groups of whole skin components swept on
 /// their own (front::DecomposedSweep::groups): each group's mesh is refined
 /// and angle-improved on its own, and the output meshes are joined in group
@@ -191,20 +202,16 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
     clock.begin("refine");
     refine::RefineOptions refinement = with_size(options.refinement, options.size);
     if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = inner;
-    std::vector<refine::RefineStats> refined(n);
-    parallel_for(n, outer, 1,
-                 [&](std::size_t g) { refined[g] = refine::refine_mesh(skin, groups[g].mesh, refinement); });
-    res.refinement = refined[0];
-    for (std::size_t g = 1; g < n; ++g) add_refine_stats(res.refinement, refined[g]);
+    res.refinement = per_group<refine::RefineStats>(
+        n, outer, [&](std::size_t g) { return refine::refine_mesh(skin, groups[g].mesh, refinement); },
+        add_refine_stats);
     clock.end("refine");
     if (options.improve_angles) {
       clock.begin("angles");
       const refine::AngleImprovementOptions angles = with_size(options.angle_improvement, options.size);
-      std::vector<refine::AngleImprovementStats> improved(n);
-      parallel_for(n, threads, 1,
-                   [&](std::size_t g) { improved[g] = refine::improve_angles(skin, groups[g].mesh, angles); });
-      res.angle_improvement = improved[0];
-      for (std::size_t g = 1; g < n; ++g) add_angle_stats(res.angle_improvement, improved[g]);
+      res.angle_improvement = per_group<refine::AngleImprovementStats>(
+          n, threads, [&](std::size_t g) { return refine::improve_angles(skin, groups[g].mesh, angles); },
+          add_angle_stats);
       clock.end("angles");
     }
   }
