@@ -181,13 +181,14 @@ Stats per_group(std::size_t n, int threads, Run&& run, Add&& add) {
 /// their own (front::DecomposedSweep::groups): each group's mesh is refined
 /// and angle-improved on its own, and the output meshes are joined in group
 /// order, each written straight into its place in res.mesh and its half-edge
-/// mesh freed at once. No step reads another group's mesh: [L], [U], the
-/// restricted Delaunay property and the angles are conditions on a triangle
-/// and its own component's neighbours (papers/mesher/decomposition.md,
-/// "Groups to the end"). The groups run on the threads, one each, unless one
-/// holds more than half of the triangles: then one after the other, each
-/// with every thread for the refinement's scans. Neither choice changes the
-/// mesh, which depends on the groups only.
+/// mesh freed at once. No step reads another group's mesh; the check, which
+/// reads the whole mesh, still tests [L], [U], the restricted Delaunay
+/// property, the angles and the embedding across groups. On every input
+/// tried the result is the glued path's mesh in another order
+/// (papers/mesher/decomposition.md, "Groups to the end"). The groups run on
+/// the threads, one each, unless one holds more than half of the triangles:
+/// then one after the other, each with every thread for the refinement's
+/// scans. Neither choice changes the mesh, which depends on the groups only.
 void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, int threads, StageClock& clock,
                    std::vector<front::SweepResult>& groups, MeshResult& res) {
   const std::size_t n = groups.size();

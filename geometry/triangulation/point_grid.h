@@ -453,8 +453,8 @@ class BasicFlatPointGrid {
 
 /// The grid with a copy of every point in its entries.
 using FlatPointGrid = BasicFlatPointGrid<true>;
-/// The grid with only the points' indices in its entries (8 times smaller):
-/// the points must outlive it unchanged.
+/// The grid with only the points' indices in its entries (4 bytes each
+/// instead of 32): the points must outlive it unchanged.
 using FlatIndexGrid = BasicFlatPointGrid<false>;
 
 }  // namespace skinmesh::geometry
