@@ -42,22 +42,14 @@ void output_mesh_into(const skin::SkinSurface& skin, const geometry::SurfaceMesh
   const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
   const auto cell = mesh.get_vertex_property(skin::kVertexCell);
   const auto rho = mesh.get_vertex_property(skin::kVertexRho);
-  std::vector<Index> map(mesh.vertices_size(), kInvalidIndex);
+  mesh.write_indexed(out.positions, out.triangles, vbase, fbase);
   std::size_t i = vbase;
   for (geometry::Vertex v : mesh.vertices()) {
-    map[v.idx()] = static_cast<Index>(i);
-    out.positions[i] = mesh.position(v);
     out.normals[i] = normal[v];
     data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
     data.rho[i] = rho[v];
     data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
     ++i;
-  }
-  std::size_t t = fbase;
-  for (geometry::Face f : mesh.faces()) {
-    geometry::Halfedge h = mesh.halfedge(f);
-    for (int k = 0; k < 3; ++k, h = mesh.next(h)) out.triangles[t][k] = map[mesh.from_vertex(h).idx()];
-    ++t;
   }
 }
 

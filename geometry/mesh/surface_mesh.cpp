@@ -737,21 +737,26 @@ SurfaceMesh SurfaceMesh::from_indexed_mesh(const IndexedMesh& m) {
 
 IndexedMesh SurfaceMesh::to_indexed_mesh() const {
   IndexedMesh m;
-  std::vector<Index> map(vertices_size(), kInvalidIndex);
-  m.positions.reserve(n_vertices());
-  for (Vertex v : vertices()) {
-    map[v.idx()] = Index(m.positions.size());
-    m.positions.push_back(position(v));
-  }
-  m.triangles.reserve(n_faces());
-  for (Face f : faces()) {
-    std::array<Index, 3> t{};
-    int i = 0;
-    Halfedge h = halfedge(f);
-    for (; i < 3; ++i, h = next(h)) t[i] = map[from_vertex(h).idx()];
-    m.triangles.push_back(t);
-  }
+  m.positions.resize(n_vertices());
+  m.triangles.resize(n_faces());
+  write_indexed(m.positions, m.triangles, 0, 0);
   return m;
+}
+
+void SurfaceMesh::write_indexed(std::span<Vec3> positions, std::span<std::array<Index, 3>> triangles,
+                                std::size_t vertex_base, std::size_t face_base) const {
+  std::vector<Index> map(vertices_size(), kInvalidIndex);
+  std::size_t i = vertex_base;
+  for (Vertex v : vertices()) {
+    map[v.idx()] = Index(i);
+    positions[i++] = position(v);
+  }
+  std::size_t j = face_base;
+  for (Face f : faces()) {
+    Halfedge h = halfedge(f);
+    for (int k = 0; k < 3; ++k, h = next(h)) triangles[j][k] = map[from_vertex(h).idx()];
+    ++j;
+  }
 }
 
 // ---------------------------------------------------------------------------

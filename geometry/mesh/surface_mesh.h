@@ -5,12 +5,14 @@
 // operations.
 #pragma once
 
+#include <array>
 #include <compare>
 #include <cstddef>
 #include <functional>
 #include <iosfwd>
 #include <iterator>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -450,6 +452,13 @@ class SurfaceMesh {
   /// (positions and triangles only; normals and atom are left empty for the
   /// caller). Isolated vertices are kept.
   IndexedMesh to_indexed_mesh() const;
+  /// to_indexed_mesh()'s positions and triangles written in place: vertex i
+  /// (in index order, deleted ones skipped) to positions[vertex_base + i],
+  /// face j to triangles[face_base + j], its vertex indices offset by
+  /// vertex_base; for a caller that joins several meshes into one array.
+  /// Pre: the spans hold n_vertices() and n_faces() entries from the bases.
+  void write_indexed(std::span<Vec3> positions, std::span<std::array<Index, 3>> triangles, std::size_t vertex_base,
+                     std::size_t face_base) const;
 
   // SurfaceMesh Counts (deleted elements excluded)
   /// Number of vertices not marked deleted (isolated ones included).
