@@ -32,10 +32,10 @@ namespace {
 /// its triangles from `fbase` on: positions, triangles (vertex indices offset
 /// by vbase) and per vertex the normal (skin::kVertexNormal); into `data` per
 /// vertex the atom and the dimension of its mixed cell (skin::kVertexCell)
-/// and rho (skin::kVertexRho). Deleted elements are left out, the others keep
-/// their order.
+/// and rho (skin::kVertexRho); into `cells` the mixed cell. Deleted elements
+/// are left out, the others keep their order.
 void output_mesh_into(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh, geometry::IndexedMesh& out,
-                      skin::SkinVertexData& data, std::size_t vbase, std::size_t fbase) {
+                      skin::SkinVertexData& data, std::vector<Index>& cells, std::size_t vbase, std::size_t fbase) {
   // No garbage_collection(): vertices() and faces() skip deleted elements in
   // index order, which is the order the compaction keeps (the same output
   // without moving every property array of the mesh once more).
@@ -49,26 +49,37 @@ void output_mesh_into(const skin::SkinSurface& skin, const geometry::SurfaceMesh
     data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
     data.rho[i] = rho[v];
     data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
+    cells[i] = cell[v];
     ++i;
   }
 }
 
+/// Calls size(array, n) on every output array, with n = `vertices` for the
+/// per-vertex arrays and `triangles` for the triangles.
+template <class Size>
+void size_output_arrays(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out,
+                        skin::SkinVertexData& data, std::vector<Index>& cells, Size&& size) {
+  size(out.positions, vertices);
+  size(out.normals, vertices);
+  size(out.triangles, triangles);
+  size(data.atom, vertices);
+  size(data.rho, vertices);
+  size(data.patch, vertices);
+  size(cells, vertices);
+}
+
 /// Sizes the output arrays for `vertices` vertices and `triangles` triangles.
-void size_output(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out, skin::SkinVertexData& data) {
-  out.positions.resize(vertices);
-  out.normals.resize(vertices);
-  out.triangles.resize(triangles);
-  data.atom.resize(vertices);
-  data.rho.resize(vertices);
-  data.patch.resize(vertices);
+void size_output(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out, skin::SkinVertexData& data,
+                 std::vector<Index>& cells) {
+  size_output_arrays(vertices, triangles, out, data, cells, [](auto& a, std::size_t n) { a.resize(n); });
 }
 
 /// The output mesh of a closed SurfaceMesh of the skin (output_mesh_into()).
 geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
-                                  skin::SkinVertexData& data) {
+                                  skin::SkinVertexData& data, std::vector<Index>& cells) {
   geometry::IndexedMesh out;
-  size_output(mesh.n_vertices(), mesh.n_faces(), out, data);
-  output_mesh_into(skin, mesh, out, data, 0, 0);
+  size_output(mesh.n_vertices(), mesh.n_faces(), out, data, cells);
+  output_mesh_into(skin, mesh, out, data, cells, 0, 0);
   return out;
 }
 
@@ -217,19 +228,15 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
   // window of `threads` groups at a time, and each window's half-edge meshes
   // are freed before the next: the output grows as the half-edge meshes
   // shrink, instead of both being whole at once.
-  res.mesh.positions.reserve(vbase[n]);
-  res.mesh.normals.reserve(vbase[n]);
-  res.mesh.triangles.reserve(fbase[n]);
-  res.vertex_data.atom.reserve(vbase[n]);
-  res.vertex_data.rho.reserve(vbase[n]);
-  res.vertex_data.patch.reserve(vbase[n]);
+  size_output_arrays(vbase[n], fbase[n], res.mesh, res.vertex_data, res.vertex_cells,
+                     [](auto& a, std::size_t k) { a.reserve(k); });
   const auto window = static_cast<std::size_t>(std::max(threads, 1));
   for (std::size_t w = 0; w < n; w += window) {
     const std::size_t end = std::min(n, w + window);
-    size_output(vbase[end], fbase[end], res.mesh, res.vertex_data);
+    size_output(vbase[end], fbase[end], res.mesh, res.vertex_data, res.vertex_cells);
     parallel_for(end - w, threads, 1, [&](std::size_t i) {
       const std::size_t g = w + i;
-      output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, vbase[g], fbase[g]);
+      output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, res.vertex_cells, vbase[g], fbase[g]);
       groups[g].mesh = geometry::SurfaceMesh();
     });
   }
@@ -271,6 +278,11 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // arc_end()): their memory goes back before the sweep, the stage of the
   // peak.
   for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
+  // The critical points' cell tests made the planes of about half the cells;
+  // the mesher's walks need a few percent of them (papers/mesher/
+  // decomposition.md, "Planes made on first use"): they go back, and the
+  // walks make theirs again, bit for bit the same.
+  skin.mixed_complex().release_planes();
   clock.end("morse");
 
   // 3. The sweep (§4.1, §4.2).
@@ -318,7 +330,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
       clock.end("angles");
     }
   }
-  res.mesh = output_mesh(skin, swept.mesh, res.vertex_data);
+  res.mesh = output_mesh(skin, swept.mesh, res.vertex_data, res.vertex_cells);
   swept.mesh = geometry::SurfaceMesh();  // the check reads res.mesh: free the half-edge mesh first
   if (options.observers.memory_released) options.observers.memory_released();
   clock.end("output");
@@ -331,7 +343,10 @@ void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
   if (check_options.threads == verify::SkinCheckOptions{}.threads)
     check_options.threads = thread_count(options.threads);
+  // The mesher's cell of every vertex starts the check's walks there.
+  if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
   res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
+  std::vector<Index>().swap(res.vertex_cells);
   res.checked = true;
   clock.end("check");
 }

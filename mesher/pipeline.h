@@ -160,6 +160,10 @@ struct MeshResult {
   /// The skin's data at the vertices of `mesh`: atom, rho and mixed-cell
   /// dimension, one entry per vertex each (skin/vertex_data.h).
   skin::SkinVertexData vertex_data;
+  /// The mixed cell (skin::MixedComplex) holding each vertex of `mesh`, as the
+  /// mesher found it: where the check's point location starts. Filled by the
+  /// sweep's output and emptied after the check; empty for the baseline.
+  std::vector<Index> vertex_cells;
   /// Critical points of the height function before and after simplification
   /// (Algorithm::Sweep; zero for the baseline).
   morse::MorseCount critical, live;

@@ -43,7 +43,8 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   // instead of one per dimension), and each cell's dimension in a byte array:
   // the loops below read the dimension of every plane's neighbour, and a cell
   // record is ~100 bytes (a cache miss each; on maltoporin most of this
-  // function's own time, with the coface's extra vertex, now in the plane).
+  // function's own time). The loops read the neighbour lists, not the planes,
+  // which are made only where a walk needs them.
   std::array<std::vector<Index>, 4> by_dim;
   std::vector<std::uint8_t> dim_of(n);
   for (Index c = 0; c < n; ++c) {
@@ -69,11 +70,11 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
         for (int j = 0; j <= dim; ++j) pts[j] = rt.point(X.vertices[j]);
         const std::span<const WeightedPoint> xs(pts.data(), dim + 1);
         bool attached = false, tie = false, coface_in = false;
-        for (const CellPlane& p : mc.planes(c)) {
-          if (dim_of[p.neighbor] != dim + 1) continue;
-          coface_in = coface_in || in_k0[p.neighbor];
+        for (const Index nb : mc.neighbors(c)) {
+          if (dim_of[nb] != dim + 1) continue;
+          coface_in = coface_in || in_k0[nb];
           if (attached) continue;  // decided; a tie only counts for an unattached X
-          const Sign s = geometry::orthosphere_power_sign(xs, rt.point(p.extra));
+          const Sign s = geometry::orthosphere_power_sign(xs, rt.point(mc.extra_vertex(c, nb)));
           attached = s == Sign::Negative;
           tie = tie || s == Sign::Zero;
         }
@@ -105,8 +106,8 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   DisjointSets comp(n);
   for (Index c = 0; c < n; ++c) {
     if (mc.cell(c).dim != 1 || !in_k0_fn(c)) continue;
-    for (const CellPlane& p : mc.planes(c))
-      if (dim_of[p.neighbor] == 0) comp.unite(p.neighbor, c);
+    for (const Index nb : mc.neighbors(c))
+      if (dim_of[nb] == 0) comp.unite(nb, c);
   }
   std::vector<char> seen(n, 0);
   for (Index c = 0; c < n; ++c) {
@@ -127,12 +128,12 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
     }
     if (X.dim != 2 || in_k0_fn(c)) continue;
     Index first = kInvalidIndex;
-    for (const CellPlane& p : mc.planes(c)) {
-      if (dim_of[p.neighbor] != 3) continue;
+    for (const Index nb : mc.neighbors(c)) {
+      if (dim_of[nb] != 3) continue;
       if (first == kInvalidIndex)
-        first = p.neighbor;
+        first = nb;
       else
-        outside.unite(first, p.neighbor);
+        outside.unite(first, nb);
     }
   }
   std::fill(seen.begin(), seen.end(), 0);

@@ -8,7 +8,9 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <thread>
 
 #include "core/assert.h"
 #include "core/errors.h"
@@ -332,22 +334,16 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     owns[ti] = own;
   });
 
-  // The numbering: per tetrahedron, its first new cell and its triangles'
-  // first shared plane (after the planes of the vertices, one per vertex and
-  // edge, and of the tetrahedra, four each; see the planes below).
+  // The numbering: per tetrahedron, its first new cell.
   const Index first_tet_cell = nv;
-  std::vector<Index> cell_base(nt), plane_base_of_tet(nt);
-  std::size_t num_cells = std::size_t(nv) + nt, num_edges = 0, triangle_planes = 0;
+  std::vector<Index> cell_base(nt);
+  std::size_t num_cells = std::size_t(nv) + nt, num_edges = 0;
   for (Index t = 0; t < nt; ++t) {
     cell_base[t] = static_cast<Index>(num_cells);
-    plane_base_of_tet[t] = static_cast<Index>(triangle_planes);
     const int facets = std::popcount(unsigned(owns[t] & 0xFu)), edges = std::popcount(unsigned(owns[t] >> 4));
     num_cells += std::size_t(facets) + edges;
     num_edges += std::size_t(edges);
-    triangle_planes += 3 * std::size_t(facets);
-    SKINMESH_ASSERT_MSG(
-        2 * num_edges + 4 * std::size_t(nt) + triangle_planes < (std::size_t{1} << 31) && num_cells < kInvalidIndex,
-        "too many mixed cells for 32-bit indices");
+    SKINMESH_ASSERT_MSG(num_cells < kInvalidIndex, "too many mixed cells for 32-bit indices");
   }
   // The triangulation fills the bounding tetrahedron, a ball: with V vertices
   // and T tetrahedra it has F = 2T + 2 triangles (4T facets, 4 on the hull)
@@ -355,9 +351,6 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   SKINMESH_ASSERT_MSG(num_cells == 2 * std::size_t(nv) + 4 * std::size_t(nt) + 3,
                       "the triangulation is not a triangulated ball");
   cells_.resize(num_cells);
-  // Per triangle cell, its first shared plane (the planes with its edges,
-  // which it sees as the coface), counted from the first triangle plane.
-  std::vector<Index> plane_base(num_cells, 0);
   for (Index v = 0; v < np; ++v) {
     if (vertex_cell_[v] == kInvalidIndex) continue;
     MixedCell& c = cells_[vertex_cell_[v]];
@@ -376,14 +369,12 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     const std::uint16_t own = owns[ti];
     make_cell(first_tet_cell + t, 3, st.v);
     cells_[first_tet_cell + t].num_planes = 4;
-    Index id = cell_base[t], plane = plane_base_of_tet[t];
+    Index id = cell_base[t];
     for (int s = 0; s < 4; ++s) {
       if (!(own & (1u << s))) continue;
       const std::array<int, 3> f = facet_positions(s);
       make_cell(id, 2, {st.v[f[0]], st.v[f[1]], st.v[f[2]], kInvalidIndex});
       cells_[id].num_planes = rt.neighbor(t, st.local[s]) == kInvalidIndex ? 4 : 5;  // 3 edges, 1 or 2 tetrahedra
-      plane_base[id] = plane;
-      plane += 3;
       tet_tri[4 * ti + s] = id++;
       for (const auto& [p, q] : {std::array<int, 2>{f[0], f[1]}, {f[0], f[2]}, {f[1], f[2]}}) {
         const int e = edge_slot(p, q);
@@ -448,89 +439,51 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   constexpr double kWalkPerCubeRoot = 8;
   max_walk_steps_ = kWalkFloor + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * kWalkPerCubeRoot);
 
-  // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k}, the face
-  // mu_X ∩ mu_Y = (1-s) delta_X + s nu_Y lies in the plane with unit normal n
-  // in lin Y, orthogonal to lin X and pointing from aff X towards z_k, through
-  // (1-s) z_a + s z_Y for any vertex a of X; mu_X lies on the side n·x <= offset.
-  // n comes from the input centres alone (its orientation, for a triangle, from
-  // the exact orient3d of the coface), and the offset from an input centre and
-  // the coface's focus z_Y, the same z_Y for every plane of mu_Y. This is the
-  // bisector form m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X), m = P_perp^X (z_k - z_X),
-  // of papers/skin/skin_math.md §2.3 without its division by |m|: for a nearly
-  // flat coface (coplanar atoms, a rotated lattice) |m| and pi_k(z_X) - w_X both
-  // vanish, z_Y may coincide with z_X, and the quotient is 0/0, while n, z_a and
-  // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
-  //
-  // Each plane is stored once, as X sees it (Y reads it negated). A cell lists
-  // its planes with its facets first (in the order of its vertices left out:
-  // a tetrahedron's four, a triangle's edges 01, 02, 12, an edge's two
-  // vertices), then those with its cofaces by increasing cell number.
-  Index total = 0;
+  // The plane lists: the cell across each plane of each cell, in the order
+  // planes() makes them. A cell lists its facets first (in the order of its
+  // vertices left out: a tetrahedron's four, a triangle's edges 01, 02, 12,
+  // an edge's two vertices), then its cofaces by increasing cell number.
+  std::size_t total = 0;
   for (MixedCell& c : cells_) {
-    c.first_plane = total;
+    c.first_plane = static_cast<Index>(total);
     total += c.num_planes;
+    SKINMESH_ASSERT_MSG(total < kInvalidIndex, "too many mixed cell planes for 32-bit indices");
   }
-  // The shared planes: first those of the vertices with their edges, each at
-  // the place of its use in the vertex's list (a vertex cell, where the walk
-  // spends most of its steps, reads its planes from one stretch of memory),
-  // then the tetrahedra's four each, then the triangles' three with their
-  // edges, by tetrahedron.
-  const Index vertex_planes = cells_[first_tet_cell].first_plane;  // the vertex cells' uses come first
-  SKINMESH_ASSERT_MSG(vertex_planes == 2 * num_edges, "the edges of the vertices miscounted");
-  const Index first_tet_plane = vertex_planes, first_triangle_plane = vertex_planes + 4 * nt;
-  shared_planes_.resize(std::size_t(first_triangle_plane) + triangle_planes);
-  plane_uses_.resize(total);
-  auto set_plane = [&](Index plane, Index x, Index y, Index k) {
-    constexpr double s = 0.5;
-    const MixedCell& X = cells_[x];
-    const Vec3& za = rt.point(X.vertices[0]).z;
-    const Vec3 n = facet_coface_normal(rt, X, k);
-    const double off = (1.0 - s) * n.dot(za) + s * n.dot(cells_[y].focus);
-    SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-    shared_planes_[plane] = {n, off};
-  };
+  SKINMESH_ASSERT_MSG(cells_[first_tet_cell].first_plane == 2 * num_edges, "the edges of the vertices miscounted");
+  neighbors_.resize(total);
   std::vector<Index> vertex_fill(nv, 0);
-  auto fill_tet_planes = [&](std::size_t ti, std::vector<Index>& triangles) {
+  auto fill_tet_lists = [&](std::size_t ti, std::vector<Index>& triangles) {
     const Index t = static_cast<Index>(ti);
     const SortedTet st = sorted_tet(rt, t);
     const std::uint16_t own = owns[ti];
     const Index tc = first_tet_cell + t;
-    // The tetrahedron's planes with its facets; a facet lists its tetrahedra
-    // after its three edges, the lower (its owner) first.
+    // The tetrahedron's facets; a facet lists its tetrahedra after its three
+    // edges, the lower (its owner) first.
     for (int s = 0; s < 4; ++s) {
       const Index f = tet_tri[4 * ti + s];
-      const Index plane = first_tet_plane + 4 * t + Index(s);
-      set_plane(plane, f, tc, st.v[s]);
-      plane_uses_[cells_[tc].first_plane + s] = {2 * plane + 1, f};
-      plane_uses_[cells_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = {2 * plane, tc};
+      neighbors_[cells_[tc].first_plane + s] = f;
+      neighbors_[cells_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = tc;
     }
-    // Its own triangles' planes with their edges.
+    // Its own triangles' edges.
     for (int s = 0; s < 4; ++s) {
       if (!(own & (1u << s))) continue;
       const Index f = tet_tri[4 * ti + s];
       const std::array<int, 3> fp = facet_positions(s);
-      const std::array<std::array<int, 3>, 3> edges{
-          {{fp[0], fp[1], fp[2]}, {fp[0], fp[2], fp[1]}, {fp[1], fp[2], fp[0]}}};
-      for (int j = 0; j < 3; ++j) {
-        const Index e = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
-        const Index plane = first_triangle_plane + plane_base[f] + Index(j);
-        set_plane(plane, e, f, st.v[edges[j][2]]);
-        plane_uses_[cells_[f].first_plane + j] = {2 * plane + 1, e};
-      }
+      const std::array<std::array<int, 2>, 3> edges{{{fp[0], fp[1]}, {fp[0], fp[2]}, {fp[1], fp[2]}}};
+      for (int j = 0; j < 3; ++j)
+        neighbors_[cells_[f].first_plane + j] = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
     }
-    // Its own edges' planes with their two vertices, and their planes with
-    // their triangles (by increasing cell number).
+    // Its own edges' two vertices (and the edge in each vertex's list, sorted
+    // below), and their triangles by increasing cell number.
     for (int k = 0; k < 6; ++k) {
       if (!(own & (1u << (4 + k)))) continue;
       const Index e = tet_edge[6 * ti + k];
       const Index a = st.v[kTetEdges[k][0]], b = st.v[kTetEdges[k][1]];
       for (int j = 0; j < 2; ++j) {
-        const Index v = j == 0 ? a : b;
-        const Index slot = std::atomic_ref<Index>(vertex_fill[vertex_cell_[v]]).fetch_add(1, std::memory_order_relaxed);
-        const Index plane = cells_[vertex_cell_[v]].first_plane + slot;
-        set_plane(plane, vertex_cell_[v], e, j == 0 ? b : a);
-        plane_uses_[cells_[e].first_plane + j] = {2 * plane + 1, vertex_cell_[v]};
-        plane_uses_[plane] = {2 * plane, e};
+        const Index vc = vertex_cell_[j == 0 ? a : b];
+        const Index slot = std::atomic_ref<Index>(vertex_fill[vc]).fetch_add(1, std::memory_order_relaxed);
+        neighbors_[cells_[vc].first_plane + slot] = e;
+        neighbors_[cells_[e].first_plane + j] = vc;
       }
       triangles.clear();
       auto add_triangles = [&](Index u) {
@@ -543,37 +496,108 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       std::sort(triangles.begin(), triangles.end());
       triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
       SKINMESH_ASSERT_MSG(triangles.size() + 2 == cells_[e].num_planes, "the triangles around an edge miscounted");
-      for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const MixedCell& F = cells_[triangles[i]];
-        // The edge's place in the triangle's list: 01, 02, 12 leave out
-        // vertex 2, 1, 0.
-        const Index apex =
-            F.vertices[0] != a && F.vertices[0] != b ? 0 : (F.vertices[1] != a && F.vertices[1] != b ? 1 : 2);
-        plane_uses_[cells_[e].first_plane + 2 + i] = {
-            2 * (first_triangle_plane + plane_base[triangles[i]] + (2 - apex)), triangles[i]};
-      }
+      std::copy(triangles.begin(), triangles.end(), neighbors_.begin() + cells_[e].first_plane + 2);
     }
   };
-  // The planes' orient3d calls are counted as the calling thread's (the
-  // baseline reports them with its own), whatever thread made them.
   const std::size_t blocks = (std::size_t(nt) + kGrain - 1) / kGrain;
-  std::vector<geometry::PredicateStats> block_predicates(blocks);
   parallel_for(blocks, threads, 1, [&](std::size_t block) {
-    const geometry::PredicateStats before = geometry::take_predicate_stats();
     std::vector<Index> triangles;
     for (std::size_t ti = block * kGrain, end = std::min<std::size_t>(nt, ti + kGrain); ti < end; ++ti)
-      fill_tet_planes(ti, triangles);
-    block_predicates[block] = geometry::take_predicate_stats();
-    geometry::add_predicate_stats(before);
+      fill_tet_lists(ti, triangles);
   });
-  for (const geometry::PredicateStats& d : block_predicates) geometry::add_predicate_stats(d);
-  // A vertex's planes with its edges, by increasing cell number.
+  // A vertex's edges, by increasing cell number.
   parallel_for(nv, threads, kGrain, [&](std::size_t v) {
     const MixedCell& c = cells_[v];
     SKINMESH_ASSERT_MSG(vertex_fill[v] == c.num_planes, "the edges of a vertex miscounted");
-    PlaneUse* b = plane_uses_.data() + c.first_plane;
-    std::sort(b, b + c.num_planes, [](const PlaneUse& x, const PlaneUse& y) { return x.neighbor < y.neighbor; });
+    std::sort(neighbors_.begin() + c.first_plane, neighbors_.begin() + c.first_plane + c.num_planes);
   });
+
+  // The planes themselves are made on first use (make_planes()).
+  cell_planes_ = std::make_unique<std::atomic<const CellPlane*>[]>(cells_.size());
+  for (std::size_t c = 0; c < cells_.size(); ++c) cell_planes_[c].store(nullptr, std::memory_order_relaxed);
+}
+
+// MixedComplex Planes
+
+const CellPlane MixedComplex::kMakingPlanes{Vec3::Zero(), 0.0, kInvalidIndex, kInvalidIndex};
+
+CellPlane* MixedComplex::allocate_planes(std::size_t n) const {
+  constexpr std::size_t kBlock = 4096;  // [measured] planes per block (160 KiB): a lock per ~700 cells
+  const std::lock_guard<std::mutex> lock(planes_mutex_);
+  if (plane_blocks_.empty() || plane_block_used_ + n > kBlock) {
+    plane_blocks_.push_back(std::make_unique<CellPlane[]>(std::max(kBlock, n)));
+    plane_block_used_ = 0;
+  }
+  CellPlane* p = plane_blocks_.back().get() + plane_block_used_;
+  plane_block_used_ += n;
+  planes_made_ += n;
+  return p;
+}
+
+const CellPlane* MixedComplex::make_planes(Index c) const {
+  std::atomic<const CellPlane*>& slot = cell_planes_[c];
+  const CellPlane* seen = nullptr;
+  if (!slot.compare_exchange_strong(seen, &kMakingPlanes, std::memory_order_acquire)) {
+    // Made, or another thread makes them (a few microseconds).
+    while (seen == &kMakingPlanes) {
+      std::this_thread::yield();
+      seen = slot.load(std::memory_order_acquire);
+    }
+    if (seen != nullptr) return seen;
+    return make_planes(c);  // the other thread failed: try again, to raise its error here
+  }
+  // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k}, the face
+  // mu_X ∩ mu_Y = (1-s) delta_X + s nu_Y lies in the plane with unit normal n
+  // in lin Y, orthogonal to lin X and pointing from aff X towards z_k, through
+  // (1-s) z_a + s z_Y for any vertex a of X; mu_X lies on the side n·x <= offset.
+  // n comes from the input centres alone (its orientation, for a triangle, from
+  // the exact orient3d of the coface), and the offset from an input centre and
+  // the coface's focus z_Y, the same z_Y for every plane of mu_Y. This is the
+  // bisector form m·(x - z_X) <= (s/2)(pi_k(z_X) - w_X), m = P_perp^X (z_k - z_X),
+  // of papers/skin/skin_math.md §2.3 without its division by |m|: for a nearly
+  // flat coface (coplanar atoms, a rotated lattice) |m| and pi_k(z_X) - w_X both
+  // vanish, z_Y may coincide with z_X, and the quotient is 0/0, while n, z_a and
+  // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
+  // Both cells of a plane compute it as X sees it (a function of X, k and z_Y:
+  // the same bits on both sides), and Y stores it negated.
+  const geometry::RegularTriangulation& rt = *rt_;
+  const MixedCell& m = cells_[c];
+  try {
+    CellPlane* out = allocate_planes(m.num_planes);
+    for (Index i = 0; i < m.num_planes; ++i) {
+      constexpr double s = 0.5;
+      const Index nb = neighbors_[m.first_plane + i];
+      const MixedCell& N = cells_[nb];
+      const bool coface = N.dim < m.dim;  // this cell is Y
+      const MixedCell& X = coface ? N : m;
+      const MixedCell& Y = coface ? m : N;
+      const Index k = extra_of(X, Y);
+      const Vec3& za = rt.point(X.vertices[0]).z;
+      const Vec3 n = facet_coface_normal(rt, X, k);
+      const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
+      SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
+      out[i] = {coface ? Vec3(-n) : n, coface ? -off : off, nb, k};
+    }
+    slot.store(out, std::memory_order_release);
+    return out;
+  } catch (...) {
+    slot.store(nullptr, std::memory_order_release);
+    throw;
+  }
+}
+
+void MixedComplex::release_planes() const {
+  for (std::size_t c = 0; c < cells_.size(); ++c) cell_planes_[c].store(nullptr, std::memory_order_relaxed);
+  const std::lock_guard<std::mutex> lock(planes_mutex_);
+  plane_blocks_.clear();
+  plane_blocks_.shrink_to_fit();
+  plane_block_used_ = 0;
+  planes_made_ = 0;
+}
+
+std::size_t MixedComplex::plane_bytes() const {
+  const std::lock_guard<std::mutex> lock(planes_mutex_);
+  return planes_made_ * sizeof(CellPlane);
 }
 
 Index MixedComplex::num_cells_of_dim(int d) const {
@@ -586,12 +610,7 @@ Index MixedComplex::num_cells_of_dim(int d) const {
 
 double MixedComplex::violation(Index c, const Vec3& x) const {
   double worst = -std::numeric_limits<double>::infinity();
-  const MixedCell& m = cells_[c];
-  for (Index i = m.first_plane, e = m.first_plane + m.num_planes; i < e; ++i) {
-    const PlaneUse u = plane_uses_[i];
-    const SharedPlane& p = shared_planes_[u.plane_side >> 1];
-    worst = std::max(worst, on_side(p.normal.dot(x) - p.offset, u.plane_side));
-  }
+  for (const CellPlane& p : planes(c)) worst = std::max(worst, p.normal.dot(x) - p.offset);
   return worst;
 }
 
@@ -621,16 +640,11 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   for (std::size_t step = 0; step < max_walk_steps_; ++step) {
     double worst = tol;
     Index next = kInvalidIndex;
-    // The coface side reads the plane negated: -(n·x - offset) is exactly
-    // (-n)·x - (-offset), the value of a copy stored for that side.
-    const MixedCell& m = cells_[c];
-    for (Index i = m.first_plane, e = m.first_plane + m.num_planes; i < e; ++i) {
-      const PlaneUse u = plane_uses_[i];
-      const SharedPlane& p = shared_planes_[u.plane_side >> 1];
-      const double v = on_side(p.normal.dot(x) - p.offset, u.plane_side);
+    for (const CellPlane& p : planes(c)) {
+      const double v = p.normal.dot(x) - p.offset;
       if (v > worst) {
         worst = v;
-        next = u.neighbor;
+        next = p.neighbor;
       }
     }
     if (next == kInvalidIndex) return c;

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <array>
-#include <bit>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -27,10 +29,9 @@ using geometry::WeightedPoint;
 /// `neighbor` is the cell on the other side of the plane (it shares the
 /// plane, papers/skin/skin_math.md §2.3). The two cells are a simplex X and a
 /// coface Y = X ∪ {k}; `extra` is k, the point of the triangulation in Y and
-/// not in X, on both sides. A value made on the fly by MixedComplex::planes():
-/// the complex stores each plane once, for X, and Y sees it negated (exactly:
-/// negation commutes with rounding, so every test reads the same numbers as
-/// with a copy per side).
+/// not in X, on both sides. Made by MixedComplex::planes() on first use: the
+/// plane is computed as X sees it, and Y stores it negated (exactly: negation
+/// commutes with rounding, so both sides read the same numbers).
 struct CellPlane {
   Vec3 normal;
   double offset;
@@ -53,8 +54,8 @@ struct MixedCell {
   double focus_weight = 0.0;
   /// Edge direction (dim 1) or triangle normal (dim 2), unit; zero otherwise.
   Vec3 axis = Vec3::Zero();
-  /// This cell's planes: the plane uses [first_plane, first_plane + num_planes)
-  /// of the complex (MixedComplex::planes(c)).
+  /// This cell's planes: the entries [first_plane, first_plane + num_planes)
+  /// of the complex's plane lists (MixedComplex::neighbors(c), planes(c)).
   Index first_plane = 0;
   Index num_planes = 0;
   /// Dimension of X, 0..3 (one byte, beside `bounding`: 88 bytes per cell).
@@ -69,24 +70,49 @@ static_assert(sizeof(MixedCell) == 88, "MixedCell: dim and bounding share the la
 
 /// The mixed complex of the (non-redundant) weighted points of a regular
 /// triangulation: one cell per simplex, cells tile the bounding tetrahedron.
-/// Construction is O(#simplices); evaluation of f, grad f and rho at a point
-/// costs one point location (a walk from a nearby cell) plus O(1).
+/// Construction is O(#simplices) and makes every cell (foci, axes) and its
+/// list of neighbours; a cell's bounding planes are made on first use and
+/// kept until release_planes(): the mesher reads the planes of a few percent
+/// of the cells (papers/mesher/decomposition.md, "Planes made on first use"). Evaluation of f, grad f and rho at a
+/// point costs one point location (a walk from a nearby cell) plus O(1). Every const method may be called from several
+/// threads at once.
 class MixedComplex {
  public:
-  /// Builds every cell (foci, axes, bounding planes) from the triangulation,
-  /// on up to `threads` threads (0: every core); the complex, its numbering
+  /// Builds every cell (foci, axes, neighbours) from the triangulation, on up
+  /// to `threads` threads (0: every core); the complex, its numbering
   /// included, does not depend on the count. The shrink factor is fixed at
   /// s = 1/2 (Cheng & Shi §2.1). Throws std::logic_error (a failed
-  /// SKINMESH_ASSERT) if the complex needs more than 2^31 planes (about 25
-  /// million points).
+  /// SKINMESH_ASSERT) if the cells or their plane lists need more than 2^32
+  /// entries (about 25 million points), and std::bad_alloc if the address
+  /// range of the planes cannot be reserved.
   explicit MixedComplex(const geometry::RegularTriangulation& rt, int threads = 1);
 
   Index num_cells() const { return static_cast<Index>(cells_.size()); }
   const MixedCell& cell(Index c) const { return cells_[c]; }
-  class PlaneRange;
-  /// The bounding planes of cell c (a forward range of CellPlane values, in
-  /// the same order on every call).
-  PlaneRange planes(Index c) const;
+  /// The bounding planes of cell c, in the same order on every call: its
+  /// facets first (in the order of its vertices left out), then its cofaces
+  /// by increasing cell number. Made on the first call; the span stays valid
+  /// until release_planes().
+  std::span<const CellPlane> planes(Index c) const;
+  /// The cells across the planes of cell c, in the order of planes(c),
+  /// without making a plane (for scans over every cell).
+  std::span<const Index> neighbors(Index c) const {
+    const MixedCell& m = cells_[c];
+    return {neighbors_.data() + m.first_plane, m.num_planes};
+  }
+  /// k, the point of the triangulation in Y and not in X, of two neighbouring
+  /// cells a and b (either order; one is the simplex X, the other its coface
+  /// Y = X ∪ {k}): the `extra` of their plane.
+  Index extra_vertex(Index a, Index b) const {
+    return cells_[a].dim < cells_[b].dim ? extra_of(cells_[a], cells_[b]) : extra_of(cells_[b], cells_[a]);
+  }
+  /// Gives back the memory of every plane made so far; later calls of
+  /// planes() make them again, bit for bit the same. Pre: no other thread
+  /// uses the complex, and no span from planes() is used afterwards.
+  void release_planes() const;
+  /// Bytes of the planes made since the construction or the last
+  /// release_planes() (40 per plane, in blocks of 160 KiB).
+  std::size_t plane_bytes() const;
   const geometry::RegularTriangulation& triangulation() const { return *rt_; }
   /// Number of cells of dimension d (0..3) that do not touch a bounding point.
   Index num_cells_of_dim(int d) const;
@@ -129,93 +155,43 @@ class MixedComplex {
   /// ~1.4e-6 rad of one line) along that line into the slab its four Voronoi
   /// edges allow. Tetrahedron t of the triangulation is cell first_tet_cell + t.
   void order_flat_foci(Index first_tet_cell);
-
-  /// A plane shared by a simplex X and a coface Y = X ∪ {k}, as seen from X.
-  struct SharedPlane {
-    Vec3 normal;
-    double offset;
-  };
-  /// One plane of a cell: the shared plane's number times two, plus one if
-  /// the cell is the coface (it sees the plane negated); and the cell on the
-  /// other side.
-  struct PlaneUse {
-    std::uint32_t plane_side;
-    Index neighbor;
-  };
-  friend class PlaneRange;
-  /// v as seen from a plane's side: v for the simplex, -v for the coface (an
-  /// exact negation: the sign bit flipped, no branch).
-  static double on_side(double v, std::uint32_t plane_side) {
-    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) ^ (std::uint64_t(plane_side & 1u) << 63));
+  /// k of a simplex X and its coface Y = X ∪ {k}: the first place where their
+  /// sorted vertices differ.
+  static Index extra_of(const MixedCell& X, const MixedCell& Y) {
+    for (int i = 0; i < Y.dim; ++i)
+      if (Y.vertices[i] != X.vertices[i]) return Y.vertices[i];
+    return Y.vertices[Y.dim];
   }
+  /// Makes the planes of cell c (or waits for the thread making them) and
+  /// returns them.
+  const CellPlane* make_planes(Index c) const;
+  /// Room for n planes in the store (planes_mutex_).
+  CellPlane* allocate_planes(std::size_t n) const;
+  /// The marker of a cell whose planes a thread is making.
+  static const CellPlane kMakingPlanes;
 
   const geometry::RegularTriangulation* rt_;
   std::vector<MixedCell> cells_;
-  std::vector<SharedPlane> shared_planes_;  ///< one per facet/coface pair (X, Y)
-  std::vector<PlaneUse> plane_uses_;        ///< per cell, its planes (first_plane, num_planes)
+  std::vector<Index> neighbors_;  ///< per cell, the cells across its planes (first_plane, num_planes)
+  /// Per cell, its planes once made (nullptr before; a marker while a thread
+  /// makes them), in blocks of the store below: 8 bytes per cell, and 40 per
+  /// plane only for the cells read.
+  mutable std::unique_ptr<std::atomic<const CellPlane*>[]> cell_planes_;
+  mutable std::mutex planes_mutex_;
+  mutable std::vector<std::unique_ptr<CellPlane[]>> plane_blocks_;
+  mutable std::size_t plane_block_used_ = 0;  ///< planes used in plane_blocks_.back()
+  mutable std::size_t planes_made_ = 0;       ///< planes allocated since the last release
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
   std::size_t num_reordered_foci_ = 0;
 };
 
-/// The planes of one cell as CellPlane values (MixedComplex::planes()).
-class MixedComplex::PlaneRange {
- public:
-  class iterator {
-   public:
-    using value_type = CellPlane;
-    using difference_type = std::ptrdiff_t;
-    iterator() = default;
-    iterator(const MixedComplex* mc, Index cell, const PlaneUse* u) : mc_(mc), cell_(cell), u_(u) {}
-    CellPlane operator*() const {
-      const SharedPlane& p = mc_->shared_planes_[u_->plane_side >> 1];
-      const std::uint32_t side = u_->plane_side;
-      return {Vec3(on_side(p.normal.x(), side), on_side(p.normal.y(), side), on_side(p.normal.z(), side)),
-              on_side(p.offset, side), u_->neighbor, extra(side)};
-    }
-    iterator& operator++() {
-      ++u_;
-      return *this;
-    }
-    iterator operator++(int) {
-      iterator t = *this;
-      ++u_;
-      return t;
-    }
-    bool operator==(const iterator& o) const { return u_ == o.u_; }
-
-   private:
-    /// k, the vertex of Y = X ∪ {k} not in X: the first place where the
-    /// sorted vertices of Y and X differ (made here, not stored: 4 bytes per
-    /// plane saved).
-    Index extra(std::uint32_t side) const {
-      const MixedCell& X = mc_->cells_[(side & 1u) ? u_->neighbor : cell_];
-      const MixedCell& Y = mc_->cells_[(side & 1u) ? cell_ : u_->neighbor];
-      for (int i = 0; i < Y.dim; ++i)
-        if (Y.vertices[i] != X.vertices[i]) return Y.vertices[i];
-      return Y.vertices[Y.dim];
-    }
-    const MixedComplex* mc_ = nullptr;
-    Index cell_ = kInvalidIndex;
-    const PlaneUse* u_ = nullptr;
-  };
-  PlaneRange(const MixedComplex* mc, Index cell, const PlaneUse* b, const PlaneUse* e)
-      : mc_(mc), cell_(cell), b_(b), e_(e) {}
-  iterator begin() const { return {mc_, cell_, b_}; }
-  iterator end() const { return {mc_, cell_, e_}; }
-  std::size_t size() const { return static_cast<std::size_t>(e_ - b_); }
-
- private:
-  const MixedComplex* mc_;
-  Index cell_;
-  const PlaneUse *b_, *e_;
-};
-
-inline MixedComplex::PlaneRange MixedComplex::planes(Index c) const {
-  const MixedCell& m = cells_[c];
-  const PlaneUse* b = plane_uses_.data() + m.first_plane;
-  return {this, c, b, b + m.num_planes};
+inline std::span<const CellPlane> MixedComplex::planes(Index c) const {
+  const CellPlane* p = cell_planes_[c].load(std::memory_order_acquire);
+  if (p == nullptr || p == &kMakingPlanes) [[unlikely]]
+    p = make_planes(c);
+  return {p, cells_[c].num_planes};
 }
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices

@@ -306,8 +306,8 @@ std::pair<Vec3, double> bounding_ball(const MixedComplex& mc, Index c) {
   for (int d = mc.cell(c).dim; d < 3; ++d) {
     std::vector<Index> up;
     for (Index x : tets)
-      for (const CellPlane& p : mc.planes(x))
-        if (mc.cell(p.neighbor).dim == d + 1) up.push_back(p.neighbor);
+      for (const Index nb : mc.neighbors(x))
+        if (mc.cell(nb).dim == d + 1) up.push_back(nb);
     std::sort(up.begin(), up.end());
     up.erase(std::unique(up.begin(), up.end()), up.end());
     tets.swap(up);

@@ -147,14 +147,23 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   std::vector<double> rho(nv, 0.0);
   std::vector<Vec3> normal(nv, Vec3::Zero());
   std::vector<Index> cell(nv, kInvalidIndex);
-  // Point location walks from a hint: the cell of a vertex located before
-  // that shares a triangle with v (one edge away), else the last cell found.
-  // Vertices are visited in triangle order so that such a neighbour exists;
-  // vertices of no triangle come last. (Hints change only the walk, not the
-  // cell's patch at the point: f, grad f and rho are continuous across faces.)
+  // Point location walks from a hint: the caller's cell of the vertex if
+  // given, else the cell of a vertex located before that shares a triangle
+  // with v (one edge away), else the last cell found. Without the caller's
+  // cells, vertices are visited in triangle order so that such a neighbour
+  // exists; vertices of no triangle come last. (Hints change only the walk,
+  // not the cell's patch at the point: f, grad f and rho are continuous
+  // across faces.) The caller's cells matter for memory as well: walks
+  // between neighbouring vertices cross about three cells each and make the
+  // planes of about a third of the mixed complex (papers/mesher/
+  // decomposition.md, "Planes made on first use").
+  const bool given_cells = opt.vertex_cells.size() == nv;
   std::vector<Index> order;
   std::vector<Index> order_hint;  // the position in `order` of v's hint vertex, or kInvalidIndex
-  {
+  if (given_cells) {
+    order.resize(nv);
+    std::iota(order.begin(), order.end(), Index(0));
+  } else {
     std::vector<Index> position(nv, kInvalidIndex);
     order.reserve(nv);
     order_hint.reserve(nv);
@@ -195,9 +204,13 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     for (std::size_t k = begin; k < end; ++k) {
       const Index v = order[k];
       if (!P[v].allFinite()) continue;
-      const Index from = order_hint[k];
-      const Index h =
-          from != kInvalidIndex && from >= begin && cell[order[from]] != kInvalidIndex ? cell[order[from]] : last;
+      Index h = last;
+      if (given_cells) {
+        h = opt.vertex_cells[v] < skin.mixed_complex().num_cells() ? opt.vertex_cells[v] : last;
+      } else {
+        const Index from = order_hint[k];
+        if (from != kInvalidIndex && from >= begin && cell[order[from]] != kInvalidIndex) h = cell[order[from]];
+      }
       const skin::SkinSample s = skin.sample(P[v], h);
       last = cell[v] = s.cell;
       rho[v] = s.rho;

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,12 @@ struct SkinCheckOptions {
   /// already computed it (the pipeline has); empty: computed here. It is a
   /// deterministic function of the skin, so the report is the same either way.
   std::optional<skin::SkinTopology> expected_topology;
+  /// The mixed cell holding each vertex of the mesh, if the caller knows it
+  /// (the mesher does), one per vertex: each vertex's point location starts
+  /// there. Empty: from the cell of a neighbouring vertex. A wrong cell costs
+  /// only a longer walk; a vertex on a face shared by two cells may be read
+  /// in either (f, grad f and rho are continuous there, equal up to rounding).
+  std::span<const Index> vertex_cells;
 };
 
 /// Result of check_skin_mesh().

@@ -12,6 +12,7 @@
 
 #include "mesher/pipeline.h"
 #include "skin/molecule_io.h"
+#include "skin/skin_surface.h"
 #include "tests/verify/check_expectations.h"
 
 using namespace skinmesh;
@@ -40,6 +41,44 @@ TEST_CASE("molecules: gramicidinA_1grm_model1") { mesh_and_check(kData + "/grami
 TEST_CASE("molecules: crambin_1crn") { mesh_and_check(kData + "/crambin_1crn.pdb"); }
 TEST_CASE("molecules: adna_3dna_fiber_30bp (genus 1)") { mesh_and_check(kData + "/adna_3dna_fiber_30bp.pdb"); }
 TEST_CASE("molecules: ligand_1hvr_xk263") { mesh_and_check(kData + "/ligand_1hvr_xk263.pdb"); }
+
+TEST_CASE("check: the mesher's cells as the walks' start give the report of the check's own walks") {
+  // MeshResult::vertex_cells, passed to the check as SkinCheckOptions::
+  // vertex_cells: each is the mixed cell holding its vertex, and starting
+  // the walks there (or from wrong cells) changes only the walks.
+  struct Case {
+    const char* file;
+    double probe;
+  };
+  for (const Case& c : {Case{"crambin_1crn.pdb", 1.4}, Case{"gramicidinA_1grm_model1.pdb", 0.0}}) {
+    CAPTURE(c.file);
+    const skin::Molecule mol = skin::read_molecule(kData + "/" + c.file);
+    mesher::MeshOptions options;
+    options.probe_radius = c.probe;
+    options.check = false;  // the cells stay in the result
+    mesher::MeshResult res = mesher::mesh_skin(mol, options);
+    REQUIRE(res.vertex_cells.size() == res.mesh.positions.size());
+    // The mesh and the skin in the frame the mesher used.
+    const skin::SkinSurface skin(skin::translated(skin::weighted_points(mol, c.probe), res.frame_centre));
+    const skin::MixedComplex& mc = skin.mixed_complex();
+    for (Vec3& p : res.mesh.positions) p -= res.frame_centre;
+    std::size_t outside = 0;
+    for (std::size_t v = 0; v < res.vertex_cells.size(); ++v)
+      outside += mc.violation(res.vertex_cells[v], res.mesh.positions[v]) > 1e-9 * mc.length_scale() ? 1 : 0;
+    CHECK(outside == 0);
+    verify::SkinCheckOptions own, given, wrong;
+    given.vertex_cells = res.vertex_cells;
+    std::vector<Index> shifted(res.vertex_cells);
+    for (Index& cell : shifted) cell = (cell + 1) % mc.num_cells();
+    wrong.vertex_cells = shifted;
+    const verify::SkinCheckReport a = verify::check_skin_mesh(skin, res.mesh, own);
+    const verify::SkinCheckReport b = verify::check_skin_mesh(skin, res.mesh, given);
+    const verify::SkinCheckReport w = verify::check_skin_mesh(skin, res.mesh, wrong);
+    test::check_every_property(a);
+    CHECK(a.to_json() == b.to_json());
+    CHECK(a.to_json() == w.to_json());
+  }
+}
 
 // Inputs that once broke the sweep (see papers/front/creep.md and papers/front/hole_filling.md).
 TEST_CASE("threads: the same mesh and the same counts, byte for byte, with 1 and 2 threads") {

@@ -1,8 +1,10 @@
 // tests/skin/mixed_complex_construction_test.cpp: the mixed complex's cells and
 // planes against a plain scan of the triangulation with ordered maps (the
 // definition of their numbering and order, papers/skin/mixed_complex.md
-// "Construction"), its planes against their geometric definition, and the
-// complex built on 1, 2 and 3 threads against itself bit for bit.
+// "Construction"), its planes against their geometric definition, the
+// complex built on 1, 2 and 3 threads against itself bit for bit, and the
+// planes made on first use: the same after release_planes() and when several
+// threads make them at once.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,6 +12,8 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <span>
+#include <thread>
 #include <vector>
 
 #include "skin/molecule_io.h"
@@ -129,6 +133,24 @@ void check_against_scan(const std::vector<geometry::WeightedPoint>& pts, int thr
   CHECK(mismatches == 0);
 }
 
+/// Every plane of every cell, copied (cell by cell).
+std::vector<std::vector<skin::CellPlane>> all_planes(const skin::MixedComplex& mc) {
+  std::vector<std::vector<skin::CellPlane>> out(mc.num_cells());
+  for (Index c = 0; c < mc.num_cells(); ++c) out[c].assign(mc.planes(c).begin(), mc.planes(c).end());
+  return out;
+}
+
+/// True if the planes are those of `ref`, bit for bit.
+bool same_planes(std::span<const skin::CellPlane> planes, const std::vector<skin::CellPlane>& ref) {
+  if (planes.size() != ref.size()) return false;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+    if (planes[i].neighbor != ref[i].neighbor || planes[i].extra != ref[i].extra ||
+        std::memcmp(planes[i].normal.data(), ref[i].normal.data(), sizeof(double) * 3) != 0 ||
+        std::memcmp(&planes[i].offset, &ref[i].offset, sizeof(double)) != 0)
+      return false;
+  return true;
+}
+
 /// True if the two complexes hold the same cells and planes, bit for bit.
 bool same_complex(const skin::MixedComplex& a, const skin::MixedComplex& b) {
   if (a.num_cells() != b.num_cells() || a.num_reordered_foci() != b.num_reordered_foci()) return false;
@@ -186,6 +208,57 @@ TEST_CASE("mixed complex: the same on 1, 2 and 3 threads, bit for bit") {
     const skin::SkinSurface many(pts, threads);
     CHECK(same_complex(one.mixed_complex(), many.mixed_complex()));
   }
+}
+
+TEST_CASE("mixed complex: planes made on first use, again after a release, and by several threads at once") {
+  std::mt19937 rng(7);
+  const std::vector<geometry::WeightedPoint> pts = test::random_points(600, 18.0, 0.8, 2.0, rng);
+  const skin::SkinSurface skin(pts, 1);
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  CHECK(mc.plane_bytes() == 0);  // the construction makes none
+  // The neighbour lists are the planes' neighbours, and the extra vertex of
+  // each pair is the plane's.
+  std::size_t planes = 0;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    const auto nb = mc.neighbors(c);
+    const auto pl = mc.planes(c);
+    REQUIRE(nb.size() == pl.size());
+    for (std::size_t i = 0; i < nb.size(); ++i) {
+      CHECK(nb[i] == pl[i].neighbor);
+      CHECK(mc.extra_vertex(c, nb[i]) == pl[i].extra);
+      CHECK(mc.extra_vertex(nb[i], c) == pl[i].extra);
+    }
+    planes += pl.size();
+  }
+  CHECK(mc.plane_bytes() == planes * sizeof(skin::CellPlane));
+  const auto ref = all_planes(mc);
+  mc.release_planes();
+  CHECK(mc.plane_bytes() == 0);
+  // Four threads make them again, each visiting the cells in its own order
+  // (forwards, backwards, and two strides), so that most cells are asked for
+  // by several threads at about the same time.
+  const Index n = mc.num_cells();
+  std::vector<int> wrong(4, 0);
+  std::vector<std::thread> pool;
+  for (int k = 0; k < 4; ++k)
+    pool.emplace_back([&, k] {
+      for (Index i = 0; i < n; ++i) {
+        const Index c = k == 0 ? i : (k == 1 ? n - 1 - i : (k == 2 ? (i * 7919u) % n : (i * 104729u + 13u) % n));
+        wrong[k] += same_planes(mc.planes(c), ref[c]) ? 0 : 1;
+      }
+    });
+  for (std::thread& t : pool) t.join();
+  CHECK(wrong == std::vector<int>(4, 0));
+  CHECK(mc.plane_bytes() == planes * sizeof(skin::CellPlane));  // each cell's made once
+  // A walk after a release reads the same planes: locate() finds the same cells.
+  std::vector<Index> before;
+  std::uniform_real_distribution<double> u(-15.0, 15.0);
+  std::vector<Vec3> probes;
+  for (int i = 0; i < 200; ++i) probes.emplace_back(u(rng), u(rng), u(rng));
+  for (const Vec3& x : probes) before.push_back(mc.locate(x));
+  mc.release_planes();
+  for (std::size_t i = 0; i < probes.size(); ++i) CHECK(mc.locate(probes[i]) == before[i]);
+  CHECK(mc.plane_bytes() < planes * sizeof(skin::CellPlane));  // only the walks' cells
 }
 
 }  // TEST_SUITE
