@@ -44,7 +44,10 @@ struct CriticalPoint {
 /// cell_distance);
 /// points found in two cells (on a shared face) are merged. The index comes
 /// from the Gauss curvature sign and sigma (papers/skin/skin_math.md §5 "Index rule").
-std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e);
+/// The cells are scanned in blocks on up to `threads` threads (0: every
+/// core); the result does not depend on the count. The cells' planes are
+/// made for the test and not kept (MixedComplex::planes_into).
+std::vector<CriticalPoint> critical_points(const skin::SkinSurface& skin, const Vec3& e, int threads = 1);
 
 /// Counts per kind: [minima, saddles, maxima].
 struct MorseCount {

@@ -121,7 +121,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   MorseSmaleComplex ms;
   const Vec3 e = e_in.normalized();
   ms.height_direction = e;
-  ms.critical = critical_points(skin, e);
+  ms.critical = critical_points(skin, e, opt.threads);
   const Index n = static_cast<Index>(ms.critical.size());
   ms.protect_radius.resize(n);
   for (Index i = 0; i < n; ++i) ms.protect_radius[i] = opt.protect_factor * ms.critical[i].rho;

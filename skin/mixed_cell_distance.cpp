@@ -71,6 +71,10 @@ double distance_to_tetrahedron(const Vec3& x, const std::array<Vec3, 4>& v) {
 }  // namespace
 
 double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
+  return cell_distance(mc, c, p, mc.planes(c));
+}
+
+double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p, std::span<const CellPlane> planes) {
   const skin::MixedCell& X = mc.cell(c);
   const geometry::RegularTriangulation& rt = mc.triangulation();
   if (X.dim == 3) {
@@ -89,9 +93,9 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
     // With the two foci in the wrong order V_t is empty: every s is outside.
     std::array<skin::CellPlane, 2> tets{};
     int nt = 0;
-    for (const skin::CellPlane& pl : mc.planes(c))
+    for (const skin::CellPlane& pl : planes)
       if (mc.cell(pl.neighbor).dim == 3 && nt < 2) tets[nt++] = pl;
-    if (nt != 2) return std::max(mc.violation(c, p), 0.0);
+    if (nt != 2) return std::max(skin::MixedComplex::violation(planes, p), 0.0);
     const Vec3& n = X.axis;
     const Vec3 y = p - X.focus;
     const double s = 2.0 * n.dot(y);
@@ -106,7 +110,7 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
         distance_to_triangle(x, rt.point(X.vertices[0]).z, rt.point(X.vertices[1]).z, rt.point(X.vertices[2]).z);
     return 0.5 * std::hypot(out_s, out_t);
   }
-  return std::max(mc.violation(c, p), 0.0);
+  return std::max(skin::MixedComplex::violation(planes, p), 0.0);
 }
 
 }  // namespace skinmesh::skin

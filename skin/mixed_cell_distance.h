@@ -4,6 +4,8 @@
 // Notes: papers/morse/critical_points.md ("Flat tetrahedra", "Slivers")
 #pragma once
 
+#include <span>
+
 #include "core/types.h"
 #include "skin/mixed_complex.h"
 
@@ -23,5 +25,8 @@ namespace skinmesh::skin {
 /// slab (papers/morse/critical_points.md "Slivers"). Vertex and edge cells use
 /// the half-space form.
 double cell_distance(const MixedComplex& mc, Index c, const Vec3& p);
+/// The same with the cell's planes given (MixedComplex::planes_into(), for
+/// scans that do not keep them).
+double cell_distance(const MixedComplex& mc, Index c, const Vec3& p, std::span<const CellPlane> planes);
 
 }  // namespace skinmesh::skin

@@ -560,30 +560,39 @@ const CellPlane* MixedComplex::make_planes(Index c) const {
   // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
   // Both cells of a plane compute it as X sees it (a function of X, k and z_Y:
   // the same bits on both sides), and Y stores it negated.
-  const geometry::RegularTriangulation& rt = *rt_;
-  const MixedCell& m = cells_[c];
   try {
-    CellPlane* out = allocate_planes(m.num_planes);
-    for (Index i = 0; i < m.num_planes; ++i) {
-      constexpr double s = 0.5;
-      const Index nb = neighbors_[m.first_plane + i];
-      const MixedCell& N = cells_[nb];
-      const bool coface = N.dim < m.dim;  // this cell is Y
-      const MixedCell& X = coface ? N : m;
-      const MixedCell& Y = coface ? m : N;
-      const Index k = extra_of(X, Y);
-      const Vec3& za = rt.point(X.vertices[0]).z;
-      const Vec3 n = facet_coface_normal(rt, X, k);
-      const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
-      SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-      out[i] = {coface ? Vec3(-n) : n, coface ? -off : off, nb, k};
-    }
+    CellPlane* out = allocate_planes(cells_[c].num_planes);
+    fill_planes(c, out);
     slot.store(out, std::memory_order_release);
     return out;
   } catch (...) {
     slot.store(nullptr, std::memory_order_release);
     throw;
   }
+}
+
+void MixedComplex::fill_planes(Index c, CellPlane* out) const {
+  const geometry::RegularTriangulation& rt = *rt_;
+  const MixedCell& m = cells_[c];
+  for (Index i = 0; i < m.num_planes; ++i) {
+    constexpr double s = 0.5;
+    const Index nb = neighbors_[m.first_plane + i];
+    const MixedCell& N = cells_[nb];
+    const bool coface = N.dim < m.dim;  // this cell is Y
+    const MixedCell& X = coface ? N : m;
+    const MixedCell& Y = coface ? m : N;
+    const Index k = extra_of(X, Y);
+    const Vec3& za = rt.point(X.vertices[0]).z;
+    const Vec3 n = facet_coface_normal(rt, X, k);
+    const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
+    SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
+    out[i] = {coface ? Vec3(-n) : n, coface ? -off : off, nb, k};
+  }
+}
+
+void MixedComplex::planes_into(Index c, std::vector<CellPlane>& out) const {
+  out.resize(cells_[c].num_planes);
+  fill_planes(c, out.data());
 }
 
 void MixedComplex::release_planes() const {
@@ -608,9 +617,9 @@ Index MixedComplex::num_cells_of_dim(int d) const {
 
 // MixedComplex Evaluation
 
-double MixedComplex::violation(Index c, const Vec3& x) const {
+double MixedComplex::violation(std::span<const CellPlane> planes, const Vec3& x) {
   double worst = -std::numeric_limits<double>::infinity();
-  for (const CellPlane& p : planes(c)) worst = std::max(worst, p.normal.dot(x) - p.offset);
+  for (const CellPlane& p : planes) worst = std::max(worst, p.normal.dot(x) - p.offset);
   return worst;
 }
 

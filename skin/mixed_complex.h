@@ -106,6 +106,10 @@ class MixedComplex {
   Index extra_vertex(Index a, Index b) const {
     return cells_[a].dim < cells_[b].dim ? extra_of(cells_[a], cells_[b]) : extra_of(cells_[b], cells_[a]);
   }
+  /// The planes of cell c (those of planes(c), bit for bit) written into
+  /// `out`, and not kept: for scans over every cell, which would otherwise
+  /// keep the planes of every cell they test.
+  void planes_into(Index c, std::vector<CellPlane>& out) const;
   /// Gives back the memory of every plane made so far; later calls of
   /// planes() make them again, bit for bit the same. Pre: no other thread
   /// uses the complex, and no span from planes() is used afterwards.
@@ -125,7 +129,9 @@ class MixedComplex {
 
   /// Largest signed distance (Å) by which x lies outside the planes of cell c
   /// (<= 0 inside).
-  double violation(Index c, const Vec3& x) const;
+  double violation(Index c, const Vec3& x) const { return violation(planes(c), x); }
+  /// The same for the planes of a cell (planes(c) or planes_into()).
+  static double violation(std::span<const CellPlane> planes, const Vec3& x);
   /// Mixed cell containing x, found by a visibility walk from `hint` (any cell;
   /// kInvalidIndex starts from the cell of the triangulation point nearest in
   /// power distance found by walking the triangulation). Points on a shared
@@ -165,6 +171,8 @@ class MixedComplex {
   /// Makes the planes of cell c (or waits for the thread making them) and
   /// returns them.
   const CellPlane* make_planes(Index c) const;
+  /// Writes the planes of cell c into out[0 .. num_planes).
+  void fill_planes(Index c, CellPlane* out) const;
   /// Room for n planes in the store (planes_mutex_).
   CellPlane* allocate_planes(std::size_t n) const;
   /// The marker of a cell whose planes a thread is making.

@@ -292,4 +292,25 @@ TEST_CASE("arc contraction: a saddle next to a maximum is cancelled and arcs are
   }
 }
 
+TEST_CASE("critical points: the same list on 1, 2 and 3 threads, and no plane kept") {
+  // Crambin at probe 0: about 9,000 cells, three blocks of the scan.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const skin::SkinSurface skin(skin::weighted_points(mol, 0.0));
+  REQUIRE(skin.mixed_complex().num_cells() > 2 * 4096);
+  const Vec3 e = morse::default_height_direction();
+  const auto one = morse::critical_points(skin, e, 1);
+  // The scan tests the candidates with planes it does not keep.
+  CHECK(skin.mixed_complex().plane_bytes() == 0);
+  REQUIRE(one.size() > 100);
+  for (int threads : {2, 3}) {
+    const auto many = morse::critical_points(skin, e, threads);
+    REQUIRE(many.size() == one.size());
+    bool same = true;
+    for (std::size_t i = 0; i < one.size(); ++i)
+      same = same && one[i].cell == many[i].cell && one[i].position == many[i].position &&
+             one[i].kind == many[i].kind && one[i].height == many[i].height;
+    CHECK(same);
+  }
+}
+
 }  // TEST_SUITE
