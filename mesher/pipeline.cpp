@@ -6,6 +6,7 @@
 #include "mesher/pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <future>
@@ -27,60 +28,108 @@ namespace skinmesh::mesher {
 
 namespace {
 
-/// Writes the output of a closed SurfaceMesh of the skin into `out` and
-/// `data` (every array already sized), its vertices from index `vbase` on and
-/// its triangles from `fbase` on: positions, triangles (vertex indices offset
-/// by vbase) and per vertex the normal (skin::kVertexNormal); into `data` per
-/// vertex the atom and the dimension of its mixed cell (skin::kVertexCell)
-/// and rho (skin::kVertexRho); into `cells` the mixed cell. Deleted elements
-/// are left out, the others keep their order.
-void output_mesh_into(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh, geometry::IndexedMesh& out,
-                      skin::SkinVertexData& data, std::vector<Index>& cells, std::size_t vbase, std::size_t fbase) {
-  // No garbage_collection(): vertices() and faces() skip deleted elements in
-  // index order, which is the order the compaction keeps (the same output
-  // without moving every property array of the mesh once more).
-  const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
-  const auto cell = mesh.get_vertex_property(skin::kVertexCell);
-  const auto rho = mesh.get_vertex_property(skin::kVertexRho);
-  mesh.write_indexed(out.positions, out.triangles, vbase, fbase);
-  std::size_t i = vbase;
-  for (geometry::Vertex v : mesh.vertices()) {
-    out.normals[i] = normal[v];
-    data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
-    data.rho[i] = rho[v];
-    data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
-    cells[i] = cell[v];
-    ++i;
+/// The output arrays of a MeshResult, in the order write_output() fills them.
+enum class OutputPart {
+  kFaces,    ///< positions and triangles (the half-edges, edges and faces go back after)
+  kCells,    ///< per vertex the mixed cell, its dimension and the atom (skin::kVertexCell goes back)
+  kNormals,  ///< per vertex the normal (skin::kVertexNormal goes back)
+  kRho,      ///< per vertex rho (skin::kVertexRho goes back)
+};
+constexpr std::array<OutputPart, 4> kOutputParts{OutputPart::kFaces, OutputPart::kCells, OutputPart::kNormals,
+                                                 OutputPart::kRho};
+
+/// Calls size(array, n) on the output arrays of `part` in `res`, with
+/// n = `vertices` for per-vertex arrays and `triangles` for the triangles.
+template <class Size>
+void size_part(OutputPart part, std::size_t vertices, std::size_t triangles, MeshResult& res, Size&& size) {
+  switch (part) {
+    case OutputPart::kFaces:
+      size(res.mesh.positions, vertices);
+      size(res.mesh.triangles, triangles);
+      break;
+    case OutputPart::kCells:
+      size(res.vertex_cells, vertices);
+      size(res.vertex_data.patch, vertices);
+      size(res.vertex_data.atom, vertices);
+      break;
+    case OutputPart::kNormals:
+      size(res.mesh.normals, vertices);
+      break;
+    case OutputPart::kRho:
+      size(res.vertex_data.rho, vertices);
+      break;
   }
 }
 
-/// Calls size(array, n) on every output array, with n = `vertices` for the
-/// per-vertex arrays and `triangles` for the triangles.
-template <class Size>
-void size_output_arrays(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out,
-                        skin::SkinVertexData& data, std::vector<Index>& cells, Size&& size) {
-  size(out.positions, vertices);
-  size(out.normals, vertices);
-  size(out.triangles, triangles);
-  size(data.atom, vertices);
-  size(data.rho, vertices);
-  size(data.patch, vertices);
-  size(cells, vertices);
+/// Writes `part` of the output of a closed SurfaceMesh of the skin into
+/// `res` (its arrays already sized), the mesh's vertices from index `vbase`
+/// on and its triangles from `fbase` on, then frees what of the mesh no
+/// later part reads. Deleted elements are left out, the others keep their
+/// order (vertices() and faces() skip deleted elements in index order, the
+/// order of a compaction: no garbage_collection(), which would move every
+/// property array once more).
+void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, OutputPart part, MeshResult& res,
+                std::size_t vbase, std::size_t fbase) {
+  std::size_t i = vbase;
+  switch (part) {
+    case OutputPart::kFaces:
+      mesh.write_indexed(res.mesh.positions, res.mesh.triangles, vbase, fbase);
+      mesh.release_faces();
+      break;
+    case OutputPart::kCells: {
+      auto cell = mesh.get_vertex_property(skin::kVertexCell);
+      for (geometry::Vertex v : mesh.vertices()) {
+        res.vertex_cells[i] = cell[v];
+        res.vertex_data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
+        res.vertex_data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
+        ++i;
+      }
+      mesh.remove_vertex_property(cell);
+      break;
+    }
+    case OutputPart::kNormals: {
+      auto normal = mesh.get_vertex_property(skin::kVertexNormal);
+      for (geometry::Vertex v : mesh.vertices()) res.mesh.normals[i++] = normal[v];
+      mesh.remove_vertex_property(normal);
+      break;
+    }
+    case OutputPart::kRho: {
+      auto rho = mesh.get_vertex_property(skin::kVertexRho);
+      for (geometry::Vertex v : mesh.vertices()) res.vertex_data.rho[i++] = rho[v];
+      mesh.remove_vertex_property(rho);
+      break;
+    }
+  }
 }
 
-/// Sizes the output arrays for `vertices` vertices and `triangles` triangles.
-void size_output(std::size_t vertices, std::size_t triangles, geometry::IndexedMesh& out, skin::SkinVertexData& data,
-                 std::vector<Index>& cells) {
-  size_output_arrays(vertices, triangles, out, data, cells, [](auto& a, std::size_t n) { a.resize(n); });
-}
-
-/// The output mesh of a closed SurfaceMesh of the skin (output_mesh_into()).
-geometry::IndexedMesh output_mesh(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
-                                  skin::SkinVertexData& data, std::vector<Index>& cells) {
-  geometry::IndexedMesh out;
-  size_output(mesh.n_vertices(), mesh.n_faces(), out, data, cells);
-  output_mesh_into(skin, mesh, out, data, cells, 0, 0);
-  return out;
+/// Writes the output of the closed SurfaceMeshes of the skin `meshes`, one
+/// after the other, into res.mesh (positions, triangles, normals),
+/// res.vertex_data (atom, rho, mixed-cell dimension) and res.vertex_cells,
+/// and frees the meshes. The meshes go in windows of `threads`, each on a
+/// thread of its own, and part by part (OutputPart): an array of the output
+/// is sized (and so touched) only once the arrays of the half-edge meshes
+/// that the previous part read have gone back, so the output grows as the
+/// half-edge meshes shrink instead of both being whole at once.
+void write_output(const skin::SkinSurface& skin, const std::vector<geometry::SurfaceMesh*>& meshes, int threads,
+                  MeshResult& res) {
+  const std::size_t n = meshes.size();
+  std::vector<std::size_t> vbase(n + 1, 0), fbase(n + 1, 0);
+  for (std::size_t g = 0; g < n; ++g) {
+    vbase[g + 1] = vbase[g] + meshes[g]->n_vertices();
+    fbase[g + 1] = fbase[g] + meshes[g]->n_faces();
+  }
+  for (OutputPart part : kOutputParts)
+    size_part(part, vbase[n], fbase[n], res, [](auto& a, std::size_t k) { a.reserve(k); });
+  const auto window = static_cast<std::size_t>(std::max(threads, 1));
+  for (std::size_t w = 0; w < n; w += window) {
+    const std::size_t end = std::min(n, w + window);
+    for (OutputPart part : kOutputParts) {
+      size_part(part, vbase[end], fbase[end], res, [](auto& a, std::size_t k) { a.resize(k); });
+      parallel_for(end - w, threads, 1,
+                   [&](std::size_t i) { write_part(skin, *meshes[w + i], part, res, vbase[w + i], fbase[w + i]); });
+    }
+    for (std::size_t g = w; g < end; ++g) *meshes[g] = geometry::SurfaceMesh();
+  }
 }
 
 /// mesh_skin() on points already in their local frame.
@@ -219,27 +268,9 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
       clock.end("angles");
     }
   }
-  std::vector<std::size_t> vbase(n + 1, 0), fbase(n + 1, 0);
-  for (std::size_t g = 0; g < n; ++g) {
-    vbase[g + 1] = vbase[g] + groups[g].mesh.n_vertices();
-    fbase[g + 1] = fbase[g] + groups[g].mesh.n_faces();
-  }
-  // The output arrays are reserved whole but sized (and so touched) one
-  // window of `threads` groups at a time, and each window's half-edge meshes
-  // are freed before the next: the output grows as the half-edge meshes
-  // shrink, instead of both being whole at once.
-  size_output_arrays(vbase[n], fbase[n], res.mesh, res.vertex_data, res.vertex_cells,
-                     [](auto& a, std::size_t k) { a.reserve(k); });
-  const auto window = static_cast<std::size_t>(std::max(threads, 1));
-  for (std::size_t w = 0; w < n; w += window) {
-    const std::size_t end = std::min(n, w + window);
-    size_output(vbase[end], fbase[end], res.mesh, res.vertex_data, res.vertex_cells);
-    parallel_for(end - w, threads, 1, [&](std::size_t i) {
-      const std::size_t g = w + i;
-      output_mesh_into(skin, groups[g].mesh, res.mesh, res.vertex_data, res.vertex_cells, vbase[g], fbase[g]);
-      groups[g].mesh = geometry::SurfaceMesh();
-    });
-  }
+  std::vector<geometry::SurfaceMesh*> meshes;
+  for (front::SweepResult& g : groups) meshes.push_back(&g.mesh);
+  write_output(skin, meshes, threads, res);
 }
 
 /// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
@@ -330,8 +361,9 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
       clock.end("angles");
     }
   }
-  res.mesh = output_mesh(skin, swept.mesh, res.vertex_data, res.vertex_cells);
-  swept.mesh = geometry::SurfaceMesh();  // the check reads res.mesh: free the half-edge mesh first
+  // The check reads res.mesh: the half-edge mesh goes back part by part as
+  // the output is written.
+  write_output(skin, {&swept.mesh}, threads, res);
   if (options.observers.memory_released) options.observers.memory_released();
   clock.end("output");
 }

@@ -124,6 +124,13 @@ void SurfaceMesh::clear() {
   deleted_vertices_ = deleted_edges_ = deleted_faces_ = 0;
 }
 
+void SurfaceMesh::release_faces() {
+  hprops_.release();
+  eprops_.release();
+  fprops_.release();
+  deleted_edges_ = deleted_faces_ = 0;
+}
+
 void SurfaceMesh::reserve(std::size_t nv, std::size_t nf) {
   // Every property array of each kind (a closed triangle mesh has about
   // nv + nf edges).

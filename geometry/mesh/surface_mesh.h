@@ -99,6 +99,8 @@ class BasePropertyArray {
   virtual void resize(std::size_t n) = 0;
   /// Capacity for n elements.
   virtual void reserve(std::size_t n) = 0;
+  /// No element and no capacity: the memory goes back.
+  virtual void release() = 0;
   /// Append one element with the default value.
   virtual void push_back() = 0;
   /// Keep elements kept[0], kept[1], ... in this order (kept[i] >= i), drop the rest.
@@ -128,6 +130,7 @@ class PropertyArray final : public BasePropertyArray {
   PropertyArray(std::string name, T init) : BasePropertyArray(std::move(name)), init_(std::move(init)) {}
   void resize(std::size_t n) override { data_.resize(n, init_); }
   void reserve(std::size_t n) override { data_.reserve(n); }
+  void release() override { data_ = PropertyStorage<T>(); }
   void push_back() override { data_.push_back(init_); }
   void compact(const std::vector<Index>& kept) override {
     for (std::size_t i = 0; i < kept.size(); ++i)
@@ -195,6 +198,11 @@ class PropertyContainer {
   }
   void reserve(std::size_t n) {
     for (auto& a : arrays_) a->reserve(n);
+  }
+  /// Every array emptied and its memory given back (the properties stay).
+  void release() {
+    for (auto& a : arrays_) a->release();
+    size_ = 0;
   }
   void compact(const std::vector<Index>& kept) {
     for (auto& a : arrays_) a->compact(kept);
@@ -439,6 +447,13 @@ class SurfaceMesh {
   ~SurfaceMesh();
   /// Remove all elements; user properties are kept (empty).
   void clear();
+  /// Gives back the memory of every half-edge, edge and face (with their
+  /// properties) and keeps the vertices with theirs: for a caller that has
+  /// read the faces and still reads vertex properties (the pipeline's output,
+  /// which frees the mesh part by part). Afterwards the mesh has no face and
+  /// no half-edge, and the vertices' outgoing half-edges are invalid: only
+  /// vertices(), positions and vertex properties may be read.
+  void release_faces();
   /// Reserve space for about nv vertices and nf faces (edges: nv + nf).
   void reserve(std::size_t nv, std::size_t nf);
 

@@ -1041,4 +1041,27 @@ TEST_CASE("SurfaceMesh: random refinement operations keep a valid oriented surfa
   }
 }
 
+TEST_CASE("SurfaceMesh: release_faces keeps the vertices, their positions and properties") {
+  // The pipeline's output reads the faces, releases them and then reads the
+  // vertex properties: they must be those of to_indexed_mesh()'s vertices.
+  SurfaceMesh m = build(sphere(2));
+  const IndexedMesh before = m.to_indexed_mesh();
+  auto tag = m.add_vertex_property<int>("v:tag", 0);
+  for (Vertex v : m.vertices()) tag[v] = int(v.idx()) * 3;
+  m.delete_vertex(Vertex(5));  // a deleted vertex stays left out
+  const std::size_t nv = m.n_vertices();
+  m.release_faces();
+  CHECK(m.n_faces() == 0);
+  CHECK(m.halfedges_size() == 0);
+  CHECK(m.n_vertices() == nv);
+  std::size_t i = 0;
+  for (Vertex v : m.vertices()) {
+    CHECK(v.idx() != 5);
+    CHECK(tag[v] == int(v.idx()) * 3);
+    CHECK(m.position(v) == before.positions[v.idx()]);
+    ++i;
+  }
+  CHECK(i == nv);
+}
+
 }  // TEST_SUITE
