@@ -80,7 +80,7 @@ void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, Outp
       auto cell = mesh.get_vertex_property(skin::kVertexCell);
       for (geometry::Vertex v : mesh.vertices()) {
         res.vertex_cells[i] = cell[v];
-        res.vertex_data.patch[i] = skin.mixed_complex().cell(cell[v]).dim;
+        res.vertex_data.patch[i] = skin.mixed_complex().simplex(cell[v]).dim;
         res.vertex_data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
         ++i;
       }
@@ -309,11 +309,11 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // arc_end()): their memory goes back before the sweep, the stage of the
   // peak.
   for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
-  // The critical points' cell tests made the planes of about half the cells;
-  // the mesher's walks need a few percent of them (papers/mesher/
-  // decomposition.md, "Planes made on first use"): they go back, and the
-  // walks make theirs again, bit for bit the same.
-  skin.mixed_complex().release_planes();
+  // What the Morse stage made of the cells and planes (the integral lines'
+  // walks, the cut curves) goes back: the mesher's walks need a few percent
+  // of the cells (papers/mesher/decomposition.md, "Cells and planes made on
+  // first use") and make theirs again, bit for bit the same.
+  skin.mixed_complex().release_made();
   clock.end("morse");
 
   // 3. The sweep (§4.1, §4.2).

@@ -27,27 +27,27 @@ namespace {
 void scan_cell(const skin::SkinSurface& skin, const Vec3& e, double tol, Index c, std::vector<skin::CellPlane>& planes,
                std::vector<CriticalPoint>& out) {
   const skin::MixedComplex& mc = skin.mixed_complex();
-  const skin::MixedCell& X = mc.cell(c);
-  if (X.bounding) return;
-  const Mat3 A = mc.quadric_matrix(c);  // A^{-1} = A for s = 1/2
+  if (mc.simplex(c).bounding) return;
+  const skin::MixedCell X = mc.cell_value(c);            // made for the test, not kept
+  const Mat3 A = skin::MixedComplex::quadric_matrix(X);  // A^{-1} = A for s = 1/2
   const Vec3 Ae = A * e;
   const double eAe = e.dot(Ae);
   if (eAe == 0.0) return;  // e asymptotic: no finite candidate
   const double mu2 = -X.focus_weight / (2.0 * eAe);
   if (!(mu2 > 0.0)) return;
   const double mu = std::sqrt(mu2);
-  // The cell's planes, made for its two candidates and not kept (a
-  // tetrahedron's test reads only its vertices and focus).
+  // A vertex's or an edge's planes, made for its two candidates and not kept
+  // (a triangle's and a tetrahedron's test reads none).
   planes.clear();
-  if (X.dim != 3) mc.planes_into(c, planes);
+  if (X.dim <= 1) mc.planes_into(c, planes);
   for (int sgn = -1; sgn <= 1; sgn += 2) {
     const Vec3 p = X.focus + (sgn * mu) * Ae;
-    if (skin::cell_distance(mc, c, p, planes) > tol) continue;
+    if (skin::cell_distance(mc, c, X, p, planes) > tol) continue;
     CriticalPoint cp;
     cp.position = p;
     cp.cell = c;
     cp.height = e.dot(p);
-    cp.rho = mc.rho(c, p);
+    cp.rho = (p - X.focus).norm();
     // grad f = 2 A y = 2 (sgn mu) A A e = 2 sgn mu e, so n = sgn e.
     cp.sigma = sgn;
     const skin::PrincipalCurvatures k = skin.curvatures(c, p);

@@ -48,7 +48,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   std::array<std::vector<Index>, 4> by_dim;
   std::vector<std::uint8_t> dim_of(n);
   for (Index c = 0; c < n; ++c) {
-    const MixedCell& X = mc.cell(c);
+    const CellSimplex& X = mc.simplex(c);
     dim_of[c] = static_cast<std::uint8_t>(X.dim);
     if (!X.bounding) by_dim[static_cast<std::size_t>(X.dim)].push_back(c);
   }
@@ -65,7 +65,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
     parallel_for(blocks, threads, 1, [&](std::size_t b) {
       for (std::size_t i = b * kBlock, end = std::min(cells.size(), i + kBlock); i < end; ++i) {
         const Index c = cells[i];
-        const MixedCell& X = mc.cell(c);
+        const CellSimplex& X = mc.simplex(c);
         std::array<WeightedPoint, 4> pts;
         for (int j = 0; j <= dim; ++j) pts[j] = rt.point(X.vertices[j]);
         const std::span<const WeightedPoint> xs(pts.data(), dim + 1);
@@ -99,19 +99,19 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   auto in_k0_fn = [&](Index c) { return in_k0[c] != 0; };
 
   for (Index c = 0; c < n; ++c)
-    if (in_k0_fn(c)) ++topo.k0_simplices[mc.cell(c).dim];
+    if (in_k0_fn(c)) ++topo.k0_simplices[mc.simplex(c).dim];
   topo.euler_k0 = topo.k0_simplices[0] - topo.k0_simplices[1] + topo.k0_simplices[2] - topo.k0_simplices[3];
 
   // betti0: K0 vertices joined by K0 edges.
   DisjointSets comp(n);
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 1 || !in_k0_fn(c)) continue;
+    if (mc.simplex(c).dim != 1 || !in_k0_fn(c)) continue;
     for (const Index nb : mc.neighbors(c))
       if (dim_of[nb] == 0) comp.unite(nb, c);
   }
   std::vector<char> seen(n, 0);
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 0 || !in_k0_fn(c)) continue;
+    if (mc.simplex(c).dim != 0 || !in_k0_fn(c)) continue;
     const Index r = comp.find(c);
     if (!seen[r]) seen[r] = 1, ++topo.betti0;
   }
@@ -121,7 +121,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   DisjointSets outside(n);
   Index any_outer = kInvalidIndex;
   for (Index c = 0; c < n; ++c) {
-    const MixedCell& X = mc.cell(c);
+    const CellSimplex& X = mc.simplex(c);
     if (X.dim == 3 && X.bounding) {
       if (any_outer == kInvalidIndex) any_outer = c;
       outside.unite(c, any_outer);
@@ -139,7 +139,7 @@ SkinTopology dual_complex_topology(const MixedComplex& mc, int threads) {
   std::fill(seen.begin(), seen.end(), 0);
   int complement = 0;
   for (Index c = 0; c < n; ++c) {
-    if (mc.cell(c).dim != 3 || in_k0_fn(c)) continue;
+    if (mc.simplex(c).dim != 3 || in_k0_fn(c)) continue;
     const Index r = outside.find(c);
     if (!seen[r]) seen[r] = 1, ++complement;
   }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "geometry/kernel/predicates.h"
 
@@ -71,11 +72,12 @@ double distance_to_tetrahedron(const Vec3& x, const std::array<Vec3, 4>& v) {
 }  // namespace
 
 double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p) {
-  return cell_distance(mc, c, p, mc.planes(c));
+  const MixedCell& X = mc.cell(c);
+  return cell_distance(mc, c, X, p, X.dim <= 1 ? mc.planes(c) : std::span<const CellPlane>());
 }
 
-double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p, std::span<const CellPlane> planes) {
-  const skin::MixedCell& X = mc.cell(c);
+double cell_distance(const skin::MixedComplex& mc, Index c, const MixedCell& X, const Vec3& p,
+                     std::span<const CellPlane> planes) {
   const geometry::RegularTriangulation& rt = mc.triangulation();
   if (X.dim == 3) {
     // mu_T = (T + z_T) / 2: p in mu_T iff q = 2 p - z_T in T.
@@ -91,18 +93,26 @@ double cell_distance(const skin::MixedComplex& mc, Index c, const Vec3& p, std::
     // sigma s <= sigma n·(z_T - z_t) for both cofaces (the mixed complex has
     // put the focus of a flat coface in the order its neighbours require).
     // With the two foci in the wrong order V_t is empty: every s is outside.
-    std::array<skin::CellPlane, 2> tets{};
+    // The side of T's apex k is that of its plane's normal, which is ±n by
+    // the same exact orient3d (MixedComplex's planes): no plane is needed.
+    std::array<Index, 2> tets{};
     int nt = 0;
-    for (const skin::CellPlane& pl : planes)
-      if (mc.cell(pl.neighbor).dim == 3 && nt < 2) tets[nt++] = pl;
-    if (nt != 2) return std::max(skin::MixedComplex::violation(planes, p), 0.0);
+    for (const Index nb : mc.neighbors(c))
+      if (mc.simplex(nb).dim == 3 && nt < 2) tets[nt++] = nb;
+    if (nt != 2) {  // a hull triangle (one coface): the half-space form
+      std::vector<CellPlane> own;
+      if (planes.empty()) mc.planes_into(c, own), planes = own;
+      return std::max(skin::MixedComplex::violation(planes, p), 0.0);
+    }
     const Vec3& n = X.axis;
     const Vec3 y = p - X.focus;
     const double s = 2.0 * n.dot(y);
     double out_s = 0.0;
-    for (const skin::CellPlane& pl : tets) {
-      const double sigma = pl.normal.dot(n) >= 0 ? 1.0 : -1.0;
-      const double sT = n.dot(mc.cell(pl.neighbor).focus - X.focus);
+    const Vec3 &a = rt.point(X.vertices[0]).z, &b = rt.point(X.vertices[1]).z, &cz = rt.point(X.vertices[2]).z;
+    for (const Index T : tets) {
+      const double sigma =
+          geometry::orient3d(a, b, cz, rt.point(mc.extra_vertex(c, T)).z) == Sign::Positive ? 1.0 : -1.0;
+      const double sT = n.dot(mc.cell_value(T).focus - X.focus);
       out_s = std::max(out_s, sigma * (s - sT));
     }
     const Vec3 x = X.focus + 2.0 * (y - n.dot(y) * n);

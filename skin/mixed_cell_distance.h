@@ -25,8 +25,10 @@ namespace skinmesh::skin {
 /// slab (papers/morse/critical_points.md "Slivers"). Vertex and edge cells use
 /// the half-space form.
 double cell_distance(const MixedComplex& mc, Index c, const Vec3& p);
-/// The same with the cell's planes given (MixedComplex::planes_into(), for
-/// scans that do not keep them).
-double cell_distance(const MixedComplex& mc, Index c, const Vec3& p, std::span<const CellPlane> planes);
+/// The same for cell c given as X with its planes (MixedComplex::cell_value()
+/// and planes_into(), for scans that keep neither). Only vertex and edge
+/// cells read the planes: a triangle's and a tetrahedron's may be empty.
+double cell_distance(const MixedComplex& mc, Index c, const MixedCell& X, const Vec3& p,
+                     std::span<const CellPlane> planes);
 
 }  // namespace skinmesh::skin

@@ -160,7 +160,7 @@ Ring around_edge(const RT& rt, Index t, Index a, Index b, Visit&& visit) {
 /// triangle X the side of z_k is the exact orient3d sign: Y is a non-flat
 /// tetrahedron of the triangulation (SoS), so it is never zero, even when z_k
 /// is within rounding of aff X.
-Vec3 facet_coface_normal(const geometry::RegularTriangulation& rt, const MixedCell& X, Index k) {
+Vec3 facet_coface_normal(const geometry::RegularTriangulation& rt, const CellSimplex& X, Index k) {
   const Vec3& za = rt.point(X.vertices[0]).z;
   const Vec3 v = rt.point(k).z - za;
   switch (X.dim) {
@@ -231,16 +231,28 @@ void MixedComplex::order_flat_foci(Index first_tet_cell) {
   // m_i·(z_{T_i} - z_T) >= 0. Move z_T along n by the smallest delta that
   // satisfies the four (a slab, as every m_i is ±n); neighbours that are flat
   // themselves use their current focus, so a few passes settle chains of them.
+  // The flat tetrahedra's foci, current while the passes run (the others are
+  // never moved: their foci are computed where read).
+  std::vector<MixedCell> current(flat.size());
+  std::vector<bool> moved_any(flat.size(), false);
+  auto flat_index = [&](Index t) {
+    const auto it = std::lower_bound(flat.begin(), flat.end(), t, [](const Flat& f, Index u) { return f.t < u; });
+    return it != flat.end() && it->t == t ? std::size_t(it - flat.begin()) : flat.size();
+  };
+  for (std::size_t i = 0; i < flat.size(); ++i) fill_cell(first_tet_cell + flat[i].t, current[i]);
   for (int pass = 0; pass < 4; ++pass) {
     bool moved = false;
-    for (const Flat& F : flat) {
-      MixedCell& T = cells_[first_tet_cell + F.t];
+    for (std::size_t fi = 0; fi < flat.size(); ++fi) {
+      const Flat& F = flat[fi];
+      MixedCell& T = current[fi];
       double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
       for (int i = 0; i < 4; ++i) {
         const Index nb = rt.neighbor(F.t, i);
         if (nb == kInvalidIndex) continue;
         const double c = F.m[i].dot(F.n);
-        const double bound = F.m[i].dot(cells_[first_tet_cell + nb].focus - T.focus) / c;
+        const std::size_t nf = flat_index(nb);
+        const Vec3 nb_focus = nf < flat.size() ? current[nf].focus : cell_value(first_tet_cell + nb).focus;
+        const double bound = F.m[i].dot(nb_focus - T.focus) / c;
         if (c > 0)
           hi = std::min(hi, bound);
         else
@@ -251,11 +263,13 @@ void MixedComplex::order_flat_foci(Index first_tet_cell) {
       T.focus += delta * F.n;
       const WeightedPoint& p0 = rt.point(T.vertices[0]);
       T.focus_weight = (T.focus - p0.z).squaredNorm() - p0.w;
-      moved = true;
+      moved = moved_any[fi] = true;
       ++num_reordered_foci_;
     }
     if (!moved) break;
   }
+  for (std::size_t i = 0; i < flat.size(); ++i)
+    if (moved_any[i]) moved_foci_.push_back({first_tet_cell + flat[i].t, current[i].focus, current[i].focus_weight});
 }
 
 MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads) : rt_(&rt) {
@@ -350,15 +364,16 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   // and, by Euler (V - E + F - T = 1), E = V + T + 1 edges.
   SKINMESH_ASSERT_MSG(num_cells == 2 * std::size_t(nv) + 4 * std::size_t(nt) + 3,
                       "the triangulation is not a triangulated ball");
-  cells_.resize(num_cells);
+  simplices_.resize(num_cells + 1);
+  std::vector<Index> plane_count(num_cells, 0);
   for (Index v = 0; v < np; ++v) {
     if (vertex_cell_[v] == kInvalidIndex) continue;
-    MixedCell& c = cells_[vertex_cell_[v]];
+    CellSimplex& c = simplices_[vertex_cell_[v]];
     c.vertices[0] = v;
     c.bounding = rt.is_bounding(v);
   }
   auto make_cell = [&](Index id, int dim, std::array<Index, 4> v) {
-    MixedCell& c = cells_[id];
+    CellSimplex& c = simplices_[id];
     c.dim = static_cast<std::uint8_t>(dim);
     c.vertices = v;
     for (int i = 0; i <= dim; ++i) c.bounding = c.bounding || rt.is_bounding(v[i]);
@@ -368,23 +383,23 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     const SortedTet st = sorted_tet(rt, t);
     const std::uint16_t own = owns[ti];
     make_cell(first_tet_cell + t, 3, st.v);
-    cells_[first_tet_cell + t].num_planes = 4;
+    plane_count[first_tet_cell + t] = 4;
     Index id = cell_base[t];
     for (int s = 0; s < 4; ++s) {
       if (!(own & (1u << s))) continue;
       const std::array<int, 3> f = facet_positions(s);
       make_cell(id, 2, {st.v[f[0]], st.v[f[1]], st.v[f[2]], kInvalidIndex});
-      cells_[id].num_planes = rt.neighbor(t, st.local[s]) == kInvalidIndex ? 4 : 5;  // 3 edges, 1 or 2 tetrahedra
+      plane_count[id] = rt.neighbor(t, st.local[s]) == kInvalidIndex ? 4 : 5;  // 3 edges, 1 or 2 tetrahedra
       tet_tri[4 * ti + s] = id++;
       for (const auto& [p, q] : {std::array<int, 2>{f[0], f[1]}, {f[0], f[2]}, {f[1], f[2]}}) {
         const int e = edge_slot(p, q);
         if (!(own & (1u << (4 + e))) || first_facet(p, q) != s) continue;
         make_cell(id, 1, {st.v[p], st.v[q], kInvalidIndex, kInvalidIndex});
-        cells_[id].num_planes = 2 + tet_edge[6 * ti + e];  // 2 vertices, its triangles
+        plane_count[id] = 2 + tet_edge[6 * ti + e];  // 2 vertices, its triangles
         tet_edge[6 * ti + e] = id++;
         // A vertex cell's planes are those with its edges.
         for (Index w : {st.v[p], st.v[q]})
-          std::atomic_ref<Index>(cells_[vertex_cell_[w]].num_planes).fetch_add(1, std::memory_order_relaxed);
+          std::atomic_ref<Index>(plane_count[vertex_cell_[w]]).fetch_add(1, std::memory_order_relaxed);
       }
     }
   });
@@ -416,16 +431,6 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     }
   }
 
-  // Foci and axes.
-  parallel_for(cells_.size(), threads, kGrain, [&](std::size_t i) {
-    MixedCell& c = cells_[i];
-    std::array<WeightedPoint, 4> p;
-    for (int j = 0; j <= c.dim; ++j) p[j] = rt.point(c.vertices[j]);
-    focus_of(std::span<const WeightedPoint>(p.data(), c.dim + 1), c.focus, c.focus_weight);
-    if (c.dim == 1) c.axis = (p[1].z - p[0].z).normalized();
-    if (c.dim == 2) c.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
-  });
-
   // Foci of flat tetrahedra (slivers) put back in the order their Voronoi
   // edges require (papers/skin/mixed_complex.md, "Flat tetrahedra").
   order_flat_foci(first_tet_cell);
@@ -437,19 +442,21 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   // back on a scan.
   constexpr std::size_t kWalkFloor = 64;
   constexpr double kWalkPerCubeRoot = 8;
-  max_walk_steps_ = kWalkFloor + 4 * static_cast<std::size_t>(std::cbrt(double(cells_.size())) * kWalkPerCubeRoot);
+  max_walk_steps_ = kWalkFloor + 4 * static_cast<std::size_t>(std::cbrt(double(num_cells)) * kWalkPerCubeRoot);
 
   // The plane lists: the cell across each plane of each cell, in the order
   // planes() makes them. A cell lists its facets first (in the order of its
   // vertices left out: a tetrahedron's four, a triangle's edges 01, 02, 12,
   // an edge's two vertices), then its cofaces by increasing cell number.
   std::size_t total = 0;
-  for (MixedCell& c : cells_) {
-    c.first_plane = static_cast<Index>(total);
-    total += c.num_planes;
+  for (std::size_t c = 0; c < num_cells; ++c) {
+    simplices_[c].first_plane = static_cast<Index>(total);
+    total += plane_count[c];
     SKINMESH_ASSERT_MSG(total < kInvalidIndex, "too many mixed cell planes for 32-bit indices");
   }
-  SKINMESH_ASSERT_MSG(cells_[first_tet_cell].first_plane == 2 * num_edges, "the edges of the vertices miscounted");
+  simplices_[num_cells].first_plane = static_cast<Index>(total);
+  std::vector<Index>().swap(plane_count);
+  SKINMESH_ASSERT_MSG(simplices_[first_tet_cell].first_plane == 2 * num_edges, "the edges of the vertices miscounted");
   neighbors_.resize(total);
   std::vector<Index> vertex_fill(nv, 0);
   auto fill_tet_lists = [&](std::size_t ti, std::vector<Index>& triangles) {
@@ -461,8 +468,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
     // edges, the lower (its owner) first.
     for (int s = 0; s < 4; ++s) {
       const Index f = tet_tri[4 * ti + s];
-      neighbors_[cells_[tc].first_plane + s] = f;
-      neighbors_[cells_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = tc;
+      neighbors_[simplices_[tc].first_plane + s] = f;
+      neighbors_[simplices_[f].first_plane + 3 + ((own & (1u << s)) ? 0 : 1)] = tc;
     }
     // Its own triangles' edges.
     for (int s = 0; s < 4; ++s) {
@@ -471,7 +478,7 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       const std::array<int, 3> fp = facet_positions(s);
       const std::array<std::array<int, 2>, 3> edges{{{fp[0], fp[1]}, {fp[0], fp[2]}, {fp[1], fp[2]}}};
       for (int j = 0; j < 3; ++j)
-        neighbors_[cells_[f].first_plane + j] = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
+        neighbors_[simplices_[f].first_plane + j] = tet_edge[6 * ti + edge_slot(edges[j][0], edges[j][1])];
     }
     // Its own edges' two vertices (and the edge in each vertex's list, sorted
     // below), and their triangles by increasing cell number.
@@ -482,8 +489,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       for (int j = 0; j < 2; ++j) {
         const Index vc = vertex_cell_[j == 0 ? a : b];
         const Index slot = std::atomic_ref<Index>(vertex_fill[vc]).fetch_add(1, std::memory_order_relaxed);
-        neighbors_[cells_[vc].first_plane + slot] = e;
-        neighbors_[cells_[e].first_plane + j] = vc;
+        neighbors_[simplices_[vc].first_plane + slot] = e;
+        neighbors_[simplices_[e].first_plane + j] = vc;
       }
       triangles.clear();
       auto add_triangles = [&](Index u) {
@@ -495,8 +502,8 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
       around_edge(rt, t, a, b, add_triangles);
       std::sort(triangles.begin(), triangles.end());
       triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
-      SKINMESH_ASSERT_MSG(triangles.size() + 2 == cells_[e].num_planes, "the triangles around an edge miscounted");
-      std::copy(triangles.begin(), triangles.end(), neighbors_.begin() + cells_[e].first_plane + 2);
+      SKINMESH_ASSERT_MSG(triangles.size() + 2 == num_planes(e), "the triangles around an edge miscounted");
+      std::copy(triangles.begin(), triangles.end(), neighbors_.begin() + simplices_[e].first_plane + 2);
     }
   };
   const std::size_t blocks = (std::size_t(nt) + kGrain - 1) / kGrain;
@@ -507,45 +514,130 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
   });
   // A vertex's edges, by increasing cell number.
   parallel_for(nv, threads, kGrain, [&](std::size_t v) {
-    const MixedCell& c = cells_[v];
-    SKINMESH_ASSERT_MSG(vertex_fill[v] == c.num_planes, "the edges of a vertex miscounted");
-    std::sort(neighbors_.begin() + c.first_plane, neighbors_.begin() + c.first_plane + c.num_planes);
+    const CellSimplex& c = simplices_[v];
+    SKINMESH_ASSERT_MSG(vertex_fill[v] == num_planes(Index(v)), "the edges of a vertex miscounted");
+    std::sort(neighbors_.begin() + c.first_plane, neighbors_.begin() + c.first_plane + vertex_fill[v]);
   });
 
-  // The planes themselves are made on first use (make_planes()).
-  cell_planes_ = std::make_unique<std::atomic<const CellPlane*>[]>(cells_.size());
-  for (std::size_t c = 0; c < cells_.size(); ++c) cell_planes_[c].store(nullptr, std::memory_order_relaxed);
+  // The cells' geometry and planes are made on first use (make_cell(),
+  // make_planes()).
+  made_cells_ = std::make_unique<std::atomic<const MixedCell*>[]>(num_cells);
+  cell_planes_ = std::make_unique<std::atomic<const CellPlane*>[]>(num_cells);
+  for (std::size_t c = 0; c < num_cells; ++c) {
+    made_cells_[c].store(nullptr, std::memory_order_relaxed);
+    cell_planes_[c].store(nullptr, std::memory_order_relaxed);
+  }
 }
 
-// MixedComplex Planes
+// MixedComplex Cells and Planes Made on First Use
 
 const CellPlane MixedComplex::kMakingPlanes{Vec3::Zero(), 0.0, kInvalidIndex, kInvalidIndex};
+const MixedCell MixedComplex::kMakingCell{};
 
-CellPlane* MixedComplex::allocate_planes(std::size_t n) const {
-  constexpr std::size_t kBlock = 4096;  // [measured] planes per block (160 KiB): a lock per ~700 cells
-  const std::lock_guard<std::mutex> lock(planes_mutex_);
-  if (plane_blocks_.empty() || plane_block_used_ + n > kBlock) {
-    plane_blocks_.push_back(std::make_unique<CellPlane[]>(std::max(kBlock, n)));
-    plane_block_used_ = 0;
-  }
-  CellPlane* p = plane_blocks_.back().get() + plane_block_used_;
-  plane_block_used_ += n;
-  planes_made_ += n;
-  return p;
-}
+namespace {
 
-const CellPlane* MixedComplex::make_planes(Index c) const {
-  std::atomic<const CellPlane*>& slot = cell_planes_[c];
-  const CellPlane* seen = nullptr;
-  if (!slot.compare_exchange_strong(seen, &kMakingPlanes, std::memory_order_acquire)) {
-    // Made, or another thread makes them (a few microseconds).
-    while (seen == &kMakingPlanes) {
+/// Makes the value of `slot` once: if it is nullptr, marks it `making`,
+/// calls make() and stores its result; if another thread makes it, waits for
+/// it (a few microseconds). If make() throws, the slot is cleared and the
+/// error passed on (a thread that waited makes it again and meets the error
+/// itself).
+template <class T, class Make>
+const T* make_once(std::atomic<const T*>& slot, const T* making, Make&& make) {
+  const T* seen = nullptr;
+  while (!slot.compare_exchange_strong(seen, making, std::memory_order_acquire)) {
+    while (seen == making) {
       std::this_thread::yield();
       seen = slot.load(std::memory_order_acquire);
     }
     if (seen != nullptr) return seen;
-    return make_planes(c);  // the other thread failed: try again, to raise its error here
   }
+  try {
+    const T* made = make();
+    slot.store(made, std::memory_order_release);
+    return made;
+  } catch (...) {
+    slot.store(nullptr, std::memory_order_release);
+    throw;
+  }
+}
+
+}  // namespace
+
+template <class T>
+T* MixedComplex::allocate_made(std::vector<std::unique_ptr<T[]>>& blocks, std::size_t& used, std::size_t n) const {
+  constexpr std::size_t kBlockBytes = std::size_t{160} << 10;  // [chosen] a lock per several hundred cells
+  const std::size_t block = std::max<std::size_t>(kBlockBytes / sizeof(T), n);
+  const std::lock_guard<std::mutex> lock(made_mutex_);
+  if (blocks.empty() || used + n > block) {
+    blocks.push_back(std::make_unique<T[]>(block));
+    used = 0;
+  }
+  T* p = blocks.back().get() + used;
+  used += n;
+  made_bytes_ += n * sizeof(T);
+  return p;
+}
+
+const MixedCell* MixedComplex::make_cell(Index c) const {
+  return make_once(made_cells_[c], &kMakingCell, [&] {
+    MixedCell* out = allocate_made(cell_blocks_, cell_block_used_, 1);
+    fill_cell(c, *out);
+    return out;
+  });
+}
+
+void MixedComplex::fill_cell(Index c, MixedCell& m) const {
+  const CellSimplex& x = simplices_[c];
+  m.vertices = x.vertices;
+  m.dim = x.dim;
+  m.bounding = x.bounding;
+  m.first_plane = x.first_plane;
+  m.num_planes = num_planes(c);
+  std::array<WeightedPoint, 4> p;
+  for (int j = 0; j <= m.dim; ++j) p[j] = rt_->point(m.vertices[j]);
+  focus_of(std::span<const WeightedPoint>(p.data(), m.dim + 1), m.focus, m.focus_weight);
+  m.axis = Vec3::Zero();
+  if (m.dim == 1) m.axis = (p[1].z - p[0].z).normalized();
+  if (m.dim == 2) m.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
+  if (m.dim == 3 && !moved_foci_.empty()) {
+    const auto it = std::lower_bound(moved_foci_.begin(), moved_foci_.end(), c,
+                                     [](const MovedFocus& f, Index u) { return f.cell < u; });
+    if (it != moved_foci_.end() && it->cell == c) m.focus = it->focus, m.focus_weight = it->weight;
+  }
+}
+
+Vec3 MixedComplex::focus_of_cell(Index c) const {
+  const MixedCell* made = made_cells_[c].load(std::memory_order_acquire);
+  if (made != nullptr && made != &kMakingCell) return made->focus;
+  const CellSimplex& x = simplices_[c];
+  if (x.dim == 3 && !moved_foci_.empty()) {
+    const auto it = std::lower_bound(moved_foci_.begin(), moved_foci_.end(), c,
+                                     [](const MovedFocus& f, Index u) { return f.cell < u; });
+    if (it != moved_foci_.end() && it->cell == c) return it->focus;
+  }
+  std::array<WeightedPoint, 4> p;
+  for (int j = 0; j <= x.dim; ++j) p[j] = rt_->point(x.vertices[j]);
+  Vec3 z;
+  double w;
+  focus_of(std::span<const WeightedPoint>(p.data(), x.dim + 1), z, w);
+  return z;
+}
+
+MixedCell MixedComplex::cell_value(Index c) const {
+  MixedCell m;
+  fill_cell(c, m);
+  return m;
+}
+
+const CellPlane* MixedComplex::make_planes(Index c) const {
+  return make_once(cell_planes_[c], &kMakingPlanes, [&] {
+    CellPlane* out = allocate_made(plane_blocks_, plane_block_used_, num_planes(c));
+    fill_planes(c, out);
+    return out;
+  });
+}
+
+void MixedComplex::fill_planes(Index c, CellPlane* out) const {
   // Planes (papers/skin/skin_math.md §2.3): for X ⊂ Y = X ∪ {k}, the face
   // mu_X ∩ mu_Y = (1-s) delta_X + s nu_Y lies in the plane with unit normal n
   // in lin Y, orthogonal to lin X and pointing from aff X towards z_k, through
@@ -559,59 +651,62 @@ const CellPlane* MixedComplex::make_planes(Index c) const {
   // vanish, z_Y may coincide with z_X, and the quotient is 0/0, while n, z_a and
   // z_Y stay well defined (papers/skin/mixed_complex.md, "Degenerate inputs").
   // Both cells of a plane compute it as X sees it (a function of X, k and z_Y:
-  // the same bits on both sides), and Y stores it negated.
-  try {
-    CellPlane* out = allocate_planes(cells_[c].num_planes);
-    fill_planes(c, out);
-    slot.store(out, std::memory_order_release);
-    return out;
-  } catch (...) {
-    slot.store(nullptr, std::memory_order_release);
-    throw;
-  }
-}
-
-void MixedComplex::fill_planes(Index c, CellPlane* out) const {
+  // the same bits on both sides), and Y stores it negated. A coface's focus
+  // is its made cell's, or computed here and not kept (its cell may never be
+  // read).
   const geometry::RegularTriangulation& rt = *rt_;
-  const MixedCell& m = cells_[c];
-  for (Index i = 0; i < m.num_planes; ++i) {
+  const CellSimplex& m = simplices_[c];
+  const Index n_planes = num_planes(c);
+  Vec3 own_focus = Vec3::Zero();
+  bool own_focus_made = false;
+  for (Index i = 0; i < n_planes; ++i) {
     constexpr double s = 0.5;
     const Index nb = neighbors_[m.first_plane + i];
-    const MixedCell& N = cells_[nb];
+    const CellSimplex& N = simplices_[nb];
     const bool coface = N.dim < m.dim;  // this cell is Y
-    const MixedCell& X = coface ? N : m;
-    const MixedCell& Y = coface ? m : N;
+    const CellSimplex& X = coface ? N : m;
+    const CellSimplex& Y = coface ? m : N;
     const Index k = extra_of(X, Y);
     const Vec3& za = rt.point(X.vertices[0]).z;
     const Vec3 n = facet_coface_normal(rt, X, k);
-    const double off = (1.0 - s) * n.dot(za) + s * n.dot(Y.focus);
+    Vec3 zY;
+    if (coface) {
+      if (!own_focus_made) own_focus = focus_of_cell(c), own_focus_made = true;
+      zY = own_focus;
+    } else {
+      zY = focus_of_cell(nb);
+    }
+    const double off = (1.0 - s) * n.dot(za) + s * n.dot(zY);
     SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
     out[i] = {coface ? Vec3(-n) : n, coface ? -off : off, nb, k};
   }
 }
 
 void MixedComplex::planes_into(Index c, std::vector<CellPlane>& out) const {
-  out.resize(cells_[c].num_planes);
+  out.resize(num_planes(c));
   fill_planes(c, out.data());
 }
 
-void MixedComplex::release_planes() const {
-  for (std::size_t c = 0; c < cells_.size(); ++c) cell_planes_[c].store(nullptr, std::memory_order_relaxed);
-  const std::lock_guard<std::mutex> lock(planes_mutex_);
-  plane_blocks_.clear();
-  plane_blocks_.shrink_to_fit();
-  plane_block_used_ = 0;
-  planes_made_ = 0;
+void MixedComplex::release_made() const {
+  for (Index c = 0; c < num_cells(); ++c) {
+    made_cells_[c].store(nullptr, std::memory_order_relaxed);
+    cell_planes_[c].store(nullptr, std::memory_order_relaxed);
+  }
+  const std::lock_guard<std::mutex> lock(made_mutex_);
+  std::vector<std::unique_ptr<CellPlane[]>>().swap(plane_blocks_);
+  std::vector<std::unique_ptr<MixedCell[]>>().swap(cell_blocks_);
+  plane_block_used_ = cell_block_used_ = 0;
+  made_bytes_ = 0;
 }
 
-std::size_t MixedComplex::plane_bytes() const {
-  const std::lock_guard<std::mutex> lock(planes_mutex_);
-  return planes_made_ * sizeof(CellPlane);
+std::size_t MixedComplex::made_bytes() const {
+  const std::lock_guard<std::mutex> lock(made_mutex_);
+  return made_bytes_;
 }
 
 Index MixedComplex::num_cells_of_dim(int d) const {
   Index n = 0;
-  for (const MixedCell& c : cells_) n += (c.dim == d && !c.bounding) ? 1 : 0;
+  for (Index c = 0; c < num_cells(); ++c) n += (simplices_[c].dim == d && !simplices_[c].bounding) ? 1 : 0;
   return n;
 }
 
@@ -627,7 +722,7 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   constexpr double kInsideTolerance = 1e-12;  // [derived] times L: a few ulps of coordinates of size L
   const double tol = kInsideTolerance * length_scale_;
   Index c = hint;
-  if (c == kInvalidIndex || c >= cells_.size()) {
+  if (c == kInvalidIndex || c >= num_cells()) {
     // Start from the vertex cell of the tet's vertex nearest in power distance.
     const Index t = rt_->locate(x);
     if (t == kInvalidIndex)
@@ -662,7 +757,7 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   // Fallback: the cell with the smallest violation.
   Index best = kInvalidIndex;
   double best_v = std::numeric_limits<double>::infinity();
-  for (Index i = 0; i < cells_.size(); ++i) {
+  for (Index i = 0; i < num_cells(); ++i) {
     const double v = violation(i, x);
     if (v < best_v) {
       best_v = v;
@@ -677,7 +772,7 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
 }
 
 double MixedComplex::f(Index c, const Vec3& x) const {
-  const MixedCell& m = cells_[c];
+  const MixedCell& m = cell(c);
   const Vec3 y = x - m.focus;
   const double yy = y.squaredNorm();
   switch (m.dim) {
@@ -697,7 +792,7 @@ double MixedComplex::f(Index c, const Vec3& x) const {
 }
 
 Vec3 MixedComplex::gradient(Index c, const Vec3& x) const {
-  const MixedCell& m = cells_[c];
+  const MixedCell& m = cell(c);
   const Vec3 y = x - m.focus;
   switch (m.dim) {
     case 0:
@@ -711,8 +806,7 @@ Vec3 MixedComplex::gradient(Index c, const Vec3& x) const {
   }
 }
 
-Mat3 MixedComplex::quadric_matrix(Index c) const {
-  const MixedCell& m = cells_[c];
+Mat3 MixedComplex::quadric_matrix(const MixedCell& m) {
   switch (m.dim) {
     case 0:
       return Mat3::Identity();

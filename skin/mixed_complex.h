@@ -66,57 +66,82 @@ struct MixedCell {
 };
 static_assert(sizeof(MixedCell) == 88, "MixedCell: dim and bounding share the last word");
 
+/// The simplex of a mixed cell without its geometry, as the complex keeps it
+/// for every cell (24 bytes): the vertices, dimension and `bounding` of its
+/// MixedCell, and where its plane list starts.
+struct CellSimplex {
+  std::array<Index, 4> vertices{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
+  Index first_plane = 0;
+  std::uint8_t dim = 0;
+  bool bounding = false;
+};
+static_assert(sizeof(CellSimplex) == 24, "CellSimplex: 24 bytes a cell");
+
 // MixedComplex Definition
 
 /// The mixed complex of the (non-redundant) weighted points of a regular
 /// triangulation: one cell per simplex, cells tile the bounding tetrahedron.
-/// Construction is O(#simplices) and makes every cell (foci, axes) and its
-/// list of neighbours; a cell's bounding planes are made on first use and
-/// kept until release_planes(): the mesher reads the planes of a few percent
-/// of the cells (papers/mesher/decomposition.md, "Planes made on first use"). Evaluation of f, grad f and rho at a
-/// point costs one point location (a walk from a nearby cell) plus O(1). Every const method may be called from several
-/// threads at once.
+/// Construction is O(#simplices) and keeps, per cell, its simplex
+/// (CellSimplex) and the cells across its planes; a cell's geometry (focus,
+/// axis: MixedCell) and its bounding planes are made on first use and kept
+/// until release_made(): the mesher reads a few percent of the cells
+/// (papers/mesher/decomposition.md, "Cells and planes made on first use").
+/// Evaluation of f, grad f and rho at a point costs one point location (a
+/// walk from a nearby cell) plus O(1). Every const method may be called from
+/// several threads at once, except release_made().
 class MixedComplex {
  public:
-  /// Builds every cell (foci, axes, neighbours) from the triangulation, on up
-  /// to `threads` threads (0: every core); the complex, its numbering
-  /// included, does not depend on the count. The shrink factor is fixed at
+  /// Numbers every cell and lists its neighbours from the triangulation, and
+  /// settles the foci of flat tetrahedra, on up to `threads` threads (0:
+  /// every core); the complex, its numbering included, does not depend on
+  /// the count. The shrink factor is fixed at
   /// s = 1/2 (Cheng & Shi §2.1). Throws std::logic_error (a failed
   /// SKINMESH_ASSERT) if the cells or their plane lists need more than 2^32
   /// entries (about 25 million points), and std::bad_alloc if the address
   /// range of the planes cannot be reserved.
   explicit MixedComplex(const geometry::RegularTriangulation& rt, int threads = 1);
 
-  Index num_cells() const { return static_cast<Index>(cells_.size()); }
-  const MixedCell& cell(Index c) const { return cells_[c]; }
+  Index num_cells() const { return static_cast<Index>(simplices_.size() - 1); }
+  /// Cell c with its geometry, made on the first call and kept until
+  /// release_made() (the reference stays valid until then).
+  const MixedCell& cell(Index c) const;
+  /// Cell c with its geometry (cell(c), bit for bit), made and not kept: for
+  /// scans over every cell.
+  MixedCell cell_value(Index c) const;
+  /// The simplex of cell c (its vertices, dimension, `bounding`), without
+  /// its geometry: for scans that need no more.
+  const CellSimplex& simplex(Index c) const { return simplices_[c]; }
   /// The bounding planes of cell c, in the same order on every call: its
   /// facets first (in the order of its vertices left out), then its cofaces
   /// by increasing cell number. Made on the first call; the span stays valid
-  /// until release_planes().
+  /// until release_made().
   std::span<const CellPlane> planes(Index c) const;
   /// The cells across the planes of cell c, in the order of planes(c),
   /// without making a plane (for scans over every cell).
   std::span<const Index> neighbors(Index c) const {
-    const MixedCell& m = cells_[c];
-    return {neighbors_.data() + m.first_plane, m.num_planes};
+    return {neighbors_.data() + simplices_[c].first_plane, num_planes(c)};
   }
+  /// The number of planes of cell c.
+  Index num_planes(Index c) const { return simplices_[c + 1].first_plane - simplices_[c].first_plane; }
   /// k, the point of the triangulation in Y and not in X, of two neighbouring
   /// cells a and b (either order; one is the simplex X, the other its coface
   /// Y = X ∪ {k}): the `extra` of their plane.
   Index extra_vertex(Index a, Index b) const {
-    return cells_[a].dim < cells_[b].dim ? extra_of(cells_[a], cells_[b]) : extra_of(cells_[b], cells_[a]);
+    const CellSimplex &x = simplices_[a], &y = simplices_[b];
+    return x.dim < y.dim ? extra_of(x, y) : extra_of(y, x);
   }
   /// The planes of cell c (those of planes(c), bit for bit) written into
   /// `out`, and not kept: for scans over every cell, which would otherwise
   /// keep the planes of every cell they test.
   void planes_into(Index c, std::vector<CellPlane>& out) const;
-  /// Gives back the memory of every plane made so far; later calls of
-  /// planes() make them again, bit for bit the same. Pre: no other thread
-  /// uses the complex, and no span from planes() is used afterwards.
-  void release_planes() const;
-  /// Bytes of the planes made since the construction or the last
-  /// release_planes() (40 per plane, in blocks of 160 KiB).
-  std::size_t plane_bytes() const;
+  /// Gives back the memory of every cell and plane made so far; later calls
+  /// of cell() and planes() make them again, bit for bit the same. Pre: no
+  /// other thread uses the complex, and no reference from cell() or span
+  /// from planes() is used afterwards.
+  void release_made() const;
+  /// Bytes of the cells (88 each) and planes (40 each) made since the
+  /// construction or the last release_made().
+  std::size_t made_bytes() const;
   const geometry::RegularTriangulation& triangulation() const { return *rt_; }
   /// Number of cells of dimension d (0..3) that do not touch a bounding point.
   Index num_cells_of_dim(int d) const;
@@ -147,9 +172,11 @@ class MixedComplex {
   Vec3 gradient(Index c, const Vec3& x) const;
   /// Local length scale rho(x) = |x - z_X| (Å), papers/skin/skin_math.md §4.1
   /// (s = 1/2).
-  double rho(Index c, const Vec3& x) const { return (x - cells_[c].focus).norm(); }
+  double rho(Index c, const Vec3& x) const { return (x - cell(c).focus).norm(); }
   /// A = P_perp - P_par (half the Hessian of f_X).
-  Mat3 quadric_matrix(Index c) const;
+  Mat3 quadric_matrix(Index c) const { return quadric_matrix(cell(c)); }
+  /// The same for a cell given (cell() or cell_value()).
+  static Mat3 quadric_matrix(const MixedCell& m);
 
   /// Number of focus moves made by the construction to put the foci of flat
   /// tetrahedra in the order of their Voronoi edges (papers/skin/mixed_complex.md,
@@ -159,11 +186,12 @@ class MixedComplex {
  private:
   /// Moves the focus of every flat tetrahedron (all facet normals within
   /// ~1.4e-6 rad of one line) along that line into the slab its four Voronoi
-  /// edges allow. Tetrahedron t of the triangulation is cell first_tet_cell + t.
+  /// edges allow, into moved_foci_. Tetrahedron t of the triangulation is
+  /// cell first_tet_cell + t.
   void order_flat_foci(Index first_tet_cell);
   /// k of a simplex X and its coface Y = X ∪ {k}: the first place where their
   /// sorted vertices differ.
-  static Index extra_of(const MixedCell& X, const MixedCell& Y) {
+  static Index extra_of(const CellSimplex& X, const CellSimplex& Y) {
     for (int i = 0; i < Y.dim; ++i)
       if (Y.vertices[i] != X.vertices[i]) return Y.vertices[i];
     return Y.vertices[Y.dim];
@@ -171,24 +199,48 @@ class MixedComplex {
   /// Makes the planes of cell c (or waits for the thread making them) and
   /// returns them.
   const CellPlane* make_planes(Index c) const;
+  /// Makes cell c (or waits for the thread making it) and returns it.
+  const MixedCell* make_cell(Index c) const;
+  /// Cell c's geometry from its simplex (the focus of a flat tetrahedron
+  /// from moved_foci_).
+  void fill_cell(Index c, MixedCell& m) const;
+  /// The focus of cell c (that of cell(c), bit for bit): the made cell's if
+  /// there is one, else computed and not kept.
+  Vec3 focus_of_cell(Index c) const;
   /// Writes the planes of cell c into out[0 .. num_planes).
   void fill_planes(Index c, CellPlane* out) const;
-  /// Room for n planes in the store (planes_mutex_).
-  CellPlane* allocate_planes(std::size_t n) const;
-  /// The marker of a cell whose planes a thread is making.
+  /// Room for n values in `blocks` (of `block_size` each, the last one
+  /// `used`), counted in made_bytes_; under made_mutex_.
+  template <class T>
+  T* allocate_made(std::vector<std::unique_ptr<T[]>>& blocks, std::size_t& used, std::size_t n) const;
+  /// The markers of a cell whose planes, or geometry, a thread is making.
   static const CellPlane kMakingPlanes;
+  static const MixedCell kMakingCell;
+
+  /// A tetrahedron cell's focus and focus weight moved by order_flat_foci().
+  struct MovedFocus {
+    Index cell;
+    Vec3 focus;
+    double weight;
+  };
 
   const geometry::RegularTriangulation* rt_;
-  std::vector<MixedCell> cells_;
-  std::vector<Index> neighbors_;  ///< per cell, the cells across its planes (first_plane, num_planes)
+  std::vector<CellSimplex> simplices_;  ///< per cell, and one more: the end of the last plane list
+  std::vector<MovedFocus> moved_foci_;  ///< by increasing cell
+  std::vector<Index> neighbors_;        ///< per cell, the cells across its planes (first_plane, num_planes)
   /// Per cell, its planes once made (nullptr before; a marker while a thread
   /// makes them), in blocks of the store below: 8 bytes per cell, and 40 per
   /// plane only for the cells read.
   mutable std::unique_ptr<std::atomic<const CellPlane*>[]> cell_planes_;
-  mutable std::mutex planes_mutex_;
+  /// Per cell, its geometry once made (nullptr before; kMakingCell while a
+  /// thread makes it): 8 bytes per cell, and 88 only for the cells read.
+  mutable std::unique_ptr<std::atomic<const MixedCell*>[]> made_cells_;
+  mutable std::mutex made_mutex_;  ///< guards the blocks below
   mutable std::vector<std::unique_ptr<CellPlane[]>> plane_blocks_;
   mutable std::size_t plane_block_used_ = 0;  ///< planes used in plane_blocks_.back()
-  mutable std::size_t planes_made_ = 0;       ///< planes allocated since the last release
+  mutable std::vector<std::unique_ptr<MixedCell[]>> cell_blocks_;
+  mutable std::size_t cell_block_used_ = 0;  ///< cells used in cell_blocks_.back()
+  mutable std::size_t made_bytes_ = 0;       ///< bytes of the cells and planes made since the last release
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
@@ -199,7 +251,14 @@ inline std::span<const CellPlane> MixedComplex::planes(Index c) const {
   const CellPlane* p = cell_planes_[c].load(std::memory_order_acquire);
   if (p == nullptr || p == &kMakingPlanes) [[unlikely]]
     p = make_planes(c);
-  return {p, cells_[c].num_planes};
+  return {p, num_planes(c)};
+}
+
+inline const MixedCell& MixedComplex::cell(Index c) const {
+  const MixedCell* p = made_cells_[c].load(std::memory_order_acquire);
+  if (p == nullptr || p == &kMakingCell) [[unlikely]]
+    p = make_cell(c);
+  return *p;
 }
 
 /// Focus z_X and focus weight w_X of the simplex with the given vertices

@@ -15,8 +15,9 @@ void require_non_singular(const skin::SkinSurface& skin) {
   const skin::MixedComplex& mc = skin.mixed_complex();
   const double eps = kSingularScale * mc.length_scale();
   for (Index c = 0; c < mc.num_cells(); ++c) {
-    const skin::MixedCell& X = mc.cell(c);
-    if (X.dim == 0 || X.bounding) continue;
+    // The cells' geometry is made for the test and not kept.
+    if (mc.simplex(c).dim == 0 || mc.simplex(c).bounding) continue;
+    const skin::MixedCell X = mc.cell_value(c);
     if (!(std::abs(X.focus_weight) <= 2 * eps * eps)) continue;
     if (!(cell_distance(mc, c, X.focus) <= eps)) continue;
     static const char* const kWhat[4] = {"", "touch", "meet at one point", "meet at one point"};

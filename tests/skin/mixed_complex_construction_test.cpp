@@ -3,8 +3,8 @@
 // definition of their numbering and order, papers/skin/mixed_complex.md
 // "Construction"), its planes against their geometric definition, the
 // complex built on 1, 2 and 3 threads against itself bit for bit, and the
-// planes made on first use: the same after release_planes() and when several
-// threads make them at once.
+// cells and planes made on first use: the same after release_made() and when
+// several threads make them at once.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -210,12 +210,12 @@ TEST_CASE("mixed complex: the same on 1, 2 and 3 threads, bit for bit") {
   }
 }
 
-TEST_CASE("mixed complex: planes made on first use, again after a release, and by several threads at once") {
+TEST_CASE("mixed complex: cells and planes made on first use, again after a release, and by several threads at once") {
   std::mt19937 rng(7);
   const std::vector<geometry::WeightedPoint> pts = test::random_points(600, 18.0, 0.8, 2.0, rng);
   const skin::SkinSurface skin(pts, 1);
   const skin::MixedComplex& mc = skin.mixed_complex();
-  CHECK(mc.plane_bytes() == 0);  // the construction makes none
+  CHECK(mc.made_bytes() == 0);  // the construction makes none
   // The neighbour lists are the planes' neighbours, and the extra vertex of
   // each pair is the plane's.
   std::size_t planes = 0;
@@ -230,10 +230,10 @@ TEST_CASE("mixed complex: planes made on first use, again after a release, and b
     }
     planes += pl.size();
   }
-  CHECK(mc.plane_bytes() == planes * sizeof(skin::CellPlane));
+  CHECK(mc.made_bytes() == planes * sizeof(skin::CellPlane));
   const auto ref = all_planes(mc);
-  mc.release_planes();
-  CHECK(mc.plane_bytes() == 0);
+  mc.release_made();
+  CHECK(mc.made_bytes() == 0);
   // Four threads make them again, each visiting the cells in its own order
   // (forwards, backwards, and two strides), so that most cells are asked for
   // by several threads at about the same time.
@@ -249,16 +249,37 @@ TEST_CASE("mixed complex: planes made on first use, again after a release, and b
     });
   for (std::thread& t : pool) t.join();
   CHECK(wrong == std::vector<int>(4, 0));
-  CHECK(mc.plane_bytes() == planes * sizeof(skin::CellPlane));  // each cell's made once
+  CHECK(mc.made_bytes() == planes * sizeof(skin::CellPlane));  // each cell's made once
   // A walk after a release reads the same planes: locate() finds the same cells.
   std::vector<Index> before;
   std::uniform_real_distribution<double> u(-15.0, 15.0);
   std::vector<Vec3> probes;
   for (int i = 0; i < 200; ++i) probes.emplace_back(u(rng), u(rng), u(rng));
   for (const Vec3& x : probes) before.push_back(mc.locate(x));
-  mc.release_planes();
+  mc.release_made();
   for (std::size_t i = 0; i < probes.size(); ++i) CHECK(mc.locate(probes[i]) == before[i]);
-  CHECK(mc.plane_bytes() < planes * sizeof(skin::CellPlane));  // only the walks' cells
+  CHECK(mc.made_bytes() < planes * sizeof(skin::CellPlane));  // only the walks' cells
+  // A cell's geometry: made on first use, the same as made and not kept,
+  // and again after a release; the scans' simplex is the cell's.
+  mc.release_made();
+  std::size_t differ = 0;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    const skin::MixedCell kept = mc.cell(c), unkept = mc.cell_value(c);
+    differ += kept.vertices != unkept.vertices || kept.dim != unkept.dim || kept.bounding != unkept.bounding ||
+                      kept.first_plane != unkept.first_plane || kept.num_planes != unkept.num_planes ||
+                      std::memcmp(kept.focus.data(), unkept.focus.data(), sizeof(double) * 3) != 0 ||
+                      std::memcmp(kept.axis.data(), unkept.axis.data(), sizeof(double) * 3) != 0 ||
+                      std::memcmp(&kept.focus_weight, &unkept.focus_weight, sizeof(double)) != 0
+                  ? 1
+                  : 0;
+    const skin::CellSimplex& x = mc.simplex(c);
+    differ += x.vertices != kept.vertices || x.dim != kept.dim || x.bounding != kept.bounding ||
+                      x.first_plane != kept.first_plane || mc.num_planes(c) != kept.num_planes
+                  ? 1
+                  : 0;
+  }
+  CHECK(differ == 0);
+  CHECK(mc.made_bytes() == std::size_t(mc.num_cells()) * sizeof(skin::MixedCell));
 }
 
 }  // TEST_SUITE
