@@ -757,8 +757,10 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   // Fallback: the cell with the smallest violation.
   Index best = kInvalidIndex;
   double best_v = std::numeric_limits<double>::infinity();
+  std::vector<CellPlane> scratch;
   for (Index i = 0; i < num_cells(); ++i) {
-    const double v = violation(i, x);
+    planes_into(i, scratch);
+    const double v = violation(scratch, x);
     if (v < best_v) {
       best_v = v;
       best = i;

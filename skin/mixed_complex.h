@@ -97,8 +97,7 @@ class MixedComplex {
   /// the count. The shrink factor is fixed at
   /// s = 1/2 (Cheng & Shi §2.1). Throws std::logic_error (a failed
   /// SKINMESH_ASSERT) if the cells or their plane lists need more than 2^32
-  /// entries (about 25 million points), and std::bad_alloc if the address
-  /// range of the planes cannot be reserved.
+  /// entries (about 25 million points), std::bad_alloc when memory runs out.
   explicit MixedComplex(const geometry::RegularTriangulation& rt, int threads = 1);
 
   Index num_cells() const { return static_cast<Index>(simplices_.size() - 1); }
@@ -114,7 +113,8 @@ class MixedComplex {
   /// The bounding planes of cell c, in the same order on every call: its
   /// facets first (in the order of its vertices left out), then its cofaces
   /// by increasing cell number. Made on the first call; the span stays valid
-  /// until release_made().
+  /// until release_made(). Throws std::logic_error (a failed SKINMESH_ASSERT)
+  /// for a non-finite plane, std::bad_alloc when memory runs out.
   std::span<const CellPlane> planes(Index c) const;
   /// The cells across the planes of cell c, in the order of planes(c),
   /// without making a plane (for scans over every cell).
@@ -161,7 +161,8 @@ class MixedComplex {
   /// kInvalidIndex starts from the cell of the triangulation point nearest in
   /// power distance found by walking the triangulation). Points on a shared
   /// face may be reported in either cell: f, grad f and rho are continuous
-  /// there. Falls back to a scan of all cells if the walk cycles.
+  /// there. Falls back to a scan of all cells if the walk cycles (their
+  /// planes made for the scan and not kept).
   /// Pre: x finite and inside the bounding tetrahedron. Throws GeometryError
   /// if no cell contains x within 1e-9 L.
   Index locate(const Vec3& x, Index hint = kInvalidIndex) const;
