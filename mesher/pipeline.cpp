@@ -30,8 +30,8 @@ namespace {
 
 /// The output arrays of a MeshResult, in the order write_output() fills them.
 enum class OutputPart {
-  kFaces,    ///< positions and triangles (the half-edges, edges and faces go back after)
-  kCells,    ///< per vertex the mixed cell, its dimension and the atom (skin::kVertexCell goes back)
+  kFaces,    ///< triangles (the half-edges, edges and faces go back after)
+  kCells,    ///< per vertex the position, the mixed cell, its dimension and the atom (skin::kVertexCell goes back)
   kNormals,  ///< per vertex the normal (skin::kVertexNormal goes back)
   kRho,      ///< per vertex rho (skin::kVertexRho goes back)
 };
@@ -44,10 +44,10 @@ template <class Size>
 void size_part(OutputPart part, std::size_t vertices, std::size_t triangles, MeshResult& res, Size&& size) {
   switch (part) {
     case OutputPart::kFaces:
-      size(res.mesh.positions, vertices);
       size(res.mesh.triangles, triangles);
       break;
     case OutputPart::kCells:
+      size(res.mesh.positions, vertices);
       size(res.vertex_cells, vertices);
       size(res.vertex_data.patch, vertices);
       size(res.vertex_data.atom, vertices);
@@ -73,12 +73,13 @@ void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, Outp
   std::size_t i = vbase;
   switch (part) {
     case OutputPart::kFaces:
-      mesh.write_indexed(res.mesh.positions, res.mesh.triangles, vbase, fbase);
+      mesh.write_indexed_triangles(res.mesh.triangles, vbase, fbase);
       mesh.release_faces();
       break;
     case OutputPart::kCells: {
       auto cell = mesh.get_vertex_property(skin::kVertexCell);
       for (geometry::Vertex v : mesh.vertices()) {
+        res.mesh.positions[i] = mesh.position(v);
         res.vertex_cells[i] = cell[v];
         res.vertex_data.patch[i] = skin.mixed_complex().simplex(cell[v]).dim;
         res.vertex_data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));

@@ -169,8 +169,14 @@ class AngleImprover {
   /// Every vertex at its position when the pass started (built when there
   /// is something to move; cells of half the median reach of the first
   /// candidates), and the vertices moved since at their new positions (a
-  /// vertex moved twice leaves a stale entry, told by its position).
-  std::optional<geometry::FlatPointGrid> grid_;
+  /// vertex moved twice leaves a stale entry, told by its position). The
+  /// first holds indices only and reads the mesh's positions: a vertex that
+  /// never moved is where it was, and a moved one is skipped there (moved_),
+  /// so it visits what a grid of copied positions visits, with 4 bytes an
+  /// entry instead of 32 (on a 66-million-triangle mesh, 0.9 GB at the angle
+  /// improvement's peak). The mesh gains no vertex here, so the positions
+  /// stay where the grid reads them.
+  std::optional<geometry::FlatIndexGrid> grid_;
   std::optional<geometry::PointGrid> moved_grid_;
   std::vector<std::uint8_t> moved_;  ///< per vertex: 1 once it has moved
   std::vector<Face> touched_;        ///< the stars of the moved vertices

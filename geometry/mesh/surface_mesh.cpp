@@ -752,12 +752,16 @@ IndexedMesh SurfaceMesh::to_indexed_mesh() const {
 
 void SurfaceMesh::write_indexed(std::span<Vec3> positions, std::span<std::array<Index, 3>> triangles,
                                 std::size_t vertex_base, std::size_t face_base) const {
+  std::size_t i = vertex_base;
+  for (Vertex v : vertices()) positions[i++] = position(v);
+  write_indexed_triangles(triangles, vertex_base, face_base);
+}
+
+void SurfaceMesh::write_indexed_triangles(std::span<std::array<Index, 3>> triangles, std::size_t vertex_base,
+                                          std::size_t face_base) const {
   std::vector<Index> map(vertices_size(), kInvalidIndex);
   std::size_t i = vertex_base;
-  for (Vertex v : vertices()) {
-    map[v.idx()] = Index(i);
-    positions[i++] = position(v);
-  }
+  for (Vertex v : vertices()) map[v.idx()] = Index(i++);
   std::size_t j = face_base;
   for (Face f : faces()) {
     Halfedge h = halfedge(f);

@@ -474,6 +474,10 @@ class SurfaceMesh {
   /// Pre: the spans hold n_vertices() and n_faces() entries from the bases.
   void write_indexed(std::span<Vec3> positions, std::span<std::array<Index, 3>> triangles, std::size_t vertex_base,
                      std::size_t face_base) const;
+  /// write_indexed()'s triangles alone (for a caller that writes the
+  /// positions later, after release_faces()).
+  void write_indexed_triangles(std::span<std::array<Index, 3>> triangles, std::size_t vertex_base,
+                               std::size_t face_base) const;
 
   // SurfaceMesh Counts (deleted elements excluded)
   /// Number of vertices not marked deleted (isolated ones included).
