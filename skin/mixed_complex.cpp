@@ -599,22 +599,22 @@ void MixedComplex::fill_cell(Index c, MixedCell& m) const {
   m.axis = Vec3::Zero();
   if (m.dim == 1) m.axis = (p[1].z - p[0].z).normalized();
   if (m.dim == 2) m.axis = (p[1].z - p[0].z).cross(p[2].z - p[0].z).normalized();
-  if (m.dim == 3 && !moved_foci_.empty()) {
-    const auto it = std::lower_bound(moved_foci_.begin(), moved_foci_.end(), c,
-                                     [](const MovedFocus& f, Index u) { return f.cell < u; });
-    if (it != moved_foci_.end() && it->cell == c) m.focus = it->focus, m.focus_weight = it->weight;
-  }
+  if (const MovedFocus* moved = m.dim == 3 ? moved_focus(c) : nullptr)
+    m.focus = moved->focus, m.focus_weight = moved->weight;
+}
+
+const MixedComplex::MovedFocus* MixedComplex::moved_focus(Index c) const {
+  if (moved_foci_.empty()) return nullptr;
+  const auto it = std::lower_bound(moved_foci_.begin(), moved_foci_.end(), c,
+                                   [](const MovedFocus& f, Index u) { return f.cell < u; });
+  return it != moved_foci_.end() && it->cell == c ? &*it : nullptr;
 }
 
 Vec3 MixedComplex::focus_of_cell(Index c) const {
   const MixedCell* made = made_cells_[c].load(std::memory_order_acquire);
   if (made != nullptr && made != &kMakingCell) return made->focus;
   const CellSimplex& x = simplices_[c];
-  if (x.dim == 3 && !moved_foci_.empty()) {
-    const auto it = std::lower_bound(moved_foci_.begin(), moved_foci_.end(), c,
-                                     [](const MovedFocus& f, Index u) { return f.cell < u; });
-    if (it != moved_foci_.end() && it->cell == c) return it->focus;
-  }
+  if (const MovedFocus* moved = x.dim == 3 ? moved_focus(c) : nullptr) return moved->focus;
   std::array<WeightedPoint, 4> p;
   for (int j = 0; j <= x.dim; ++j) p[j] = rt_->point(x.vertices[j]);
   Vec3 z;

@@ -208,6 +208,9 @@ class MixedComplex {
   /// The focus of cell c (that of cell(c), bit for bit): the made cell's if
   /// there is one, else computed and not kept.
   Vec3 focus_of_cell(Index c) const;
+  struct MovedFocus;
+  /// The moved focus of tetrahedron cell c, or nullptr.
+  const MovedFocus* moved_focus(Index c) const;
   /// Writes the planes of cell c into out[0 .. num_planes).
   void fill_planes(Index c, CellPlane* out) const;
   /// Room for n values in `blocks` (of `block_size` each, the last one
