@@ -160,10 +160,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   const bool given_cells = opt.vertex_cells.size() == nv;
   std::vector<Index> order;
   std::vector<Index> order_hint;  // the position in `order` of v's hint vertex, or kInvalidIndex
-  if (given_cells) {
-    order.resize(nv);
-    std::iota(order.begin(), order.end(), Index(0));
-  } else {
+  if (!given_cells) {
     std::vector<Index> position(nv, kInvalidIndex);
     order.reserve(nv);
     order_hint.reserve(nv);
@@ -202,7 +199,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     Farthest& f = farthest[blk];
     Index last = kInvalidIndex;
     for (std::size_t k = begin; k < end; ++k) {
-      const Index v = order[k];
+      const Index v = given_cells ? Index(k) : order[k];  // with the caller's cells, in index order
       if (!P[v].allFinite()) continue;
       Index h = last;
       if (given_cells) {
