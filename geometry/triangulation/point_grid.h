@@ -196,6 +196,10 @@ class LeveledPointGrid {
     cell[w.slot] = cell.back();
     where_[cell[w.slot].id].slot = w.slot;
     cell.pop_back();
+    // A cell the front has passed gives its list back: the grid of the
+    // sweep's front then holds memory for the front, not for every place
+    // it has been.
+    if (cell.empty()) std::vector<Entry>().swap(cell);
     where_[id] = {kNone, 0};
   }
   /// True if point `id` is in the grid. Pre: erasable.
