@@ -314,14 +314,20 @@ class LeveledPointGrid {
   double max_abs_ = 0, pad_ = 1e-300;
 };
 
-/// Uniform grid of cubic cells over a fixed set of points, built once: the
-/// points sorted by cell (counting sort, stable in the point index) and one
-/// offset per cell of the bounding box, cells numbered with z fastest so that
-/// a query reads one contiguous run of points per (x, y) column of its box.
-/// The cell side is the requested size, doubled until the grid has at most
-/// kMaxCellsPerPoint cells per point (plus 4096), so memory stays O(n).
-/// Queries report exactly the points a linear scan with the same distance test
-/// reports (tests/geometry/point_grid_test.cpp).
+/// Uniform grid of cubic cells over a fixed set of points, built once, stored
+/// by columns: one offset per (x, y) column of the bounding box, and per
+/// column only its occupied cells (their z and the start of their points),
+/// the points sorted by column, then cell, then index. A query reads one
+/// contiguous run of points per column of its box. Memory is O(n) whatever
+/// the shape: a hollow shell of radius R with n points needs (2R/h)² column
+/// offsets, not the (2R/h)³ offsets of a dense box, so the cell side stays
+/// the requested one (a dense box of at most 8 cells per point had to
+/// double it on the 1.2-million-atom shell until each cell held 16 times
+/// the points it should, papers/mesher/decomposition.md). The side is the
+/// requested size, doubled only while there are more than kMaxCellsPerPoint
+/// columns per point (plus 4096). Queries report exactly the points a linear
+/// scan with the same distance test reports, in the order of increasing
+/// (x, y, z) cell and index (tests/geometry/point_grid_test.cpp).
 ///
 /// kCopies: each entry holds a copy of its point (32 bytes, read in order by
 /// a query; the points may change or go after the build), or only its index
@@ -330,7 +336,7 @@ class LeveledPointGrid {
 template <bool kCopies>
 class BasicFlatPointGrid {
  public:
-  /// Bound on the number of cells per point (see the class comment).
+  /// Bound on the number of columns per point (see the class comment).
   static constexpr double kMaxCellsPerPoint = 8.0;
 
   /// Grid over points[i], with id i, for every point with finite coordinates
@@ -341,40 +347,59 @@ class BasicFlatPointGrid {
     for (const Vec3& p : points)
       if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), ++n;
     if (n == 0) {
-      offsets_.assign(2, 0);
+      column_cells_.assign(2, 0);
+      cells_.push_back({0, 0});
       return;
     }
     lo_ = lo;
     h_ = cell_size;
-    const double max_cells = kMaxCellsPerPoint * double(n) + 4096.0;
+    const double max_columns = kMaxCellsPerPoint * double(n) + 4096.0;
     for (;;) {
-      double total = 1.0;
-      for (int k = 0; k < 3; ++k) total *= std::floor((hi[k] - lo[k]) / h_) + 1.0;
-      if (total <= max_cells) break;
+      double columns = 1.0;
+      for (int k = 0; k < 2; ++k) columns *= std::floor((hi[k] - lo[k]) / h_) + 1.0;
+      // z cells are numbered in 32 bits.
+      if (columns <= max_columns && std::floor((hi[2] - lo[2]) / h_) + 1.0 < 2147483647.0) break;
       h_ *= 2.0;
     }
     inv_ = 1.0 / h_;
     for (int k = 0; k < 3; ++k) dims_[k] = std::int64_t(std::floor((hi[k] - lo[k]) / h_)) + 1;
-    std::vector<std::uint32_t> cell_of_point(points.size());
-    offsets_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]) + 1, 0);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!points[i].allFinite()) continue;
-      const std::int64_t x = cell(points[i].x(), 0), y = cell(points[i].y(), 1), z = cell(points[i].z(), 2);
-      cell_of_point[i] = std::uint32_t((x * dims_[1] + y) * dims_[2] + z);
-      ++offsets_[cell_of_point[i] + 1];
+    // A counting sort by column, stable in the index, then each column's
+    // points sorted by (z, index): a cell's points stay in index order.
+    const std::size_t num_columns = std::size_t(dims_[0] * dims_[1]);
+    std::vector<std::uint32_t> z_of(points.size()), order(n);
+    column_cells_.assign(num_columns + 1, 0);  // first the counts, shifted by one
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].allFinite()) {
+        z_of[i] = std::uint32_t(cell(points[i].z(), 2));
+        ++column_cells_[column_of(points[i]) + 1];
+      }
+    for (std::size_t c = 1; c <= num_columns; ++c) column_cells_[c] += column_cells_[c - 1];
+    {
+      std::vector<std::uint32_t> next(column_cells_.begin(), column_cells_.end() - 1);
+      for (std::size_t i = 0; i < points.size(); ++i)
+        if (points[i].allFinite()) order[next[column_of(points[i])]++] = std::uint32_t(i);
     }
-    for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
-    // offsets_[c + 1] is now the end of cell c. Filling each cell from its end,
-    // points in decreasing index order, keeps them in increasing index order
-    // and leaves offsets_[c + 1] at the start of cell c; the shift below then
-    // makes offsets_[c] the start of cell c. (No second offset array: it was
-    // as large as the first, at the peak of the check's memory.)
+    for (std::size_t c = 0; c < num_columns; ++c)
+      if (column_cells_[c + 1] - column_cells_[c] > 1)
+        std::sort(order.begin() + column_cells_[c], order.begin() + column_cells_[c + 1],
+                  [&](std::uint32_t i, std::uint32_t j) { return z_of[i] != z_of[j] ? z_of[i] < z_of[j] : i < j; });
+    // Cells: a run of equal (column, z); each column's cells are contiguous.
     entries_.resize(n);
-    for (std::size_t i = points.size(); i-- > 0;)
-      if (points[i].allFinite()) entries_[--offsets_[cell_of_point[i] + 1]] = make_entry(i);
-    // offsets_[c + 1] = start of cell c; shift down one place, end = n.
-    for (std::size_t c = 0; c + 1 < offsets_.size(); ++c) offsets_[c] = offsets_[c + 1];
-    offsets_.back() = static_cast<std::uint32_t>(n);
+    std::size_t prev_column = 0;
+    for (std::size_t e = 0; e < n; ++e) {
+      const std::uint32_t i = order[e];
+      entries_[e] = make_entry(i);
+      const std::size_t column = column_of(points[i]);
+      if (e == 0 || column != prev_column || z_of[i] != cells_.back().z) {
+        for (std::size_t c = (e == 0 ? 0 : prev_column + 1); c <= column; ++c)
+          column_cells_[c] = std::uint32_t(cells_.size());
+        cells_.push_back({z_of[i], std::uint32_t(e)});
+        prev_column = column;
+      }
+    }
+    for (std::size_t c = prev_column + 1; c <= num_columns; ++c) column_cells_[c] = std::uint32_t(cells_.size());
+    cells_.push_back({0, std::uint32_t(n)});  // the end of the last cell
+    cells_.shrink_to_fit();
   }
 
   /// Calls fn(id, position) for every point p with |p - q|² <= r² (squared
@@ -401,11 +426,22 @@ class BasicFlatPointGrid {
       b[k] = cell(q[k] + rb, k);
     }
     const double r2 = r * r;
+    const auto za = std::uint32_t(a[2]), zb = std::uint32_t(b[2]);
     for (std::int64_t x = a[0]; x <= b[0]; ++x)
       for (std::int64_t y = a[1]; y <= b[1]; ++y) {
-        const std::int64_t column = (x * dims_[1] + y) * dims_[2];
-        const std::uint32_t end = offsets_[std::size_t(column + b[2]) + 1];
-        for (std::uint32_t e = offsets_[std::size_t(column + a[2])]; e < end; ++e) {
+        const std::size_t column = std::size_t(x * dims_[1] + y);
+        std::uint32_t first = column_cells_[column], last = column_cells_[column + 1];
+        if (first == last) continue;
+        // The column's cells from z = za to zb (a short column: a scan).
+        if (last - first > 8)
+          first = std::uint32_t(std::lower_bound(cells_.begin() + first, cells_.begin() + last, za,
+                                                 [](const Cell& c, std::uint32_t z) { return c.z < z; }) -
+                                cells_.begin());
+        else
+          while (first < last && cells_[first].z < za) ++first;
+        std::uint32_t end = first;
+        while (end < last && cells_[end].z <= zb) ++end;
+        for (std::uint32_t e = cells_[first].start, stop = cells_[end].start; e < stop; ++e) {
           const Vec3& p = position(entries_[e]);
           if ((p - q).squaredNorm() <= r2 && pred(id(entries_[e]), p)) return true;
         }
@@ -415,8 +451,10 @@ class BasicFlatPointGrid {
 
   /// Side of the cells actually used (Å): the requested size or a power-of-two multiple.
   double cell_size() const { return h_; }
-  /// Number of cells of the grid (its bounding box, empty cells included).
-  std::size_t num_cells() const { return offsets_.size() - 1; }
+  /// Number of occupied cells.
+  std::size_t num_cells() const { return cells_.size() - 1; }
+  /// Number of (x, y) columns of the grid's bounding box.
+  std::size_t num_columns() const { return column_cells_.size() - 1; }
 
  private:
   struct CopyEntry {
@@ -424,6 +462,11 @@ class BasicFlatPointGrid {
     Index id;
   };
   using Entry = std::conditional_t<kCopies, CopyEntry, Index>;
+  /// An occupied cell: its z and the first of its entries (the next cell's
+  /// start ends it; a sentinel ends the last).
+  struct Cell {
+    std::uint32_t z, start;
+  };
   Entry make_entry(std::size_t i) const {
     if constexpr (kCopies)
       return {points_[i], Index(i)};
@@ -447,11 +490,14 @@ class BasicFlatPointGrid {
     const double t = std::floor((x - lo_[k]) * inv_);
     return std::int64_t(std::clamp(t, 0.0, double(dims_[k] - 1)));
   }
+  std::size_t column_of(const Vec3& p) const { return std::size_t(cell(p.x(), 0) * dims_[1] + cell(p.y(), 1)); }
   std::span<const Vec3> points_;  ///< read by queries only without copies
   Vec3 lo_ = Vec3::Zero();
   double h_ = 1.0, inv_ = 1.0;
   std::int64_t dims_[3] = {1, 1, 1};
-  std::vector<std::uint32_t> offsets_;  ///< points of cell c: entries_[offsets_[c] .. offsets_[c + 1])
+  /// Cells of column c: cells_[column_cells_[c] .. column_cells_[c + 1]).
+  std::vector<std::uint32_t> column_cells_;
+  std::vector<Cell> cells_;  ///< occupied cells by (column, z), and an end sentinel
   std::vector<Entry> entries_;
 };
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "geometry/triangulation/key_index.h"
@@ -59,7 +60,19 @@ TEST_CASE("point_grid: FlatPointGrid, FlatIndexGrid and PointGrid queries equal 
       const FlatIndexGrid index_grid(pts, cell);
       CHECK(flat.cell_size() >= cell);
       CHECK(index_grid.num_cells() == flat.num_cells());
-      CHECK(double(flat.num_cells()) <= FlatPointGrid::kMaxCellsPerPoint * double(pts.size()) + 4096.0);
+      CHECK(flat.num_cells() <= pts.size());
+      CHECK(double(flat.num_columns()) <= FlatPointGrid::kMaxCellsPerPoint * double(pts.size()) + 4096.0);
+      // The visiting order: cells by increasing (x, y, z), a cell's points by index.
+      Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+      for (const Vec3& p : pts)
+        if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      const double inv = 1.0 / flat.cell_size();
+      auto order_key = [&](Index id) {  // the grid's cell arithmetic, clamped as it clamps
+        auto c = [&](int k) {
+          return std::min(std::floor((pts[id][k] - lo[k]) * inv), std::floor((hi[k] - lo[k]) / flat.cell_size()));
+        };
+        return std::tuple(c(0), c(1), c(2), id);
+      };
       PointGrid hashed(cell);
       for (std::size_t i = 0; i < pts.size(); ++i)
         if (pts[i].allFinite()) hashed.insert(Index(i), pts[i]);
@@ -81,6 +94,7 @@ TEST_CASE("point_grid: FlatPointGrid, FlatIndexGrid and PointGrid queries equal 
           got_index.push_back(id);
         });
         CHECK(got_index == got_flat);
+        for (std::size_t i = 1; i < got_flat.size(); ++i) CHECK(order_key(got_flat[i - 1]) < order_key(got_flat[i]));
         // PointGrid visits every cell of the query box: only for boxes of few cells.
         const bool small_box = std::pow(2 * r / cell + 2, 3) < 1e5;
         if (small_box) hashed.for_each_near(q, r, [&](Index id, const Vec3&) { got_hashed.push_back(id); });
@@ -99,6 +113,27 @@ TEST_CASE("point_grid: FlatPointGrid, FlatIndexGrid and PointGrid queries equal 
         CHECK_FALSE(flat.any_near(q, r, [](Index, const Vec3&) { return false; }));
       }
     }
+}
+
+TEST_CASE("point_grid: on a hollow sphere the flat grids keep the requested cell and equal a scan") {
+  // 20,000 points on a sphere of radius 100 with cells of 0.5: a dense box
+  // of at most 8 cells per point would need cells of 4 (each holding 64 times
+  // the points it should); the columns of the box need none coarser.
+  std::mt19937_64 rng(20261126);
+  std::normal_distribution<double> g(0, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 20000; ++i) pts.push_back(100 * Vec3(g(rng), g(rng), g(rng)).normalized());
+  const FlatIndexGrid grid(pts, 0.5);
+  CHECK(grid.cell_size() == 0.5);
+  CHECK(grid.num_cells() <= pts.size());
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 q = pts[rng() % pts.size()] + Vec3(g(rng), g(rng), g(rng));
+    const double r = k % 10 == 0 ? 30.0 : 2.0;
+    std::vector<Index> got;
+    grid.for_each_near(q, r, [&](Index id, const Vec3&) { got.push_back(id); });
+    std::sort(got.begin(), got.end());
+    CHECK(got == scan(pts, q, r));
+  }
 }
 
 TEST_CASE("point_grid: PointGrid visits a cell's points in insertion order, across table growth") {
