@@ -365,39 +365,34 @@ class BasicFlatPointGrid {
     for (int k = 0; k < 3; ++k) dims_[k] = std::int64_t(std::floor((hi[k] - lo[k]) / h_)) + 1;
     // A counting sort by column, stable in the index, then each column's
     // points sorted by (z, index): a cell's points stay in index order.
+    // column_cells_ holds the columns' counts, then their ends, then (filled
+    // from the ends, in decreasing index order) their starts, shifted down.
     const std::size_t num_columns = std::size_t(dims_[0] * dims_[1]);
-    std::vector<std::uint32_t> z_of(points.size()), order(n);
-    column_cells_.assign(num_columns + 1, 0);  // first the counts, shifted by one
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (points[i].allFinite()) {
-        z_of[i] = std::uint32_t(cell(points[i].z(), 2));
-        ++column_cells_[column_of(points[i]) + 1];
-      }
+    column_cells_.assign(num_columns + 1, 0);
+    for (const Vec3& p : points)
+      if (p.allFinite()) ++column_cells_[column_of(p) + 1];
     for (std::size_t c = 1; c <= num_columns; ++c) column_cells_[c] += column_cells_[c - 1];
-    {
-      std::vector<std::uint32_t> next(column_cells_.begin(), column_cells_.end() - 1);
-      for (std::size_t i = 0; i < points.size(); ++i)
-        if (points[i].allFinite()) order[next[column_of(points[i])]++] = std::uint32_t(i);
-    }
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t i = points.size(); i-- > 0;)
+      if (points[i].allFinite()) order[--column_cells_[column_of(points[i]) + 1]] = std::uint32_t(i);
+    for (std::size_t c = 0; c < num_columns; ++c) column_cells_[c] = column_cells_[c + 1];
+    column_cells_[num_columns] = std::uint32_t(n);
+    auto z_of = [&](std::uint32_t i) { return std::uint32_t(cell(points[i].z(), 2)); };
     for (std::size_t c = 0; c < num_columns; ++c)
       if (column_cells_[c + 1] - column_cells_[c] > 1)
         std::sort(order.begin() + column_cells_[c], order.begin() + column_cells_[c + 1],
-                  [&](std::uint32_t i, std::uint32_t j) { return z_of[i] != z_of[j] ? z_of[i] < z_of[j] : i < j; });
-    // Cells: a run of equal (column, z); each column's cells are contiguous.
+                  [&](std::uint32_t i, std::uint32_t j) { return z_of(i) != z_of(j) ? z_of(i) < z_of(j) : i < j; });
+    // Cells: the runs of equal z in each column; column_cells_[c] becomes the
+    // column's first cell (its entry range is read before it is replaced).
     entries_.resize(n);
-    std::size_t prev_column = 0;
-    for (std::size_t e = 0; e < n; ++e) {
-      const std::uint32_t i = order[e];
-      entries_[e] = make_entry(i);
-      const std::size_t column = column_of(points[i]);
-      if (e == 0 || column != prev_column || z_of[i] != cells_.back().z) {
-        for (std::size_t c = (e == 0 ? 0 : prev_column + 1); c <= column; ++c)
-          column_cells_[c] = std::uint32_t(cells_.size());
-        cells_.push_back({z_of[i], std::uint32_t(e)});
-        prev_column = column;
-      }
+    for (std::size_t e = 0; e < n; ++e) entries_[e] = make_entry(order[e]);
+    for (std::size_t c = 0; c < num_columns; ++c) {
+      const std::uint32_t begin = column_cells_[c], end = column_cells_[c + 1];
+      column_cells_[c] = std::uint32_t(cells_.size());
+      for (std::uint32_t e = begin; e < end; ++e)
+        if (e == begin || z_of(order[e]) != cells_.back().z) cells_.push_back({z_of(order[e]), e});
     }
-    for (std::size_t c = prev_column + 1; c <= num_columns; ++c) column_cells_[c] = std::uint32_t(cells_.size());
+    column_cells_[num_columns] = std::uint32_t(cells_.size());
     cells_.push_back({0, std::uint32_t(n)});  // the end of the last cell
     cells_.shrink_to_fit();
   }
