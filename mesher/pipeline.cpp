@@ -205,8 +205,8 @@ void add_refine_stats(refine::RefineStats& a, const refine::RefineStats& b) {
   a.L_left += b.L_left, a.U_left += b.U_left;
 }
 
-/// The sum of two angle improvements' counts (passes: the larger; skipped:
-/// either; the smallest angles before and after: the smaller).
+/// The sum of two angle improvements' counts (passes and kappa: the larger;
+/// skipped: either; the smallest angles before and after: the smaller).
 void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprovementStats& b) {
   a.low_triangles += b.low_triangles;
   a.passes = std::max(a.passes, b.passes);
@@ -217,6 +217,7 @@ void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprov
   a.skipped = a.skipped || b.skipped;
   a.min_angle_before_deg = std::min(a.min_angle_before_deg, b.min_angle_before_deg);
   a.min_angle_after_deg = std::min(a.min_angle_after_deg, b.min_angle_after_deg);
+  a.kappa = std::max(a.kappa, b.kappa);
 }
 
 /// run(g) for every group g in [0, n) (n >= 1) on up to `threads` threads,

@@ -127,7 +127,8 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
                             {"refused_U", ai.refused_U},
                             {"skipped", ai.skipped},
                             {"min_angle_before_deg", ai.min_angle_before_deg},
-                            {"min_angle_after_deg", ai.min_angle_after_deg}};
+                            {"min_angle_after_deg", ai.min_angle_after_deg},
+                            {"kappa", ai.kappa}};
 }
 
 }  // namespace

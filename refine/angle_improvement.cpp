@@ -625,6 +625,7 @@ AngleImprovementStats AngleImprover::run() {
   stats_.low_triangles = low_faces.size();
   stats_.min_angle_after_deg = stats_.min_angle_before_deg;
   kappa_ = std::max(kappa0, opt_.size.C * opt_.size.Q);
+  stats_.kappa = kappa_;
   if (kappa_ > kMaxKappa) {
     stats_.skipped = true;
     return stats_;

@@ -66,6 +66,11 @@ struct AngleImprovementStats {
   bool skipped = false;
   /// Smallest angle of the mesh (degrees) before and after the pass.
   double min_angle_before_deg = 0, min_angle_after_deg = 0;
+  /// The bound kappa on circumradius / rho_min that sizes every move's
+  /// neighbourhood (papers/refine/angle_improvement.md): the largest ratio
+  /// over the mesh (padded), at least C·Q. A move's search radius grows with
+  /// it, so one poor triangle makes every move of its mesh look further.
+  double kappa = 0;
 };
 
 /// Raises the smallest angles of a closed mesh of the skin in place by

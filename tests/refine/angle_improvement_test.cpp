@@ -156,6 +156,21 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
                                                 const refine::AngleImprovementOptions& opt = {}) {
   const auto faces_before = faces_of(mesh);
   const double before = min_angle_deg(mesh);
+  // The size bound of the neighbourhoods: the largest circumradius / rho_min
+  // over the triangles before the pass, by brute force.
+  double kappa = opt.size.C * opt.size.Q;
+  {
+    const auto rho = mesh.get_vertex_property(skin::kVertexRho);
+    for (geometry::Face f : mesh.faces()) {
+      Vec3 x[3];
+      double rho_min = std::numeric_limits<double>::infinity();
+      int i = 0;
+      for (geometry::Vertex v : mesh.vertices(f)) x[i++] = mesh.position(v), rho_min = std::min(rho_min, rho[v]);
+      const double a = (x[1] - x[2]).norm(), b = (x[2] - x[0]).norm(), c = (x[0] - x[1]).norm();
+      const double R = a * b * c / (2 * (x[1] - x[0]).cross(x[2] - x[0]).norm());
+      kappa = std::max(kappa, R / rho_min);
+    }
+  }
   {
     geometry::SurfaceMesh copy = mesh;
     copy.garbage_collection();
@@ -168,6 +183,8 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   CHECK(st.min_angle_before_deg == doctest::Approx(before).epsilon(1e-12));
   CHECK(st.min_angle_after_deg == doctest::Approx(after).epsilon(1e-12));
   CHECK(after >= before);
+  CHECK(st.kappa >= kappa);
+  CHECK(st.kappa == doctest::Approx(kappa).epsilon(1e-5));
   check_by_brute_force(skin, mesh, opt.size);
   geometry::SurfaceMesh copy = mesh;
   copy.garbage_collection();
