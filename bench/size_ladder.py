@@ -7,6 +7,8 @@ inputs from a ligand to a >= 10^5-atom assembly:
     ligand_1hpv_amprenavir (35 atoms) -> crambin_1crn (327) -> hivprotease_xk263_1hvr
     (1,890) -> src_kinase_2src (3,646) -> maltoporin_1af6 (10,123) -> k copies of
     maltoporin side by side (default k = 3 and 10: 30,369 and 101,230 atoms)
+    [-> with --shell T, a shell of 60*T maltoporin copies placed by icosahedral
+    symmetry, built by bench/assembly.py: one skin body; T = 2 gives 1,214,760 atoms]
 
 The copies are translated along a grid with a 10 Å gap between their bounding boxes,
 so each copy is its own skin component (the skin body of an atom is the ball of
@@ -15,7 +17,10 @@ numbers modulo 100,000; skinmesh does not use them) into OUTDIR, never into the
 repository.
 
 For every input it records the stage times of `--stats` ("seconds"), the triangles,
-the wall time and the peak resident memory of the process (`/usr/bin/time -f "%e %M"`),
+the skin's bodies and cavities (the mesh's components by the sign of their volume),
+the wall time and the peak resident memory of the process (`/usr/bin/time -f "%e %M"`);
+the wall time leaves out what `--stats` alone adds, the exact area and volume of the
+skin ("seconds.analytic", minutes on the shell),
 and prints a Markdown table; results.csv and results.json go to OUTDIR. With
 gnuplot on PATH (Debian `gnuplot-nox`) it also draws OUTDIR/size_ladder.png: seconds
 against triangles, log-log, per stage and for the whole process, with a line of
@@ -23,7 +28,7 @@ slope 1 (linear scaling) for reference.
 
 Usage:
     python3 bench/size_ladder.py build/skinmesh OUTDIR [--probe 1.4] [--copies 3,10]
-                                 [--repeat 1] [--extra ARGS]
+                                 [--shell T] [--repeat 1] [--extra ARGS]
 Standard library only; runs are sequential.
 """
 import argparse
@@ -96,9 +101,12 @@ def run_one(skinmesh, path, outdir, probe, extra):
     with open(stats) as f:
         s = json.load(f)
     os.remove(mesh)
+    parts = s.get("surface", {}).get("components", [])
     row = {"input": name, "status": "ok" if s.get("checks_passed") else "CHECK FAILED", "atoms": s.get("atoms"),
-           "triangles": s["triangles"], "min_angle_deg": s["min_angle_deg"], "wall_s": float(wall),
-           "peak_mb": int(kb) / 1024.0}
+           "triangles": s["triangles"], "min_angle_deg": s["min_angle_deg"],
+           "bodies": sum(1 for c in parts if c.get("kind") == "body"),
+           "cavities": sum(1 for c in parts if c.get("kind") == "cavity"),
+           "wall_s": float(wall) - s["seconds"].get("analytic", 0.0), "peak_mb": int(kb) / 1024.0}
     for st in STAGES:
         row[st + "_s"] = s["seconds"].get(st, 0.0)
     row["meshing_s"] = sum(row[st + "_s"] for st in STAGES if st != "check")
@@ -154,6 +162,9 @@ def main():
     ap.add_argument("outdir")
     ap.add_argument("--probe", type=float, default=1.4)
     ap.add_argument("--copies", default="3,10", help="maltoporin copies of the largest rungs (comma list)")
+    ap.add_argument("--shell", type=int, default=0,
+                    help="add a rung: a shell of 60*T maltoporin copies (bench/assembly.py shell --t T; "
+                         "T = 2: 1,214,760 atoms, one body, about 12.5 GB and 10 minutes on 2 cores); 0: none")
     ap.add_argument("--repeat", type=int, default=1, help="runs per input; the table shows medians")
     ap.add_argument("--extra", default="", help="more skinmesh mesh options, one string")
     a = ap.parse_args()
@@ -165,6 +176,12 @@ def main():
         with open(p, "w") as f:
             f.write("\n".join(tiled_copies(malt, k)) + "\n")
         inputs.append(p)
+    if a.shell > 0:
+        p = os.path.join(a.outdir, f"maltoporin_shell_t{a.shell}.pdb")
+        with open(p, "w") as f:
+            subprocess.run([sys.executable, os.path.join(HERE, "assembly.py"), "shell", "--protein",
+                            os.path.join(DATA, "maltoporin_1af6.pdb"), "--t", str(a.shell)], stdout=f, check=True)
+        inputs.append(p)
     rows = []
     for path in inputs:
         runs = [run_one(a.skinmesh, path, a.outdir, a.probe, a.extra.split()) for _ in range(a.repeat)]
@@ -173,21 +190,22 @@ def main():
         print(f"size_ladder: {r['input']}: {r['status']}", file=sys.stderr)
     with open(os.path.join(a.outdir, "results.json"), "w") as f:
         json.dump(rows, f, indent=1)
-    keys = ["input", "status", "atoms", "triangles", "min_angle_deg", "wall_s", "peak_mb"] + \
+    keys = ["input", "status", "atoms", "triangles", "bodies", "cavities", "min_angle_deg", "wall_s", "peak_mb"] + \
         [s + "_s" for s in STAGES] + ["meshing_s"]
     with open(os.path.join(a.outdir, "results.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys, restval="", extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
-    print(f"| input | atoms | triangles | min angle | skin | Morse | sweep | refine | angles | output | check | "
-          f"meshing s | triangles/s | whole process s | peak MB | bytes/triangle | status |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print(f"| input | atoms | triangles | bodies + cavities | min angle | skin | Morse | sweep | refine | angles | "
+          f"output | check | meshing s | triangles/s | whole process s | peak MB | bytes/triangle | status |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for r in rows:
         if r["status"] != "ok" and "triangles" not in r:
-            print(f"| {r['input']} | | | | | | | | | | | | | | | | {r['status']} |")
+            print(f"| {r['input']} | | | | | | | | | | | | | | | | | {r['status']} |")
             continue
         st = " | ".join(f"{r[s + '_s']:.3g}" for s in STAGES)
-        print(f"| {r['input']} | {r['atoms']:,} | {r['triangles']:,} | {r['min_angle_deg']:.1f}° | {st} | "
+        print(f"| {r['input']} | {r['atoms']:,} | {r['triangles']:,} | {r['bodies']} + {r['cavities']} | "
+              f"{r['min_angle_deg']:.1f}° | {st} | "
               f"{r['meshing_s']:.3g} | {r['triangles'] / r['meshing_s']:,.0f} | {r['wall_s']:.2f} | "
               f"{r['peak_mb']:.0f} | {r['peak_mb'] * 1048576 / r['triangles']:.0f} | {r['status']} |")
     plot(rows, a.outdir)
