@@ -82,7 +82,7 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // rho(v) of v (FrontState::collision_reach): each vertex goes into the
   // levels of the queries that can reach it (new_vertex).
   collision_reach = (1 + opt.collision_radius) * opt.disc_factor * (1 + 1e-9);
-  vertex_grid = std::make_unique<geometry::LeveledPointGrid>(opt.disc_factor, kGridOctaves, /*erasable=*/false);
+  vertex_grid = std::make_unique<geometry::LeveledIndexGrid>(opt.disc_factor, kGridOctaves, /*erasable=*/false);
   front_grid = std::make_unique<geometry::LeveledPointGrid>(4 * opt.disc_factor, kGridOctaves);
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a

@@ -150,9 +150,12 @@ struct FrontState {
 
   // Grids that keep the queries local: one level per octave of rho, so that
   // a query reads points of its own scale only (local_scales() bounds it).
-  std::unique_ptr<geometry::LeveledPointGrid> hold_grid;    ///< live saddles and maxima, by their rho
-  std::vector<Vec3> critical_positions;                     ///< positions of the critical points (hold_grid's)
-  std::unique_ptr<geometry::LeveledPointGrid> vertex_grid;  ///< every vertex: the fan-collision net
+  std::unique_ptr<geometry::LeveledPointGrid> hold_grid;  ///< live saddles and maxima, by their rho
+  std::vector<Vec3> critical_positions;                   ///< positions of the critical points (hold_grid's)
+  /// Every vertex, for the fan-collision net: ids only (the sweep keeps it to
+  /// the end, one entry or two per vertex; papers/mesher/decomposition.md,
+  /// "The sweep's grids in one pool").
+  std::unique_ptr<geometry::LeveledIndexGrid> vertex_grid;
   /// The vertices whose state is not Interior (the front, free or held): the
   /// contact search reads only these (set_state keeps it).
   std::unique_ptr<geometry::LeveledPointGrid> front_grid;

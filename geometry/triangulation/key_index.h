@@ -40,6 +40,8 @@ class KeyIndex {
   }
   /// Number of keys added.
   std::uint32_t size() const { return size_; }
+  /// Bytes of the table.
+  std::size_t memory_bytes() const { return slots_.capacity() * sizeof(Slot); }
 
  private:
   static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();

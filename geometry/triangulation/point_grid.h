@@ -8,14 +8,18 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <span>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
 #include "core/assert.h"
+#include "core/growable_array.h"
 #include "core/types.h"
 #include "geometry/triangulation/key_index.h"
 
@@ -142,16 +146,32 @@ class PointGrid {
 /// reads the cells meeting its box, or the level's occupied cells when they
 /// are fewer. Costs thus follow the local scale: one region of large rho does
 /// not make the queries elsewhere read many points. Each cell keeps its points
-/// in a contiguous array of 16-byte entries (the position in single precision
-/// and the id); removal moves the cell's last point into the hole. A query
+/// in a contiguous block of 16-byte entries (the position in single precision
+/// and the id); removal moves the cell's last point into the hole. The blocks
+/// share one pool, their capacities powers of two: a full block moves to one
+/// twice its size and leaves its place to the next block of its size, and an
+/// emptied one is given back, so the grid needs no allocation of its own per
+/// cell (a std::vector per cell cost 24 bytes plus an allocation's header and
+/// rounding, on the sweep's vertex grid about as much as the points: papers/
+/// mesher/decomposition.md, "The sweep's grids in one pool"). An erasable grid finds a
+/// point's place by its id in pages of 1024 ids, a page allocated on its first
+/// point and freed with its last: the sweep's front moves through the vertex
+/// ids, so the table holds the front's pages, not one entry per vertex. A query
 /// reads a cell's entries sequentially, filters them with a distance bound
 /// padded by the single-precision rounding, and confirms each survivor with
 /// the exact test on the caller's double-precision positions, so it reports
 /// exactly the points of its scale range that a scan reports. The visiting
 /// order is deterministic but not the insertion order: callers choose among
 /// the points by their own rule (nearest, ties to the lower id).
-/// Used for the sweep's vertices, its free front and its protecting spheres.
-class LeveledPointGrid {
+///
+/// kCopies: each entry holds a single-precision copy of its point and its id
+/// (16 bytes; the filter above reads the copies in order), or only the id (4
+/// bytes; a query reads every point of a cell from the caller's positions).
+/// LeveledPointGrid (the sweep's free front and protecting spheres, few points
+/// read often) and LeveledIndexGrid (the sweep's vertices, every vertex of the
+/// mesh kept to the end of the sweep).
+template <bool kCopies>
+class BasicLeveledPointGrid {
  public:
   /// Levels are clamped to [kMinLevel, kMaxLevel]: scales from about 1e-12
   /// to 4e6 Å get their own level, smaller or larger ones share the end levels.
@@ -160,7 +180,7 @@ class LeveledPointGrid {
   /// Pre: cell_per_scale > 0. With erasable = false the grid keeps no table
   /// from ids to places and erase() must not be called.
   /// Pre: octaves >= 1.
-  explicit LeveledPointGrid(double cell_per_scale, int octaves, bool erasable = true)
+  explicit BasicLeveledPointGrid(double cell_per_scale, int octaves, bool erasable = true)
       : factor_(cell_per_scale), octaves_(octaves), erasable_(erasable), level_cells_(kMaxLevel - kMinLevel + 1) {
     for (int level = kMinLevel; level <= kMaxLevel; ++level)
       inverse_side_[level - kMinLevel] = 1 / std::ldexp(factor_, (level + 1) * octaves_);
@@ -191,21 +211,40 @@ class LeveledPointGrid {
   void erase(Index id) {
     SKINMESH_ASSERT_MSG(erasable_, "erase() on a grid made without erasure");
     if (!contains(id)) return;
-    const Where w = where_[id];
-    std::vector<Entry>& cell = cells_[w.cell];
-    cell[w.slot] = cell.back();
-    where_[cell[w.slot].id].slot = w.slot;
-    cell.pop_back();
-    // A cell the front has passed gives its list back: the grid of the
+    Where& w = where(id);
+    Block& cell = blocks_[w.cell];
+    Entry& hole = pool_[cell.start + w.slot];
+    hole = pool_[cell.start + cell.size - 1];
+    where(id_of(hole)).slot = w.slot;
+    --cell.size;
+    // A cell the front has passed gives its block back: the grid of the
     // sweep's front then holds memory for the front, not for every place
     // it has been.
-    if (cell.empty()) std::vector<Entry>().swap(cell);
-    where_[id] = {kNone, 0};
+    if (cell.size == 0) {
+      free_block(cell.start, cell.capacity);
+      cell = Block{};
+    }
+    w = {kNone, 0};
+    const std::size_t page = id >> kPageBits;
+    if (--page_points_[page] == 0) where_pages_[page].reset();
   }
   /// True if point `id` is in the grid. Pre: erasable.
   bool contains(Index id) const {
     SKINMESH_ASSERT_MSG(erasable_, "contains() on a grid made without erasure");
-    return id < where_.size() && where_[id].cell != kNone;
+    const std::size_t page = id >> kPageBits;
+    return page < where_pages_.size() && where_pages_[page] && where(id).cell != kNone;
+  }
+
+  /// Bytes the grid holds (its pool, tables and the pages of an erasable
+  /// grid), for tests and measurements.
+  std::size_t memory_bytes() const {
+    std::size_t b = pool_.capacity() * sizeof(Entry) + blocks_.capacity() * sizeof(Block) + keys_.memory_bytes() +
+                    where_pages_.capacity() * sizeof(where_pages_[0]) + page_points_.capacity() * sizeof(std::uint32_t);
+    for (const auto& f : free_) b += f.capacity() * sizeof(std::uint32_t);
+    for (const auto& l : level_cells_) b += l.capacity() * sizeof(std::uint32_t);
+    for (const auto& page : where_pages_)
+      if (page) b += kPageSize * sizeof(Where);
+    return b;
   }
 
   /// Calls fn(id, position) for every point whose scale lies in
@@ -231,13 +270,64 @@ class LeveledPointGrid {
 
  private:
   static constexpr std::uint32_t kNone = KeyIndex::kNone;
-  struct Entry {
+  struct CopyEntry {
     float p[3];
     Index id;
   };
+  using Entry = std::conditional_t<kCopies, CopyEntry, Index>;
+  static Index id_of(const Entry& e) {
+    if constexpr (kCopies)
+      return e.id;
+    else
+      return e;
+  }
+  static Entry entry(Index id, const Vec3& p) {
+    if constexpr (kCopies)
+      return {{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id};
+    else
+      return id;
+  }
   struct Where {
     std::uint32_t cell, slot;
   };
+  /// A cell's points: entries [start, start + size) of pool_, in a block of
+  /// `capacity` entries (0 or a power of two).
+  struct Block {
+    std::uint32_t start = 0, size = 0, capacity = 0;
+  };
+  static constexpr unsigned kPageBits = 10;
+  static constexpr std::size_t kPageSize = std::size_t{1} << kPageBits;
+  Where& where(Index id) { return where_pages_[id >> kPageBits][id & (kPageSize - 1)]; }
+  const Where& where(Index id) const { return where_pages_[id >> kPageBits][id & (kPageSize - 1)]; }
+  /// The start of a free block of `capacity` entries (a power of two): the
+  /// last one given back of that size, or new at the end of the pool.
+  std::uint32_t take_block(std::uint32_t capacity) {
+    std::vector<std::uint32_t>& list = free_[std::countr_zero(capacity)];
+    if (!list.empty()) {
+      const std::uint32_t start = list.back();
+      list.pop_back();
+      return start;
+    }
+    const std::size_t start = pool_.size();
+    if (start + capacity > std::numeric_limits<std::uint32_t>::max())
+      throw std::length_error("LeveledPointGrid: more than 2^32 point entries");
+    pool_.resize(start + capacity);
+    return static_cast<std::uint32_t>(start);
+  }
+  void free_block(std::uint32_t start, std::uint32_t capacity) { free_[std::countr_zero(capacity)].push_back(start); }
+  /// Appends e to cell number c, moving its block to one twice as large when full.
+  void push(std::uint32_t c, const Entry& e) {
+    Block& b = blocks_[c];
+    if (b.size == b.capacity) {
+      const std::uint32_t capacity = b.capacity == 0 ? 1 : 2 * b.capacity;
+      const std::uint32_t start = take_block(capacity);
+      for (std::uint32_t i = 0; i < b.size; ++i) pool_[start + i] = pool_[b.start + i];
+      if (b.capacity != 0) free_block(b.start, b.capacity);
+      b.start = start;
+      b.capacity = capacity;
+    }
+    pool_[b.start + b.size++] = e;
+  }
   void insert_at(int level, Index id, const Vec3& p) {
     const double inv = inverse_side_[level - kMinLevel];
     const std::array<std::int64_t, 3> c{static_cast<std::int64_t>(std::floor(p.x() * inv)),
@@ -245,14 +335,23 @@ class LeveledPointGrid {
                                         static_cast<std::int64_t>(std::floor(p.z() * inv))};
     const auto [number, added] = keys_.find_or_add(key(level, c));
     if (added) {
-      cells_.emplace_back();
+      blocks_.emplace_back();
       level_cells_[level - kMinLevel].push_back(number);
     }
     if (erasable_) {
-      if (id >= where_.size()) where_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * where_.size()), {kNone, 0});
-      where_[id] = {number, static_cast<std::uint32_t>(cells_[number].size())};
+      const std::size_t page = id >> kPageBits;
+      if (page >= where_pages_.size()) {
+        where_pages_.resize(page + 1);
+        page_points_.resize(page + 1, 0);
+      }
+      if (!where_pages_[page]) {
+        where_pages_[page] = std::make_unique<Where[]>(kPageSize);
+        std::fill_n(where_pages_[page].get(), kPageSize, Where{kNone, 0});
+      }
+      ++page_points_[page];
+      where(id) = {number, blocks_[number].size};
     }
-    cells_[number].push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, id});
+    push(number, entry(id, p));
     if (const double m = p.cwiseAbs().maxCoeff(); m > max_abs_) {
       max_abs_ = m;
       // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies
@@ -268,13 +367,18 @@ class LeveledPointGrid {
     const std::vector<std::uint32_t>& occupied = level_cells_[level - kMinLevel];
     if (occupied.empty()) return;
     const double r2 = r * r;
-    const double rp = r + pad_, rp2 = rp * rp * (1 + 1e-12);
+    const double rp = r + pad_;
+    [[maybe_unused]] const double rp2 = rp * rp * (1 + 1e-12);
     auto visit = [&](std::uint32_t c) {
-      for (const Entry& e : cells_[c]) {
-        const double dx = double(e.p[0]) - q.x(), dy = double(e.p[1]) - q.y(), dz = double(e.p[2]) - q.z();
-        if (dx * dx + dy * dy + dz * dz > rp2) continue;
-        const Vec3& p = positions[e.id];
-        if ((p - q).squaredNorm() <= r2) fn(e.id, p);
+      const Block& b = blocks_[c];
+      for (const Entry *e = pool_.data() + b.start, *end = e + b.size; e != end; ++e) {
+        if constexpr (kCopies) {
+          const double dx = double(e->p[0]) - q.x(), dy = double(e->p[1]) - q.y(), dz = double(e->p[2]) - q.z();
+          if (dx * dx + dy * dy + dz * dz > rp2) continue;
+        }
+        const Index id = id_of(*e);
+        const Vec3& p = positions[id];
+        if ((p - q).squaredNorm() <= r2) fn(id, p);
       }
     };
     const double inv = inverse_side_[level - kMinLevel];
@@ -307,12 +411,21 @@ class LeveledPointGrid {
   bool erasable_ = true;
   std::array<double, kMaxLevel - kMinLevel + 1> inverse_side_{};  ///< per level: 1 / its cell side
   KeyIndex keys_;
-  std::vector<std::vector<Entry>> cells_;                 ///< per cell number: its points
+  GrowableArray<Entry> pool_;                             ///< the cells' blocks
+  std::vector<Block> blocks_;                             ///< per cell number: its block
+  std::array<std::vector<std::uint32_t>, 32> free_;       ///< per log2 capacity: free blocks' starts
   std::vector<std::vector<std::uint32_t>> level_cells_;   ///< per level: its cell numbers
-  std::vector<Where> where_;                              ///< per id (empty unless erasable_)
+  std::vector<std::unique_ptr<Where[]>> where_pages_;     ///< per page of ids (erasable_ only)
+  std::vector<std::uint32_t> page_points_;                ///< per page: its points in the grid
   int lowest_ = kMaxLevel + 1, highest_ = kMinLevel - 1;  ///< levels with points so far
   double max_abs_ = 0, pad_ = 1e-300;
 };
+
+/// The leveled grid with a copy of every point in its entries.
+using LeveledPointGrid = BasicLeveledPointGrid<true>;
+/// The leveled grid with only the points' ids in its entries (4 bytes each
+/// instead of 16): a query reads the points from the positions it is given.
+using LeveledIndexGrid = BasicLeveledPointGrid<false>;
 
 /// Uniform grid of cubic cells over a fixed set of points, built once, stored
 /// by columns: one offset per (x, y) column of the bounding box, and per
