@@ -110,10 +110,10 @@ std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const Tri
 
 /// The broad phase of find_self_intersections(), for tests: every pair (i < j)
 /// of `boxes` (lo x, y, z, hi x, y, z) whose closed boxes overlap, sorted;
-/// the same list for every number of `threads` and every `entries_per_block`
-/// (the size of the blocks of columns swept on the threads; 0: the checks'
-/// own).
+/// the same list for every number of `threads`, every `entries_per_block`
+/// (the size of the blocks of columns swept on the threads) and every
+/// `boxes_per_band` (the boxes stored at a time); 0: the checks' own.
 std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes, int threads = 1,
-                                                    std::size_t entries_per_block = 0);
+                                                    std::size_t entries_per_block = 0, std::size_t boxes_per_band = 0);
 
 }  // namespace skinmesh::geometry::mesh_checks_detail

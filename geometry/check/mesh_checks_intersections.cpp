@@ -90,29 +90,37 @@ FloatBoxItem<Tri> rounded_out(const BoxItem<Tri>& b) {
 /// Column entries per block of the broad phase's sweep: enough that a block's
 /// sort and sweep outweigh handing it to a thread. [chosen]
 constexpr std::size_t kEntriesPerBlock = std::size_t{1} << 15;
+/// Boxes stored at a time by the broad phase (a band of strips, below): 12
+/// MB of them, so that the check's peak follows this, not the mesh's size.
+/// [chosen]
+constexpr std::size_t kBoxesPerBand = std::size_t{1} << 18;
 
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
-// called four times per box, so nothing is stored twice): a grid of square
-// columns (x, y) of side w about the mean extent of the boxes; each box is
-// entered in every column its (x, y) range meets. The boxes are stored once,
-// rounded outwards to single precision (FloatBoxItem), renumbered by the strip
-// (x index) of their first column (a counting sort, for locality); each column lists its boxes
-// (4-byte indices) sorted by lower z and is swept along z; a pair is tested
-// only in the first column both ranges share (the componentwise maximum of
-// their first columns), so exactly once.
+// called five times per box and again for a box stored in two bands, so that
+// nothing is kept for all boxes but a 4-byte index): a grid of square columns
+// (x, y) of side w about the mean extent of the boxes; each box is entered in
+// every column its (x, y) range meets. The grid is swept in bands of
+// consecutive strips (x indices of columns) holding about boxes_per_band boxes;
+// a band stores its boxes (those whose (x, y) range meets it), rounded
+// outwards to single precision (FloatBoxItem), in the order of the strip of
+// their first column (a counting sort, for locality); each of its columns
+// lists its boxes (4-byte indices) sorted by lower z and is swept along z; a
+// pair is tested only in the first column both ranges share (the componentwise
+// maximum of their first columns), so exactly once.
 // Calls test(block, p, q, maybe) with the payloads of candidate pairs (in
 // either order), maybe = true exactly once for every pair whose rounded boxes
 // overlap (closed boxes: touching counts), false for the others. The rounded
 // boxes contain the exact ones, so every pair of overlapping exact boxes is
 // among the `maybe` pairs; the caller decides exactly which of those overlap.
-// The columns are sorted and swept in blocks of consecutive columns, on up to
-// `threads` threads: blocks(k) is called first with their number k, and test
-// receives the block of the pair, so that a caller can keep one tally per block
-// and merge them in block order. The blocks depend on the boxes only (about
-// entries_per_block column entries each), never on the thread count.
+// The columns of a band are sorted and swept in blocks of consecutive columns,
+// on up to `threads` threads: before each band blocks(k) is called with the
+// number k of blocks so far (it only grows), and test receives the block of the
+// pair, so that a caller can keep one tally per block and merge them in block
+// order. The bands and blocks depend on the boxes only (about boxes_per_band
+// boxes and entries_per_block column entries each), never on the thread count.
 template <class Tri, class MakeItem, class Blocks, class PairTest>
 void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blocks, PairTest&& test,
-                       std::size_t entries_per_block = kEntriesPerBlock) {
+                       std::size_t entries_per_block = kEntriesPerBlock, std::size_t boxes_per_band = kBoxesPerBand) {
   if (n < 2) {
     blocks(std::size_t{0});
     return;
@@ -173,7 +181,6 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     const double t = std::floor((x - gmin[k]) * inv);
     return t >= 0.0 ? std::int64_t(std::min(t, double(dims[k] - 1))) : std::int64_t{0};
   };
-  std::size_t num_entries = 0;
   for (;;) {
     inv = finite_grid ? 1.0 / w : 0.0;
     const double dx = finite_grid ? std::floor((gmax[0] - gmin[0]) * inv) + 1.0 : 1.0;
@@ -194,20 +201,17 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     });
     double entries = 0.0;
     for (double e : chunk_entries) entries += e;
-    if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) {
-      num_entries = std::size_t(entries);
-      break;
-    }
+    if (entries <= kMaxEntriesPerBox * double(n) + 1024.0) break;
     w *= 2.0;
   }
-  const std::size_t num_columns = std::size_t(dims[0] * dims[1]);
-  // The boxes renumbered by their first strip (the x index of their first
-  // column), for locality: a strip's boxes are swept together. A counting
-  // sort, stable, on the threads: each chunk counts its boxes per strip, and
-  // writes them from its own offsets (the strips in order, within a strip the
-  // chunks in order). The strip's sort is as local as the column's for the
-  // sweep and needs counts per strip, not per column, in every chunk; chunks
-  // are merged in pairs while those counts would outnumber the boxes.
+  // The boxes' indices sorted by their first strip (the x index of their
+  // first column), for locality: a strip's boxes are swept together. A
+  // counting sort, stable, on the threads: each chunk counts its boxes per
+  // strip, and writes them from its own offsets (the strips in order, within a
+  // strip the chunks in order). The strip's sort is as local as the column's
+  // for the sweep and needs counts per strip, not per column, in every chunk;
+  // chunks are merged in pairs while those counts would outnumber the boxes.
+  // The same pass finds the widest box in strips.
   const auto num_strips = std::size_t(dims[0]);
   std::size_t per_chunk = 1;  // chunks of the sort = runs of per_chunk chunks
   while (per_chunk < num_chunks && ((num_chunks + per_chunk - 1) / per_chunk) * num_strips > 2 * n + 65536)
@@ -217,87 +221,152 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     return std::pair<std::size_t, std::size_t>(c * per_chunk * kBoxesPerChunk,
                                                std::min(n, (c + 1) * per_chunk * kBoxesPerChunk));
   };
-  // Both passes read the strip of the rounded box (the one stored), which may
-  // differ from the exact box's by a unit in the last place.
+  // Both passes read the strips of the rounded box (the one stored), which
+  // may differ from the exact box's by a unit in the last place.
   std::vector<std::uint32_t> offset(sort_chunks * num_strips, 0);  // [chunk][strip]
+  std::vector<std::int64_t> chunk_reach(sort_chunks, 0);
   parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {
-    for (auto [i, end] = sort_range(c); i < end; ++i)
-      ++offset[c * num_strips + std::size_t(col(rounded_out(make(i)).lo[0], 0))];
+    for (auto [i, end] = sort_range(c); i < end; ++i) {
+      const FloatBoxItem<Tri> b = rounded_out(make(i));
+      const std::int64_t x0 = col(b.lo[0], 0), x1 = col(b.hi[0], 0);
+      ++offset[c * num_strips + std::size_t(x0)];
+      chunk_reach[c] = std::max(chunk_reach[c], x1 - x0);
+    }
   });
+  std::size_t reach = 0;  // the most strips a box reaches beyond its first
+  for (const std::int64_t w_strips : chunk_reach) reach = std::max(reach, std::size_t(w_strips));
+  std::vector<std::uint32_t> strip_begin(num_strips + 1);  // the first position of each strip in `order`
   {
     std::uint32_t at = 0;
-    for (std::size_t x = 0; x < num_strips; ++x)
+    for (std::size_t x = 0; x < num_strips; ++x) {
+      strip_begin[x] = at;
       for (std::size_t c = 0; c < sort_chunks; ++c) {
         const std::uint32_t count = offset[c * num_strips + x];
         offset[c * num_strips + x] = at;
         at += count;
       }
+    }
+    strip_begin[num_strips] = at;
   }
-  // Not value-initialised: every slot is written below (a first pass of
-  // zeros over the largest array of the check would cost a tenth of it).
-  std::unique_ptr<FloatBoxItem<Tri>[]> item(new FloatBoxItem<Tri>[n]);
+  std::vector<std::uint32_t> order(n);
   parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {
-    for (auto [i, end] = sort_range(c); i < end; ++i) {
-      FloatBoxItem<Tri> b = rounded_out(make(i));
-      b.first[0] = std::int32_t(col(b.lo[0], 0));
-      b.first[1] = std::int32_t(col(b.lo[1], 1));
-      item[offset[c * num_strips + std::size_t(b.first[0])]++] = b;
-    }
+    for (auto [i, end] = sort_range(c); i < end; ++i)
+      order[offset[c * num_strips + std::size_t(col(rounded_out(make(i)).lo[0], 0))]++] = std::uint32_t(i);
   });
-  std::vector<std::uint32_t>().swap(offset);
-  std::vector<std::uint32_t> start(num_columns + 1, 0);
-  // Entries per column (CSR of renumbered boxes), each column then sorted by lower z.
-  std::fill(start.begin(), start.end(), 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const FloatBoxItem<Tri>& b = item[i];
-    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
-      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y) ++start[std::size_t(x * dims[1] + y) + 1];
+  // offset[c][x] is now the end of chunk c's run of strip x, which is where
+  // chunk c + 1's run begins: chunk c's run of strip x is
+  // [run_begin(c, x), offset[c][x]).
+  auto run_begin = [&](std::size_t c, std::size_t x) {
+    return c == 0 ? strip_begin[x] : offset[(c - 1) * num_strips + x];
+  };
+  // Bands: runs of consecutive strips swept one after the other, each with
+  // the stored boxes of its own strips and of the `reach` strips before it that
+  // reach into it, so that the stored boxes and the columns' lists (the
+  // largest arrays of the check) hold about boxes_per_band boxes at a time,
+  // not all of them. A band is at least `reach` strips wide, so that boxes
+  // stored twice are at most about as many as the band's own. A pair is
+  // tested in its first shared column, which lies in exactly one band, where
+  // both boxes are stored.
+  auto halo = [&](std::size_t s0) { return s0 > reach ? s0 - reach : std::size_t{0}; };
+  std::vector<std::pair<std::size_t, std::size_t>> bands;  // [first strip, end strip)
+  std::size_t largest = 0;
+  for (std::size_t s0 = 0; s0 < num_strips;) {
+    const std::size_t from = strip_begin[halo(s0)];
+    std::size_t s1 = s0 + 1;
+    while (s1 < num_strips && (s1 - s0 < reach || strip_begin[s1 + 1] - from <= boxes_per_band)) ++s1;
+    bands.emplace_back(s0, s1);
+    largest = std::max<std::size_t>(largest, strip_begin[s1] - from);
+    s0 = s1;
   }
-  for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> entry(num_entries);
-  for (std::size_t i = 0; i < n; ++i) {
-    const FloatBoxItem<Tri>& b = item[i];
-    for (std::int64_t x = b.first[0], x1 = col(b.hi[0], 0); x <= x1; ++x)
-      for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
-        entry[start[std::size_t(x * dims[1] + y)]++] = std::uint32_t(i);
-  }
-  // start[c] now holds the end of column c (and its start is start[c - 1]).
-  // Blocks: runs of consecutive columns holding about entries_per_block entries
-  // (a column is never split).
-  std::vector<std::size_t> block_begin{0};  // first column of each block, then num_columns
-  for (std::size_t c = 0, since = 0; c < num_columns; ++c) {
-    since += start[c] - (c ? start[c - 1] : 0);
-    if (since >= entries_per_block && c + 1 < num_columns) {
-      block_begin.push_back(c + 1);
-      since = 0;
-    }
-  }
-  block_begin.push_back(num_columns);
-  const std::size_t num_blocks = block_begin.size() - 1;
-  blocks(num_blocks);
-  auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
-  parallel_for(num_blocks, threads, 1, [&](std::size_t blk) {
-    for (std::size_t c = block_begin[blk]; c < block_begin[blk + 1]; ++c) {
-      const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
-      // Each column sorted by lower z, then swept along z: each box is paired
-      // only with those starting before it ends. Branch-free apart from the
-      // end of each run: the outcome of the box test is passed on, not
-      // branched on (it is hard to predict).
-      if (end - begin > 1) std::sort(entry.begin() + begin, entry.begin() + end, lower_z);
-      const auto cx = std::int32_t(c / std::size_t(dims[1])), cy = std::int32_t(c % std::size_t(dims[1]));
-      for (std::uint32_t a = begin; a + 1 < end; ++a) {
-        const FloatBoxItem<Tri>& p = item[entry[a]];
-        for (std::uint32_t b = a + 1; b < end; ++b) {
-          const FloatBoxItem<Tri>& q = item[entry[b]];
-          if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
-          const bool overlap =
-              (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]);
-          const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
-          test(blk, p.tri, q.tri, overlap & first);
+  // Not value-initialised: every slot used is written below (a first pass of
+  // zeros over the largest array of the check would cost a tenth of it).
+  std::unique_ptr<FloatBoxItem<Tri>[]> item(new FloatBoxItem<Tri>[largest]);
+  std::vector<std::uint32_t> start, entry;
+  std::size_t blocks_before = 0;
+  for (const auto& [s0, s1] : bands) {
+    // The band's boxes, in the order of `order`; those of earlier strips that
+    // end before the band are marked (first[0] = -1) and squeezed out. Made
+    // chunk by chunk of the sort (each chunk's boxes are consecutive indices,
+    // so make() reads the mesh where the chunk lies; in the order of `order`
+    // it jumped across the whole mesh for every box).
+    const std::size_t from = strip_begin[halo(s0)], to = strip_begin[s1];
+    const std::size_t count = to - from;
+    parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {
+      for (std::size_t x = halo(s0); x < s1; ++x)
+        for (std::size_t k = run_begin(c, x), end = offset[c * num_strips + x]; k < end; ++k) {
+          FloatBoxItem<Tri> b = rounded_out(make(order[k]));
+          b.first[0] = std::int32_t(col(b.lo[0], 0));
+          b.first[1] = std::int32_t(col(b.lo[1], 1));
+          if (std::size_t(col(b.hi[0], 0)) < s0) b.first[0] = -1;
+          item[k - from] = b;
         }
+    });
+    std::size_t m = 0;
+    for (std::size_t k = 0; k < count; ++k)
+      if (item[k].first[0] >= 0) item[m++] = item[k];
+    // Entries per column of the band (CSR of the stored boxes), each column
+    // then sorted by lower z; local column (x - s0) * dims[1] + y.
+    const std::size_t num_columns = (s1 - s0) * std::size_t(dims[1]);
+    auto x_range = [&](const FloatBoxItem<Tri>& b) {
+      return std::pair<std::int64_t, std::int64_t>(std::max<std::int64_t>(b.first[0], std::int64_t(s0)),
+                                                   std::min<std::int64_t>(col(b.hi[0], 0), std::int64_t(s1) - 1));
+    };
+    start.assign(num_columns + 1, 0);
+    for (std::size_t i = 0; i < m; ++i) {
+      const FloatBoxItem<Tri>& b = item[i];
+      const auto [x0, x1] = x_range(b);
+      for (std::int64_t x = x0; x <= x1; ++x)
+        for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
+          ++start[std::size_t((x - std::int64_t(s0)) * dims[1] + y) + 1];
+    }
+    for (std::size_t c = 0; c < num_columns; ++c) start[c + 1] += start[c];
+    entry.resize(start[num_columns]);
+    for (std::size_t i = 0; i < m; ++i) {
+      const FloatBoxItem<Tri>& b = item[i];
+      const auto [x0, x1] = x_range(b);
+      for (std::int64_t x = x0; x <= x1; ++x)
+        for (std::int64_t y = b.first[1], y1 = col(b.hi[1], 1); y <= y1; ++y)
+          entry[start[std::size_t((x - std::int64_t(s0)) * dims[1] + y)]++] = std::uint32_t(i);
+    }
+    // start[c] now holds the end of column c (and its start is start[c - 1]).
+    // Blocks: runs of consecutive columns holding about entries_per_block
+    // entries (a column is never split), numbered on from the last band's.
+    std::vector<std::size_t> block_begin{0};  // first column of each block, then num_columns
+    for (std::size_t c = 0, since = 0; c < num_columns; ++c) {
+      since += start[c] - (c ? start[c - 1] : 0);
+      if (since >= entries_per_block && c + 1 < num_columns) {
+        block_begin.push_back(c + 1);
+        since = 0;
       }
     }
-  });
+    block_begin.push_back(num_columns);
+    const std::size_t num_blocks = block_begin.size() - 1;
+    blocks(blocks_before + num_blocks);
+    auto lower_z = [&](std::uint32_t a, std::uint32_t b) { return item[a].lo[2] < item[b].lo[2]; };
+    parallel_for(num_blocks, threads, 1, [&](std::size_t blk) {
+      for (std::size_t c = block_begin[blk]; c < block_begin[blk + 1]; ++c) {
+        const std::uint32_t begin = c ? start[c - 1] : 0, end = start[c];
+        // Each column sorted by lower z, then swept along z: each box is paired
+        // only with those starting before it ends. Branch-free apart from the
+        // end of each run: the outcome of the box test is passed on, not
+        // branched on (it is hard to predict).
+        if (end - begin > 1) std::sort(entry.begin() + begin, entry.begin() + end, lower_z);
+        const auto cx = std::int32_t(s0 + c / std::size_t(dims[1])), cy = std::int32_t(c % std::size_t(dims[1]));
+        for (std::uint32_t a = begin; a + 1 < end; ++a) {
+          const FloatBoxItem<Tri>& p = item[entry[a]];
+          for (std::uint32_t b = a + 1; b < end; ++b) {
+            const FloatBoxItem<Tri>& q = item[entry[b]];
+            if (q.lo[2] > p.hi[2]) break;  // this and all later ones start above p's top
+            const bool overlap =
+                (p.lo[0] <= q.hi[0]) & (q.lo[0] <= p.hi[0]) & (p.lo[1] <= q.hi[1]) & (q.lo[1] <= p.hi[1]);
+            const bool first = (std::max(p.first[0], q.first[0]) == cx) & (std::max(p.first[1], q.first[1]) == cy);
+            test(blocks_before + blk, p.tri, q.tri, overlap & first);
+          }
+        }
+      }
+    });
+    blocks_before += num_blocks;
+  }
 }
 
 // Fan Test ---------------------------------------------------------------------
@@ -391,7 +460,7 @@ std::vector<std::uint8_t> simple_fan_vertices(const IndexedMesh& mesh, const Tri
 }
 
 std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array<double, 6>>& boxes, int threads,
-                                                    std::size_t entries_per_block) {
+                                                    std::size_t entries_per_block, std::size_t boxes_per_band) {
   struct Id {
     Index id;
   };
@@ -410,7 +479,8 @@ std::vector<std::array<Index, 2>> box_overlap_pairs(const std::vector<std::array
         for (int k = 0; k < 3; ++k) overlap = overlap && a[k] <= b[k + 3] && b[k] <= a[k + 3];
         if (overlap) per_block[block].push_back({std::min(i.id, j.id), std::max(i.id, j.id)});
       },
-      entries_per_block == 0 ? kEntriesPerBlock : entries_per_block);
+      entries_per_block == 0 ? kEntriesPerBlock : entries_per_block,
+      boxes_per_band == 0 ? kBoxesPerBand : boxes_per_band);
   std::vector<std::array<Index, 2>> pairs;
   for (const auto& found : per_block) pairs.insert(pairs.end(), found.begin(), found.end());
   std::sort(pairs.begin(), pairs.end());

@@ -139,6 +139,14 @@ TEST_CASE("mesh_checks broad phase: the column sweep reports exactly the overlap
         INFO("threads " << threads);
         CHECK(box_overlap_pairs(boxes, threads, 64) == expect);
       }
+      // Bands of a few boxes (each band then as wide as the widest box, the
+      // huge ones above: one band), and without those boxes many bands.
+      for (const std::size_t band : {1, 7, 50}) {
+        INFO("boxes per band " << band);
+        CHECK(box_overlap_pairs(boxes, 2, 64, band) == expect);
+        const std::vector<Box> small(boxes.begin(), boxes.begin() + 700);
+        CHECK(box_overlap_pairs(small, 2, 64, band) == brute_force_pairs(small));
+      }
     }
   }
 
@@ -151,6 +159,7 @@ TEST_CASE("mesh_checks broad phase: the column sweep reports exactly the overlap
     const auto expect = brute_force_pairs(boxes);
     CHECK(expect.size() > 1000);
     CHECK(box_overlap_pairs(boxes) == expect);
+    for (const std::size_t band : {1, 5, 40}) CHECK(box_overlap_pairs(boxes, 2, 16, band) == expect);
   }
 
   SUBCASE("all boxes in one column, equal lower z, and -0.0 against 0.0") {
