@@ -96,8 +96,8 @@ constexpr std::size_t kEntriesPerBlock = std::size_t{1} << 15;
 constexpr std::size_t kBoxesPerBand = std::size_t{1} << 18;
 
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
-// called five times per box and again for a box stored in two bands, so that
-// nothing is kept for all boxes but a 4-byte index): a grid of square columns
+// called at least five times per box, and again for a box stored in two
+// bands, so that nothing is kept for all boxes but a 4-byte index): a grid of square columns
 // (x, y) of side w about the mean extent of the boxes; each box is entered in
 // every column its (x, y) range meets. The grid is swept in bands of
 // consecutive strips (x indices of columns) holding about boxes_per_band boxes;
@@ -221,8 +221,8 @@ void for_each_box_pair(std::size_t n, MakeItem&& make, int threads, Blocks&& blo
     return std::pair<std::size_t, std::size_t>(c * per_chunk * kBoxesPerChunk,
                                                std::min(n, (c + 1) * per_chunk * kBoxesPerChunk));
   };
-  // Both passes read the strips of the rounded box (the one stored), which
-  // may differ from the exact box's by a unit in the last place.
+  // Every pass below reads the strips of the rounded box (the one stored),
+  // which may differ from the exact box's by a unit in the last place.
   std::vector<std::uint32_t> offset(sort_chunks * num_strips, 0);  // [chunk][strip]
   std::vector<std::int64_t> chunk_reach(sort_chunks, 0);
   parallel_for(sort_chunks, threads, 1, [&](std::size_t c) {

@@ -1,9 +1,10 @@
 // geometry/triangulation/point_grid.h: uniform grids over points for fixed-radius neighbour
 // queries: PointGrid, a hash grid that grows point by point (critical-point
-// lookup, front proximity), LeveledPointGrid, a hash grid per band of the
-// points' scales whose points can also be removed (the sweep's vertices,
-// front and protecting spheres), and FlatPointGrid, a grid over a fixed point
-// set stored in flat arrays (the verifier's restricted-Delaunay test).
+// lookup, front proximity), LeveledPointGrid and LeveledIndexGrid, hash grids
+// per band of the points' scales whose points can also be removed (the
+// sweep's front and protecting spheres; its vertices, by id only), and
+// FlatPointGrid, a grid over a fixed point set stored in flat arrays (the
+// verifier's restricted-Delaunay test).
 #pragma once
 
 #include <algorithm>
@@ -146,8 +147,8 @@ class PointGrid {
 /// reads the cells meeting its box, or the level's occupied cells when they
 /// are fewer. Costs thus follow the local scale: one region of large rho does
 /// not make the queries elsewhere read many points. Each cell keeps its points
-/// in a contiguous block of 16-byte entries (the position in single precision
-/// and the id); removal moves the cell's last point into the hole. The blocks
+/// in a contiguous block of entries (see kCopies below); removal moves the
+/// cell's last point into the hole. The blocks
 /// share one pool, their capacities powers of two: a full block moves to one
 /// twice its size and leaves its place to the next block of its size, and an
 /// emptied one is given back, so the grid needs no allocation of its own per
@@ -157,10 +158,10 @@ class PointGrid {
 /// point's place by its id in pages of 1024 ids, a page allocated on its first
 /// point and freed with its last: the sweep's front moves through the vertex
 /// ids, so the table holds the front's pages, not one entry per vertex. A query
-/// reads a cell's entries sequentially, filters them with a distance bound
-/// padded by the single-precision rounding, and confirms each survivor with
-/// the exact test on the caller's double-precision positions, so it reports
-/// exactly the points of its scale range that a scan reports. The visiting
+/// reads a cell's entries sequentially (with copies: filters them with a
+/// distance bound padded by the single-precision rounding) and decides each
+/// with the exact test on the caller's double-precision positions, so it
+/// reports exactly the points of its scale range that a scan reports. The visiting
 /// order is deterministic but not the insertion order: callers choose among
 /// the points by their own rule (nearest, ties to the lower id).
 ///
@@ -319,6 +320,7 @@ class BasicLeveledPointGrid {
   void push(std::uint32_t c, const Entry& e) {
     Block& b = blocks_[c];
     if (b.size == b.capacity) {
+      if (b.capacity >= (std::uint32_t{1} << 31)) throw std::length_error("LeveledPointGrid: 2^31 points in one cell");
       const std::uint32_t capacity = b.capacity == 0 ? 1 : 2 * b.capacity;
       const std::uint32_t start = take_block(capacity);
       for (std::uint32_t i = 0; i < b.size; ++i) pool_[start + i] = pool_[b.start + i];
