@@ -164,7 +164,7 @@ def main():
     ap.add_argument("--copies", default="3,10", help="maltoporin copies of the largest rungs (comma list)")
     ap.add_argument("--shell", type=int, default=0,
                     help="add a rung: a shell of 60*T maltoporin copies (bench/assembly.py shell --t T; "
-                         "T = 2: 1,214,760 atoms, one body, about 12.5 GB and 10 minutes on 2 cores); 0: none")
+                         "T = 2: 1,214,760 atoms, one body, about 11.5 GB and 10 minutes on 2 cores); 0: none")
     ap.add_argument("--repeat", type=int, default=1, help="runs per input; the table shows medians")
     ap.add_argument("--extra", default="", help="more skinmesh mesh options, one string")
     a = ap.parse_args()
