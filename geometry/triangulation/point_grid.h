@@ -354,11 +354,14 @@ class BasicLeveledPointGrid {
       where(id) = {number, blocks_[number].size};
     }
     push(number, entry(id, p));
-    if (const double m = p.cwiseAbs().maxCoeff(); m > max_abs_) {
-      max_abs_ = m;
-      // |float(x) - x| <= 2^-24 |x| per coordinate: the stored point lies
-      // within sqrt(3) 2^-24 max_abs_ of the true one (padded).
-      pad_ = 1.05e-7 * max_abs_ + 1e-300;
+    // |float(x) - x| <= 2^-24 |x| per coordinate: a stored copy lies within
+    // sqrt(3) 2^-24 max_abs_ of the true point (padded). Without copies the
+    // queries test the true points only and need no pad.
+    if constexpr (kCopies) {
+      if (const double m = p.cwiseAbs().maxCoeff(); m > max_abs_) {
+        max_abs_ = m;
+        pad_ = 1.05e-7 * max_abs_ + 1e-300;
+      }
     }
     lowest_ = std::min(lowest_, level), highest_ = std::max(highest_, level);
   }
