@@ -16,10 +16,13 @@ namespace skinmesh::geometry::mesh_checks_detail {
 
 namespace {
 
-// Union-find with path halving and union by size.
+// Union-find with path halving and union by rank. A rank is at most
+// log2(n), so a byte holds it: 5 bytes per triangle instead of 8 with sizes
+// (the components are numbered by their lowest triangle, so which element
+// becomes a root changes nothing that is reported).
 class UnionFind {
  public:
-  explicit UnionFind(std::size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), Index(0)); }
+  explicit UnionFind(std::size_t n) : parent_(n), rank_(n, 0) { std::iota(parent_.begin(), parent_.end(), Index(0)); }
   Index find(Index x) {
     while (parent_[x] != x) {
       parent_[x] = parent_[parent_[x]];
@@ -31,14 +34,14 @@ class UnionFind {
     a = find(a);
     b = find(b);
     if (a == b) return;
-    if (size_[a] < size_[b]) std::swap(a, b);
+    if (rank_[a] < rank_[b]) std::swap(a, b);
     parent_[b] = a;
-    size_[a] += size_[b];
+    if (rank_[a] == rank_[b]) ++rank_[a];
   }
 
  private:
   std::vector<Index> parent_;
-  std::vector<Index> size_;
+  std::vector<std::uint8_t> rank_;
 };
 
 /// The number of triangles in the topology whose vertex set (in any order) is
@@ -68,10 +71,20 @@ std::size_t count_duplicate_triangles(const IndexedMesh& mesh, const VertexIncid
 /// What is wrong with an edge (bit flags of EdgeRecord::flags).
 enum EdgeFlag : std::uint8_t { kBoundary = 1, kNonManifold = 2, kMisoriented = 4 };
 
-/// One distinct undirected edge of the topology.
+/// A distinct undirected edge of the topology with something wrong.
 struct EdgeRecord {
   Index triangle;  // one triangle of the edge (all are in one component)
   std::uint8_t flags;
+};
+
+/// The distinct edges as the component counts need them: per triangle, how
+/// many edges it stands for (each edge is counted at one of its triangles,
+/// all of which lie in one component; at most 3), and the edges with a flag.
+/// One byte per triangle where a record per edge took 12 (the check runs at
+/// the peak of the whole run's memory).
+struct EdgeCounts {
+  std::vector<std::uint8_t> per_triangle;
+  std::vector<EdgeRecord> flagged;
 };
 
 /// Every distinct edge, listed at its lower vertex, vertex by vertex. Counts the
@@ -79,12 +92,13 @@ struct EdgeRecord {
 /// triangles using it in the same direction) edges in `r` with their examples
 /// (at most `max_examples`), sets num_edges, closed, edge_manifold and oriented,
 /// and joins the triangles of each edge in `faces_uf` (one entry per triangle).
-std::vector<EdgeRecord> scan_edges(const IndexedMesh& mesh, const VertexIncidence& in, UnionFind& faces_uf,
-                                   std::size_t max_examples, MeshCheckReport& r) {
+EdgeCounts scan_edges(const IndexedMesh& mesh, const VertexIncidence& in, UnionFind& faces_uf, std::size_t max_examples,
+                      MeshCheckReport& r) {
   const auto& T = mesh.triangles;
   const std::size_t nv = mesh.positions.size(), nt = T.size();
-  std::vector<EdgeRecord> edges;
-  edges.reserve(nt * 3 / 2 + 16);
+  EdgeCounts edges;
+  edges.per_triangle.assign(nt, 0);
+  std::size_t num_edges = 0;
   struct Use {
     Index other, triangle;
     int dir;  // +1: the triangle goes lower -> higher vertex
@@ -125,11 +139,13 @@ std::vector<EdgeRecord> scan_edges(const IndexedMesh& mesh, const VertexIncidenc
         add_example(r.misoriented_edge_examples, ends, max_examples);
       }
       for (std::size_t u = s + 1; u < q; ++u) faces_uf.unite(uses[s].triangle, uses[u].triangle);
-      edges.push_back({uses[s].triangle, flags});
+      ++edges.per_triangle[uses[s].triangle];
+      if (flags) edges.flagged.push_back({uses[s].triangle, flags});
+      ++num_edges;
       s = q;
     }
   }
-  r.num_edges = edges.size();
+  r.num_edges = num_edges;
   r.closed = r.num_boundary_edges == 0;
   r.edge_manifold = r.num_nonmanifold_edges == 0;
   r.oriented = r.num_misoriented_edges == 0;
@@ -143,17 +159,19 @@ std::vector<EdgeRecord> scan_edges(const IndexedMesh& mesh, const VertexIncidenc
 /// triangles outside the topology).
 std::vector<Index> label_components(const TriangleClasses& classes, UnionFind& faces_uf, MeshCheckReport& r) {
   const std::size_t nt = classes.kind.size();
-  std::vector<Index> component(nt, kInvalidIndex);  // triangle -> component id
-  std::vector<Index> root_component(nt, kInvalidIndex);
+  // triangle -> component id. A root's own entry holds its group's id from
+  // the group's lowest triangle on (the root's component is that id), so no
+  // second array of roots is needed at the check's peak.
+  std::vector<Index> component(nt, kInvalidIndex);
   for (std::size_t t = 0; t < nt; ++t) {
     if (!classes.in_topology(t)) continue;
     const Index root = faces_uf.find(Index(t));
-    if (root_component[root] == kInvalidIndex) {
-      root_component[root] = Index(r.components.size());
+    if (component[root] == kInvalidIndex) {
+      component[root] = Index(r.components.size());
       r.components.emplace_back();
       r.components.back().manifold = r.components.back().oriented = r.components.back().closed = true;
     }
-    component[t] = root_component[root];
+    component[t] = component[root];
     ++r.components[component[t]].faces;
   }
   return component;
@@ -162,11 +180,11 @@ std::vector<Index> label_components(const TriangleClasses& classes, UnionFind& f
 /// Counts the edges of every component and clears its closed, manifold and
 /// oriented flags where one of its edges is a boundary, non-manifold or
 /// misoriented edge.
-void count_component_edges(const std::vector<EdgeRecord>& edges, const std::vector<Index>& component,
-                           MeshCheckReport& r) {
-  for (const EdgeRecord& e : edges) {
+void count_component_edges(const EdgeCounts& edges, const std::vector<Index>& component, MeshCheckReport& r) {
+  for (std::size_t t = 0; t < edges.per_triangle.size(); ++t)
+    if (edges.per_triangle[t]) r.components[component[t]].edges += edges.per_triangle[t];
+  for (const EdgeRecord& e : edges.flagged) {
     MeshComponent& c = r.components[component[e.triangle]];
-    ++c.edges;
     if (e.flags & kBoundary) c.closed = false;
     if (e.flags & kNonManifold) c.manifold = false;
     if (e.flags & kMisoriented) c.oriented = false;
@@ -322,10 +340,13 @@ VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& 
       for (Index v : T[t]) ++start[v + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   in.incident.resize(start[nv]);
-  std::vector<Index> fill(start.begin(), start.end() - 1);
+  // Filled through the offsets themselves (start[v] runs to v's end, then
+  // every offset moves one up): no copy of the offsets at the check's peak.
   for (std::size_t t = 0; t < nt; ++t)
     if (classes.in_topology(t))
-      for (Index v : T[t]) in.incident[fill[v]++] = Index(t);
+      for (Index v : T[t]) in.incident[start[v]++] = Index(t);
+  for (std::size_t v = nv; v > 0; --v) start[v] = start[v - 1];
+  start[0] = 0;
   return in;
 }
 
@@ -333,7 +354,7 @@ std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses
                                   const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
   r.num_duplicate_triangles = count_duplicate_triangles(mesh, incidence);
   UnionFind faces_uf(mesh.triangles.size());  // triangles joined through shared edges
-  const std::vector<EdgeRecord> edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
+  const EdgeCounts edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
   std::vector<Index> component = label_components(classes, faces_uf, r);
   count_component_edges(edges, component, r);
   check_vertex_links(mesh, incidence, component, max_examples, r);
