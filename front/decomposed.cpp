@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -201,10 +202,13 @@ Index append_with_vertex_data(geometry::SurfaceMesh& mesh, const geometry::Surfa
 /// group's fronts never meet another group's surface, so nothing else is
 /// shared (papers/mesher/decomposition.md, "Components"). With `unglued`,
 /// two or more groups' meshes are moved there in group order instead of
-/// appended, and the result holds their summed stats only.
+/// appended, and the result holds their summed stats only. With
+/// `release_made` (DecompositionOptions::release_made_cells) the groups go
+/// in windows of `threads`, and the complex's made cells and planes go back
+/// after each window.
 SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const SweepOptions& sweep, int threads, DecompositionCosts& costs, std::string& why,
-                             std::vector<SweepResult>* unglued) {
+                             const SweepOptions& sweep, int threads, bool release_made, DecompositionCosts& costs,
+                             std::string& why, std::vector<SweepResult>* unglued) {
   const morse::ComponentGroups groups = morse::component_groups(ms);
   if (groups.count < 2) return sweep_mesh(skin, ms, sweep);
   std::vector<std::optional<SweepResult>> parts(groups.count);
@@ -212,7 +216,15 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
   std::vector<double> seconds(groups.count, 0.0);
   std::mutex progress_mutex;
   std::size_t finished = 0;
-  parallel_for(groups.count, threads, 1, [&](std::size_t g) {
+  // Largest groups first (by their critical points, ties in group order):
+  // the threads' loads even out at the end, and a window of `threads`
+  // groups holds groups of about one size. The order of the work changes no
+  // group's mesh: each reads only the skin and its own front.
+  std::vector<std::size_t> points(groups.count, 0), order(groups.count);
+  for (const Index g : groups.group) ++points[g];
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points[a] > points[b]; });
+  auto sweep_group = [&](std::size_t g) {
     const auto start = std::chrono::steady_clock::now();
     SweepOptions part = sweep;
     part.progress = nullptr;
@@ -232,7 +244,13 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
       const std::lock_guard<std::mutex> lock(progress_mutex);
       sweep.progress("sweep", static_cast<double>(++finished) / static_cast<double>(groups.count));
     }
-  });
+  };
+  const std::size_t window = release_made ? static_cast<std::size_t>(std::max(threads, 1)) : order.size();
+  for (std::size_t w = 0; w < order.size(); w += window) {
+    const std::size_t end = std::min(order.size(), w + window);
+    parallel_for(end - w, threads, 1, [&](std::size_t i) { sweep_group(order[w + i]); });
+    if (release_made) skin.mixed_complex().release_made();
+  }
   for (Index g = 0; g < groups.count; ++g)
     if (!errors[g].empty()) {
       why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
@@ -442,8 +460,8 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       // An observer or a trace replays one front in one mesh: they get the
       // one sweep of everything.
       if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
-        out.sweep = sweep_components(skin, ms, sweep, threads, out.costs, out.components_fallback,
-                                     opt.glue_groups ? nullptr : &out.groups);
+        out.sweep = sweep_components(skin, ms, sweep, threads, opt.release_made_cells, out.costs,
+                                     out.components_fallback, opt.glue_groups ? nullptr : &out.groups);
       else
         out.sweep = sweep_mesh(skin, ms, sweep);
       return out;

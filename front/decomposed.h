@@ -82,6 +82,15 @@ struct DecompositionOptions {
   /// end"). mesher::mesh_skin() sets it itself: false unless an observer
   /// watches the whole mesh between the stages.
   bool glue_groups = true;
+  /// The caller lets the sweep give back the mixed complex's made cells and
+  /// planes (MixedComplex::release_made()) while it runs: no other thread
+  /// reads the complex during the sweep. The groups of components are then
+  /// swept in windows of `threads` groups, largest first, and what a window
+  /// made goes back before the next, so the made cells of every group do
+  /// not stay beside every group's mesh. The mesh is the same either way.
+  /// mesher::mesh_skin() sets it (papers/mesher/decomposition.md, "The made
+  /// cells between the stages").
+  bool release_made_cells = false;
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <future>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -102,6 +103,14 @@ void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, Outp
     }
   }
 }
+
+/// Gives back the cells and planes that the previous stage's walks made,
+/// between the stages after the sweep. Each stage makes again what it reads
+/// (bit for bit the same; the output reads the cells' simplices only), so
+/// what the sweep and the refinement only crossed does not stay beside every
+/// later stage's arrays (papers/mesher/decomposition.md, "The made cells
+/// between the stages").
+void release_made_cells(const skin::SkinSurface& skin) { skin.mixed_complex().release_made(); }
 
 /// Writes the output of the closed SurfaceMeshes of the skin `meshes`, one
 /// after the other, into res.mesh (positions, triangles, normals),
@@ -221,11 +230,18 @@ void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprov
 }
 
 /// run(g) for every group g in [0, n) (n >= 1) on up to `threads` threads,
-/// and the results joined in group order with add(sum, next).
-template <class Stats, class Run, class Add>
-Stats per_group(std::size_t n, int threads, Run&& run, Add&& add) {
+/// in windows of `threads` groups taken in `order` (largest first), with
+/// between() after each window, and the results joined in group order with
+/// add(sum, next).
+template <class Stats, class Run, class Add, class Between>
+Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, Add&& add, Between&& between) {
+  const std::size_t n = order.size(), window = static_cast<std::size_t>(std::max(threads, 1));
   std::vector<Stats> each(n);
-  parallel_for(n, threads, 1, [&](std::size_t g) { each[g] = run(g); });
+  for (std::size_t w = 0; w < n; w += window) {
+    const std::size_t end = std::min(n, w + window);
+    parallel_for(end - w, threads, 1, [&](std::size_t i) { each[order[w + i]] = run(order[w + i]); });
+    between();
+  }
   Stats sum = each[0];
   for (std::size_t g = 1; g < n; ++g) add(sum, each[g]);
   return sum;
@@ -253,25 +269,35 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
   }
   const bool one_large = 2 * largest > faces;
   const int outer = one_large ? 1 : threads, inner = one_large ? threads : 1;
+  // The groups in windows, largest first (ties in group order), the cells
+  // made by a window given back before the next: the made cells of every
+  // group do not stay beside every group's mesh. The order and the windows
+  // change no mesh.
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return groups[a].mesh.n_faces() > groups[b].mesh.n_faces(); });
+  const auto release = [&skin] { release_made_cells(skin); };
   if (options.refine) {
     clock.begin("refine");
     refine::RefineOptions refinement = with_size(options.refinement, options.size);
     if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = inner;
     res.refinement = per_group<refine::RefineStats>(
-        n, outer, [&](std::size_t g) { return refine::refine_mesh(skin, groups[g].mesh, refinement); },
-        add_refine_stats);
+        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, groups[g].mesh, refinement); },
+        add_refine_stats, release);
     clock.end("refine");
     if (options.improve_angles) {
       clock.begin("angles");
       const refine::AngleImprovementOptions angles = with_size(options.angle_improvement, options.size);
       res.angle_improvement = per_group<refine::AngleImprovementStats>(
-          n, threads, [&](std::size_t g) { return refine::improve_angles(skin, groups[g].mesh, angles); },
-          add_angle_stats);
+          order, threads, [&](std::size_t g) { return refine::improve_angles(skin, groups[g].mesh, angles); },
+          add_angle_stats, release);
       clock.end("angles");
     }
   }
   std::vector<geometry::SurfaceMesh*> meshes;
   for (front::SweepResult& g : groups) meshes.push_back(&g.mesh);
+  release_made_cells(skin);  // (again: without the refinement)
   write_output(skin, meshes, threads, res);
 }
 
@@ -327,6 +353,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // The groups of components are refined on their own unless someone
   // watches the whole mesh between the stages.
   decomposition.glue_groups = options.observers.stage_end || options.refinement.observer;
+  decomposition.release_made_cells = true;  // the pipeline's own skin: no other thread reads it
   front::DecomposedSweep decomposed = front::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
   front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
@@ -365,6 +392,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   }
   // The check reads res.mesh: the half-edge mesh goes back part by part as
   // the output is written.
+  release_made_cells(skin);
   write_output(skin, {&swept.mesh}, threads, res);
   if (options.observers.memory_released) options.observers.memory_released();
   clock.end("output");

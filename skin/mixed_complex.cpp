@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
 #include <string>
 #include <thread>
 
@@ -564,15 +565,20 @@ const T* make_once(std::atomic<const T*>& slot, const T* making, Make&& make) {
 }  // namespace
 
 template <class T>
-T* MixedComplex::allocate_made(std::vector<std::unique_ptr<T[]>>& blocks, std::size_t& used, std::size_t n) const {
+T* MixedComplex::allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n) const {
+  static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= alignof(std::max_align_t));
   constexpr std::size_t kBlockBytes = std::size_t{160} << 10;  // [chosen] a lock per several hundred cells
-  const std::size_t block = std::max<std::size_t>(kBlockBytes / sizeof(T), n);
   const std::lock_guard<std::mutex> lock(made_mutex_);
-  if (blocks.empty() || used + n > block) {
-    blocks.push_back(std::make_unique<T[]>(block));
+  if (blocks.empty() || (used + n) * sizeof(T) > blocks.back().size()) {
+    const std::size_t block = std::max<std::size_t>(kBlockBytes / sizeof(T), n);
+    GrowableArray<std::byte> bytes;
+    bytes.reserve(block * sizeof(T));  // one block of exactly this size: it never moves
+    bytes.resize(block * sizeof(T));
+    std::uninitialized_default_construct_n(reinterpret_cast<T*>(bytes.data()), block);
+    blocks.push_back(std::move(bytes));
     used = 0;
   }
-  T* p = blocks.back().get() + used;
+  T* p = std::launder(reinterpret_cast<T*>(blocks.back().data())) + used;
   used += n;
   made_bytes_ += n * sizeof(T);
   return p;
@@ -580,7 +586,7 @@ T* MixedComplex::allocate_made(std::vector<std::unique_ptr<T[]>>& blocks, std::s
 
 const MixedCell* MixedComplex::make_cell(Index c) const {
   return make_once(made_cells_[c], &kMakingCell, [&] {
-    MixedCell* out = allocate_made(cell_blocks_, cell_block_used_, 1);
+    MixedCell* out = allocate_made<MixedCell>(cell_blocks_, cell_block_used_, 1);
     fill_cell(c, *out);
     return out;
   });
@@ -631,7 +637,7 @@ MixedCell MixedComplex::cell_value(Index c) const {
 
 const CellPlane* MixedComplex::make_planes(Index c) const {
   return make_once(cell_planes_[c], &kMakingPlanes, [&] {
-    CellPlane* out = allocate_made(plane_blocks_, plane_block_used_, num_planes(c));
+    CellPlane* out = allocate_made<CellPlane>(plane_blocks_, plane_block_used_, num_planes(c));
     fill_planes(c, out);
     return out;
   });
@@ -693,8 +699,8 @@ void MixedComplex::release_made() const {
     cell_planes_[c].store(nullptr, std::memory_order_relaxed);
   }
   const std::lock_guard<std::mutex> lock(made_mutex_);
-  std::vector<std::unique_ptr<CellPlane[]>>().swap(plane_blocks_);
-  std::vector<std::unique_ptr<MixedCell[]>>().swap(cell_blocks_);
+  std::vector<GrowableArray<std::byte>>().swap(plane_blocks_);
+  std::vector<GrowableArray<std::byte>>().swap(cell_blocks_);
   plane_block_used_ = cell_block_used_ = 0;
   made_bytes_ = 0;
 }

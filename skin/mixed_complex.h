@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "core/growable_array.h"
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/triangulation/regular_triangulation.h"
@@ -213,10 +214,14 @@ class MixedComplex {
   const MovedFocus* moved_focus(Index c) const;
   /// Writes the planes of cell c into out[0 .. num_planes).
   void fill_planes(Index c, CellPlane* out) const;
-  /// Room for n values in `blocks` (of `block_size` each, the last one
-  /// `used`), counted in made_bytes_; under made_mutex_.
+  /// Room for n values of type T in `blocks` (the last one `used` values
+  /// full), counted in made_bytes_; under made_mutex_. A block is a
+  /// GrowableArray of bytes, so at its size (160 KiB) pages mapped on their
+  /// own: release_made() gives them back to the system, where freed heap
+  /// blocks of malloc would stay resident and only serve later small blocks
+  /// (papers/mesher/decomposition.md, "The made cells before the output").
   template <class T>
-  T* allocate_made(std::vector<std::unique_ptr<T[]>>& blocks, std::size_t& used, std::size_t n) const;
+  T* allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n) const;
   /// The markers of a cell whose planes, or geometry, a thread is making.
   static const CellPlane kMakingPlanes;
   static const MixedCell kMakingCell;
@@ -239,12 +244,12 @@ class MixedComplex {
   /// Per cell, its geometry once made (nullptr before; kMakingCell while a
   /// thread makes it): 8 bytes per cell, and 88 only for the cells read.
   mutable std::unique_ptr<std::atomic<const MixedCell*>[]> made_cells_;
-  mutable std::mutex made_mutex_;  ///< guards the blocks below
-  mutable std::vector<std::unique_ptr<CellPlane[]>> plane_blocks_;
-  mutable std::size_t plane_block_used_ = 0;  ///< planes used in plane_blocks_.back()
-  mutable std::vector<std::unique_ptr<MixedCell[]>> cell_blocks_;
-  mutable std::size_t cell_block_used_ = 0;  ///< cells used in cell_blocks_.back()
-  mutable std::size_t made_bytes_ = 0;       ///< bytes of the cells and planes made since the last release
+  mutable std::mutex made_mutex_;                               ///< guards the blocks below
+  mutable std::vector<GrowableArray<std::byte>> plane_blocks_;  ///< of CellPlane
+  mutable std::size_t plane_block_used_ = 0;                    ///< planes used in plane_blocks_.back()
+  mutable std::vector<GrowableArray<std::byte>> cell_blocks_;   ///< of MixedCell
+  mutable std::size_t cell_block_used_ = 0;                     ///< cells used in cell_blocks_.back()
+  mutable std::size_t made_bytes_ = 0;  ///< bytes of the cells and planes made since the last release
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count

@@ -83,7 +83,9 @@ double SkinSurface::distance_estimate(const Vec3& x, Index hint) const {
 }
 
 Index SkinSurface::atom_of(Index c, const Vec3& x) const {
-  const MixedCell& m = mc_->cell(c);
+  // The simplex, not the cell: the output asks for every vertex's atom after
+  // the made cells have gone back, and the geometry is not read here.
+  const CellSimplex& m = mc_->simplex(c);
   Index best = kInvalidIndex;
   double best_pow = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= m.dim; ++i) {
