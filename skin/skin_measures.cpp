@@ -303,21 +303,23 @@ double wrap_angle(double t) {
 /// the coface graph (the neighbours across the cell planes, one dimension up).
 std::pair<Vec3, double> bounding_ball(const MixedComplex& mc, Index c) {
   std::vector<Index> tets{c};
-  for (int d = mc.cell(c).dim; d < 3; ++d) {
+  for (int d = mc.simplex(c).dim; d < 3; ++d) {
     std::vector<Index> up;
     for (Index x : tets)
       for (const Index nb : mc.neighbors(x))
-        if (mc.cell(nb).dim == d + 1) up.push_back(nb);
+        if (mc.simplex(nb).dim == d + 1) up.push_back(nb);
     std::sort(up.begin(), up.end());
     up.erase(std::unique(up.begin(), up.end()), up.end());
     tets.swap(up);
   }
-  const MixedCell& m = mc.cell(c);
+  const CellSimplex& m = mc.simplex(c);
   const auto& rt = mc.triangulation();
   Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
+  std::vector<Vec3> foci;  // the tetrahedra's, made and not kept (as the cells below)
+  for (Index t : tets) foci.push_back(mc.cell_value(t).focus);
   std::vector<Vec3> corners;
   for (int i = 0; i <= m.dim; ++i)
-    for (Index t : tets) corners.push_back(0.5 * (rt.point(m.vertices[i]).z + mc.cell(t).focus));
+    for (const Vec3& z : foci) corners.push_back(0.5 * (rt.point(m.vertices[i]).z + z));
   for (const Vec3& p : corners) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec3 centre = 0.5 * (lo + hi);
   double radius = 0;
@@ -363,7 +365,11 @@ Frame make_frame(const MixedCell& m) {
 }  // namespace
 
 PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
-  const MixedCell& m = mc.cell(c);
+  // The cell and its planes made and not kept (bit for bit those of cell()
+  // and planes()): the integration reads every cell once, and keeping them
+  // made the geometry of the whole complex at once (papers/mesher/
+  // decomposition.md, "The made cells between the stages").
+  const MixedCell m = mc.cell_value(c);
   PatchMeasure out;
   if (m.bounding) return out;
   const Frame f = make_frame(m);
@@ -377,8 +383,9 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
   const Tolerance quad{1e-12 * scale * scale, 1e-12 * scale * scale * (scale + centre.norm())};
 
   std::vector<FramePlane> planes;
-  std::vector<CellPlane> raw;
-  for (const CellPlane& p : mc.planes(c)) {
+  std::vector<CellPlane> raw, cell_planes;
+  mc.planes_into(c, cell_planes);
+  for (const CellPlane& p : cell_planes) {
     const double gamma = p.offset - p.normal.dot(f.z);  // the focus' distance inside the plane
     if (f.sigma < 0) {                                  // a sphere of radius sqrt(c) about the focus
       const double R = std::sqrt(f.c);
@@ -471,24 +478,38 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
   return out;
 }
 
-SkinMeasures skin_measures(const SkinSurface& skin, int threads) {
+namespace {
+
+/// skin_measures() over windows of consecutive cells: each window's patches
+/// on the threads, then summed in cell order, so the sums are those of one
+/// loop over every cell, bit for bit, for every window and thread count, and
+/// the patches' results take one window's memory, not one entry per cell.
+SkinMeasures measure_in_windows(const SkinSurface& skin, int threads) {
   const MixedComplex& mc = skin.mixed_complex();
-  const Index n = mc.num_cells();
-  std::vector<PatchMeasure> cells(static_cast<std::size_t>(n));
-  parallel_for(static_cast<std::size_t>(n), thread_count(threads), 256,
-               [&](std::size_t i) { cells[i] = patch_measure(mc, static_cast<Index>(i)); });
+  const auto n = static_cast<std::size_t>(mc.num_cells());
+  constexpr std::size_t kWindow = std::size_t{1} << 16;  // [chosen] 1.5 MB of results, 256 blocks of 256 cells
+  std::vector<PatchMeasure> cells(std::min(n, kWindow));
   SkinMeasures s;
-  for (const PatchMeasure& p : cells) {
-    s.area += p.area;
-    s.volume += p.volume;
-    s.patch_cells += p.nonempty ? 1 : 0;
+  for (std::size_t w = 0; w < n; w += kWindow) {
+    const std::size_t k = std::min(kWindow, n - w);
+    parallel_for(k, thread_count(threads), 256,
+                 [&](std::size_t i) { cells[i] = patch_measure(mc, static_cast<Index>(w + i)); });
+    for (std::size_t i = 0; i < k; ++i) {
+      s.area += cells[i].area;
+      s.volume += cells[i].volume;
+      s.patch_cells += cells[i].nonempty ? 1 : 0;
+    }
   }
   return s;
 }
 
+}  // namespace
+
+SkinMeasures skin_measures(const SkinSurface& skin, int threads) { return measure_in_windows(skin, threads); }
+
 SkinMeasures skin_measures(const std::vector<geometry::WeightedPoint>& points, int threads) {
   const SkinSurface skin(translated(points, local_frame_centre(points)), threads);
-  return skin_measures(skin, threads);
+  return measure_in_windows(skin, threads);
 }
 
 }  // namespace skinmesh::skin
