@@ -423,7 +423,7 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
       }
     }
   }
-  const Mat3 Q = mc.quadric_matrix(c);
+  const Mat3 Q = MixedComplex::quadric_matrix(m);
   for (std::size_t i = 0; i < raw.size(); ++i)
     for (std::size_t j = i + 1; j < raw.size(); ++j) {
       const Vec3& ni = raw[i].normal;

@@ -477,4 +477,67 @@ TEST_CASE("check_mesh: candidate pairs and duplicates equal brute force on a coa
   CHECK(r.self_intersection_examples == brute_force_intersections(m));
 }
 
+TEST_CASE("edges and edge-connected components of random triangle soups agree with brute force") {
+  // Few vertices and many triangles: shared, boundary, non-manifold and
+  // misoriented edges all occur, and components merge and split. Brute force:
+  // every edge's uses from a map, the components by repeated joining.
+  std::mt19937 rng(2026);
+  std::uniform_int_distribution<int> pick(0, 9);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    IndexedMesh m;
+    for (int v = 0; v < 10; ++v) m.positions.emplace_back(coord(rng), coord(rng), coord(rng));
+    const int nt = 1 + trial % 17;
+    while (static_cast<int>(m.triangles.size()) < nt) {
+      const std::array<Index, 3> t{Index(pick(rng)), Index(pick(rng)), Index(pick(rng))};
+      if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) m.triangles.push_back(t);
+    }
+    MeshCheckOptions o;
+    o.check_self_intersections = false;
+    const MeshCheckReport r = check_mesh(m, o);
+
+    std::map<std::pair<Index, Index>, std::vector<std::pair<std::size_t, int>>> uses;  // (triangle, direction)
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i) {
+        const Index a = m.triangles[t][i], b = m.triangles[t][(i + 1) % 3];
+        uses[{std::min(a, b), std::max(a, b)}].push_back({t, a < b ? 1 : -1});
+      }
+    std::vector<std::size_t> comp(m.triangles.size());
+    for (std::size_t t = 0; t < comp.size(); ++t) comp[t] = t;
+    for (bool changed = true; changed;) {  // every triangle takes the lowest label of an edge neighbour
+      changed = false;
+      for (const auto& [edge, u] : uses)
+        for (const auto& [t, d] : u)
+          for (const auto& [w, e] : u)
+            if (comp[w] < comp[t]) comp[t] = comp[w], changed = true;
+    }
+    std::map<std::size_t, std::size_t> id;  // lowest triangle -> component number
+    for (std::size_t t = 0; t < comp.size(); ++t)
+      if (!id.count(comp[t])) id[comp[t]] = id.size();
+    std::vector<MeshComponent> expect(id.size());
+    for (MeshComponent& c : expect) c.closed = c.oriented = true;
+    for (std::size_t t = 0; t < comp.size(); ++t) ++expect[id[comp[t]]].faces;
+    std::size_t boundary = 0, nonmanifold = 0, misoriented = 0;
+    for (const auto& [edge, u] : uses) {
+      MeshComponent& c = expect[id[comp[u[0].first]]];
+      ++c.edges;
+      if (u.size() == 1) ++boundary, c.closed = false;
+      if (u.size() > 2) ++nonmanifold;
+      if (u.size() == 2 && u[0].second == u[1].second) ++misoriented, c.oriented = false;
+    }
+    CAPTURE(trial);
+    CHECK(r.num_edges == uses.size());
+    CHECK(r.num_boundary_edges == boundary);
+    CHECK(r.num_nonmanifold_edges == nonmanifold);
+    CHECK(r.num_misoriented_edges == misoriented);
+    REQUIRE(r.components.size() == expect.size());
+    for (std::size_t c = 0; c < expect.size(); ++c) {
+      CHECK(r.components[c].faces == expect[c].faces);
+      CHECK(r.components[c].edges == expect[c].edges);
+      CHECK(r.components[c].closed == expect[c].closed);
+      CHECK(r.components[c].oriented == expect[c].oriented);
+    }
+  }
+}
+
 }  // TEST_SUITE
