@@ -219,7 +219,7 @@ class MixedComplex {
   /// GrowableArray of bytes, so at its size (160 KiB) pages mapped on their
   /// own: release_made() gives them back to the system, where freed heap
   /// blocks of malloc would stay resident and only serve later small blocks
-  /// (papers/mesher/decomposition.md, "The made cells before the output").
+  /// (papers/mesher/decomposition.md, "The made cells between the stages").
   template <class T>
   T* allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n) const;
   /// The markers of a cell whose planes, or geometry, a thread is making.
