@@ -297,7 +297,7 @@ void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, in
   }
   std::vector<geometry::SurfaceMesh*> meshes;
   for (front::SweepResult& g : groups) meshes.push_back(&g.mesh);
-  release_made_cells(skin);  // (again: without the refinement)
+  release_made_cells(skin);  // the only release here when the refinement is off
   write_output(skin, meshes, threads, res);
 }
 
