@@ -565,7 +565,8 @@ const T* make_once(std::atomic<const T*>& slot, const T* making, Make&& make) {
 }  // namespace
 
 template <class T>
-T* MixedComplex::allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n) const {
+T* MixedComplex::allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n,
+                               Index c) const {
   static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= alignof(std::max_align_t));
   constexpr std::size_t kBlockBytes = std::size_t{160} << 10;  // [chosen] a lock per several hundred cells
   const std::lock_guard<std::mutex> lock(made_mutex_);
@@ -581,12 +582,13 @@ T* MixedComplex::allocate_made(std::vector<GrowableArray<std::byte>>& blocks, st
   T* p = std::launder(reinterpret_cast<T*>(blocks.back().data())) + used;
   used += n;
   made_bytes_ += n * sizeof(T);
+  made_ids_.push_back(c);
   return p;
 }
 
 const MixedCell* MixedComplex::make_cell(Index c) const {
   return make_once(made_cells_[c], &kMakingCell, [&] {
-    MixedCell* out = allocate_made<MixedCell>(cell_blocks_, cell_block_used_, 1);
+    MixedCell* out = allocate_made<MixedCell>(cell_blocks_, cell_block_used_, 1, c);
     fill_cell(c, *out);
     return out;
   });
@@ -637,7 +639,7 @@ MixedCell MixedComplex::cell_value(Index c) const {
 
 const CellPlane* MixedComplex::make_planes(Index c) const {
   return make_once(cell_planes_[c], &kMakingPlanes, [&] {
-    CellPlane* out = allocate_made<CellPlane>(plane_blocks_, plane_block_used_, num_planes(c));
+    CellPlane* out = allocate_made<CellPlane>(plane_blocks_, plane_block_used_, num_planes(c), c);
     fill_planes(c, out);
     return out;
   });
@@ -694,11 +696,12 @@ void MixedComplex::planes_into(Index c, std::vector<CellPlane>& out) const {
 }
 
 void MixedComplex::release_made() const {
-  for (Index c = 0; c < num_cells(); ++c) {
+  const std::lock_guard<std::mutex> lock(made_mutex_);
+  for (const Index c : made_ids_) {
     made_cells_[c].store(nullptr, std::memory_order_relaxed);
     cell_planes_[c].store(nullptr, std::memory_order_relaxed);
   }
-  const std::lock_guard<std::mutex> lock(made_mutex_);
+  made_ids_ = GrowableArray<Index>();
   std::vector<GrowableArray<std::byte>>().swap(plane_blocks_);
   std::vector<GrowableArray<std::byte>>().swap(cell_blocks_);
   plane_block_used_ = cell_block_used_ = 0;

@@ -136,7 +136,10 @@ class MixedComplex {
   /// keep the planes of every cell they test.
   void planes_into(Index c, std::vector<CellPlane>& out) const;
   /// Gives back the memory of every cell and plane made so far; later calls
-  /// of cell() and planes() make them again, bit for bit the same. Pre: no
+  /// of cell() and planes() make them again, bit for bit the same. Its cost
+  /// is the number of cells made since the last release, not the number of
+  /// cells, so that releasing after each window of a large input costs what
+  /// the window made. Pre: no
   /// other thread uses the complex, and no reference from cell() or span
   /// from planes() is used afterwards.
   void release_made() const;
@@ -220,8 +223,10 @@ class MixedComplex {
   /// own: release_made() gives them back to the system, where freed heap
   /// blocks of malloc would stay resident and only serve later small blocks
   /// (papers/mesher/decomposition.md, "The made cells between the stages").
+  /// Records cell c in made_ids_, so that release_made() clears the slots of
+  /// the cells made, not of every cell.
   template <class T>
-  T* allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n) const;
+  T* allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n, Index c) const;
   /// The markers of a cell whose planes, or geometry, a thread is making.
   static const CellPlane kMakingPlanes;
   static const MixedCell kMakingCell;
@@ -250,6 +255,10 @@ class MixedComplex {
   mutable std::vector<GrowableArray<std::byte>> cell_blocks_;   ///< of MixedCell
   mutable std::size_t cell_block_used_ = 0;                     ///< cells used in cell_blocks_.back()
   mutable std::size_t made_bytes_ = 0;  ///< bytes of the cells and planes made since the last release
+  /// The cells whose geometry or planes were made since the last release, in
+  /// the order made (a cell twice if both were): 4 bytes per cell made, so
+  /// that release_made() costs what was made, not the size of the complex.
+  mutable GrowableArray<Index> made_ids_;
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
