@@ -24,7 +24,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <deque>
 #include <map>
 #include <string_view>
 #include <system_error>
@@ -62,24 +61,56 @@ struct SourceRecord {
 /// chain and residue, so they are matched by exact coordinates (gemmi's fast_float
 /// and std::from_chars both round correctly, so they agree on every field that
 /// passed parse_double), atom name and altloc; equal keys are served in file order.
+/// The records are one array sorted once by key and file order: about 80 bytes
+/// per atom and no allocation per atom, which on large files set the reader's
+/// time and memory (papers/skin/molecule_io.md, "Reading large files").
 class SourceIndex {
  public:
-  using Key = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, std::string, char>;
+  struct Key {
+    std::uint64_t x = 0, y = 0, z = 0;
+    std::string name;
+    char altloc = '\0';
+    friend bool operator<(const Key& a, const Key& b) {
+      return std::tie(a.x, a.y, a.z, a.name, a.altloc) < std::tie(b.x, b.y, b.z, b.name, b.altloc);
+    }
+    friend bool operator==(const Key& a, const Key& b) {
+      return std::tie(a.x, a.y, a.z, a.name, a.altloc) == std::tie(b.x, b.y, b.z, b.name, b.altloc);
+    }
+  };
 
   static Key key(double x, double y, double z, std::string name, char altloc) {
     return {bits(x), bits(y), bits(z), std::move(name), altloc};
   }
-  void add(Key k, SourceRecord r) { records_[std::move(k)].push_back(r); }
+  /// Adds the record of the next atom in file order.
+  void add(Key k, SourceRecord r) {
+    entries_.push_back({std::move(k), r, static_cast<std::uint32_t>(entries_.size()), false});
+    sorted_ = false;
+  }
   /// The record of `k` not handed out yet, or {0, true} if there is none.
   SourceRecord take(const Key& k) {
-    auto it = records_.find(k);
-    if (it == records_.end() || it->second.empty()) return {};
-    SourceRecord r = it->second.front();
-    it->second.pop_front();
-    return r;
+    if (!sorted_) {
+      std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+        return a.key < b.key || (!(b.key < a.key) && a.order < b.order);
+      });
+      sorted_ = true;
+    }
+    auto it =
+        std::lower_bound(entries_.begin(), entries_.end(), k, [](const Entry& e, const Key& u) { return e.key < u; });
+    for (; it != entries_.end() && it->key == k; ++it)
+      if (!it->taken) {
+        it->taken = true;
+        return it->record;
+      }
+    return {};
   }
 
  private:
+  struct Entry {
+    Key key;
+    SourceRecord record;
+    std::uint32_t order;  ///< position in the file among the records added
+    bool taken;
+  };
   /// The bits of `v` (std::bit_cast, spelled for C++17: this file is also built
   /// as C++17 by clang, whose C++20 mode rejects gemmi's cif headers; see
   /// tests/fuzz/CMakeLists.txt).
@@ -89,7 +120,8 @@ class SourceIndex {
     std::memcpy(&b, &v, sizeof b);
     return b;
   }
-  std::map<Key, std::deque<SourceRecord>> records_;
+  std::vector<Entry> entries_;
+  bool sorted_ = true;
 };
 
 // PDB Pre-scan
@@ -139,9 +171,10 @@ PdbScan scan_pdb(const std::string& path, std::string_view text) {
   scan.gemmi_text.reserve(text.size() + 1);
   bool seen_atom = false;
   const std::vector<std::string_view> lines = split_lines(text);
+  std::string line;  // one buffer for every line: no allocation per record
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const int line_no = static_cast<int>(k + 1);
-    std::string line(lines[k].substr(0, kGemmiLineLength));
+    line.assign(lines[k].substr(0, kGemmiLineLength));
     std::replace_if(
         line.begin(), line.end(), [](char c) { return c == '\0' || c == '\r'; }, ' ');
     const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                           // gemmi starts model 2
@@ -382,9 +415,10 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
 
       for (const gemmi::Atom& a : res.atoms) {
         const SourceRecord src = index.take(SourceIndex::key(a.pos.x, a.pos.y, a.pos.z, a.name, a.altloc));
-        const std::string who = describe(a.name, res.name, chain.name, resnum);
+        // Named only for a note or an error: most atoms get neither.
+        const auto who = [&] { return describe(a.name, res.name, chain.name, resnum); };
         if (skip_residue) {
-          notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who +
+          notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who() +
                                   " skipped (alternative residue; location " +
                                   std::string(1, position_first[position]) + " kept)");
           continue;
@@ -393,7 +427,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
           position_first.emplace(position, a.altloc);
           auto [it, inserted] = atom_first.emplace(AtomSlot{chain.name, resnum, res.seqid.icode, a.name}, a.altloc);
           if (!inserted && it->second != a.altloc) {
-            notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who +
+            notes.add(src.line, "alternate location " + std::string(1, a.altloc) + " of " + who() +
                                     " skipped (location " + std::string(1, it->second) + " kept)");
             continue;
           }
@@ -404,12 +438,12 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         }
         if (a.element == gemmi::El::X) {
           throw InputError(path, src.line,
-                           "unknown element for " + who +
+                           "unknown element for " + who() +
                                (src.element_from_column ? " (element column not recognised)"
                                                         : " (no element column; none recognised in the atom name)"));
         }
         if (a.element.is_hydrogen() && !opt.keep_hydrogens) {
-          notes.add(src.line, "hydrogen " + who + " skipped (hydrogens not kept)");
+          notes.add(src.line, "hydrogen " + who() + " skipped (hydrogens not kept)");
           continue;
         }
         Atom atom;
@@ -419,7 +453,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         atom.radius = r.radius;
         if (!r.from_bondi)
           notes.add(src.line,
-                    "no Bondi radius for element " + atom.element + " (" + who + "); using " + fallback_text + " A");
+                    "no Bondi radius for element " + atom.element + " (" + who() + "); using " + fallback_text + " A");
         atom.name = a.name;
         atom.residue = res.name;
         atom.chain = chain.name;
@@ -454,6 +488,7 @@ Molecule read_pdb(const std::string& path, const std::string& text, const ReadOp
   } catch (const std::exception& e) {
     throw InputError(path, gemmi_line(e.what()), std::string("PDB: ") + e.what());
   }
+  std::string().swap(scan.gemmi_text);  // a copy of the file: not needed while the atoms are made
   return from_structure(path, st, scan.index, opt);
 }
 

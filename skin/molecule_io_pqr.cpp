@@ -70,7 +70,8 @@ Molecule read_pqr(const std::string& path, const std::string& text, const ReadOp
     const double radius = parse_number(path, line_no, f[n - 1], "radius");
     atom.centre = Vec3(x, y, z);
     atom.element = pqr_element(atom.name, atom.residue);
-    const std::string who = describe(atom.name, atom.residue, atom.chain, atom.residue_number);
+    // Named only for a note or an error: most atoms get neither.
+    const auto who = [&] { return describe(atom.name, atom.residue, atom.chain, atom.residue_number); };
     const bool hydrogen = atom.element == "H" || atom.element == "D";
     if (is_water_residue(atom.residue) && !opt.keep_water) {
       notes.add(line_no,
@@ -78,13 +79,13 @@ Molecule read_pqr(const std::string& path, const std::string& text, const ReadOp
       continue;
     }
     if (hydrogen && radius == 0.0) {
-      notes.add(line_no, "hydrogen " + who + " has radius 0; skipped");
+      notes.add(line_no, "hydrogen " + who() + " has radius 0; skipped");
       continue;
     }
     if (radius <= 0.0)
-      throw InputError(path, line_no, "non-positive radius '" + std::string(f[n - 1]) + "' for " + who);
+      throw InputError(path, line_no, "non-positive radius '" + std::string(f[n - 1]) + "' for " + who());
     if (hydrogen && !opt.keep_hydrogens) {
-      notes.add(line_no, "hydrogen " + who + " skipped (hydrogens not kept)");
+      notes.add(line_no, "hydrogen " + who() + " skipped (hydrogens not kept)");
       continue;
     }
     atom.radius = radius;

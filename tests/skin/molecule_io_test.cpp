@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -337,6 +338,42 @@ TEST_CASE("read_molecule: first model, first alternate location, fallback radius
   CHECK(m.notes[1].rfind(path + ":7: alternate location B", 0) == 0);
   CHECK(m.notes[2].rfind(path + ":8: alternate location B", 0) == 0);
   CHECK(m.notes[3].rfind(path + ":9: no Bondi radius for element Fe", 0) == 0);
+}
+
+TEST_CASE("read_molecule: atoms with equal coordinates, name and altloc get their own lines in file order") {
+  // gemmi returns atoms regrouped by chain; the reader finds each one's line
+  // by (x, y, z, name, altloc), and equal keys must be served in file order.
+  // Chain B's atoms come between chain A's, so gemmi's order is not the file's.
+  std::string text = "HEADER    TEST\n";
+  text += pdb_atom("ATOM", 1, " CA", ' ', "GLY", "A", 1, "1.000", "2.000", "3.000", "C");  // line 2
+  text += pdb_atom("ATOM", 2, " CA", ' ', "GLY", "B", 1, "1.000", "2.000", "3.000", "C");  // line 3
+  text += pdb_atom("ATOM", 3, " H", ' ', "GLY", "B", 1, "1.000", "2.000", "3.000", "H");   // line 4
+  text += pdb_atom("ATOM", 4, " CA", ' ', "GLY", "A", 2, "1.000", "2.000", "3.000", "C");  // line 5
+  text += pdb_atom("ATOM", 5, " H", ' ', "GLY", "A", 2, "1.000", "2.000", "3.000", "H");   // line 6
+  text += "END\n";
+  const std::string path = scratch().write("ties.pdb", text);
+  const Molecule m = read_molecule(path);
+  REQUIRE(m.atoms.size() == 5);
+  std::vector<int> lines, chain_a, chain_b;
+  for (const auto& a : m.atoms) {
+    lines.push_back(a.line);
+    (a.chain == "A" ? chain_a : chain_b).push_back(a.line);
+  }
+  // Every atom has a line of its own, and each chain's keep file order.
+  std::sort(lines.begin(), lines.end());
+  CHECK(lines == std::vector<int>{2, 3, 4, 5, 6});
+  CHECK(chain_a == std::vector<int>{2, 5, 6});
+  CHECK(chain_b == std::vector<int>{3, 4});
+  // Without hydrogens: each one is named at its own line.
+  ReadOptions no_h;
+  no_h.keep_hydrogens = false;
+  const Molecule heavy = read_molecule(path, no_h);
+  REQUIRE(heavy.atoms.size() == 3);
+  REQUIRE(heavy.notes.size() == 2);
+  std::vector<std::string> notes = heavy.notes;
+  std::sort(notes.begin(), notes.end());
+  CHECK(notes[0].rfind(path + ":4: hydrogen", 0) == 0);
+  CHECK(notes[1].rfind(path + ":6: hydrogen", 0) == 0);
 }
 
 TEST_CASE("read_molecule: bad inputs name the file and the line") {
