@@ -78,15 +78,13 @@ std::size_t msms_header(const std::string& path, const std::vector<std::string_v
   return static_cast<std::size_t>(n);
 }
 
-/// The MSMS .vert and .face files of `m` with its vertex data; `name` goes
-/// into the comment lines.
-std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const SkinVertexData& data,
-                                              const std::string& name) {
-  const std::vector<int> component = vertex_components(m);
-  int n_atoms = 0;
-  for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
+/// Writes the MSMS .vert file of `m` with its vertex data into `w`; `name`
+/// goes into the comment lines, `component` is vertex_components(m).
+void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
+                     const std::vector<int>& component, int n_atoms, geometry::ChunkedWriter& w) {
   char buf[160];
-  std::string vert = "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
+  std::string& vert = w.buffer();
+  vert += "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
   vert += "#vertex #sphere density probe_r\n";
   std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.positions.size(), n_atoms, 0.0, 0.0);
   vert += buf;
@@ -97,8 +95,16 @@ std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const SkinVe
     std::snprintf(buf, sizeof buf, "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d\n", p.x(), p.y(), p.z(), n.x(),
                   n.y(), n.z(), component[v], atom, msms_type(data, v));
     vert += buf;
+    w.spill();
   }
-  std::string face = "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
+}
+
+/// Writes the MSMS .face file of `m` into `w` (as write_msms_vert()).
+void write_msms_face(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
+                     const std::vector<int>& component, int n_atoms, geometry::ChunkedWriter& w) {
+  char buf[160];
+  std::string& face = w.buffer();
+  face += "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
   face += "#faces  #sphere density probe_r\n";
   std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.triangles.size(), n_atoms, 0.0, 0.0);
   face += buf;
@@ -108,8 +114,8 @@ std::pair<std::string, std::string> msms_text(const IndexedMesh& m, const SkinVe
     std::snprintf(buf, sizeof buf, "%6u %6u %6u %2d %6d\n", unsigned(t[0] + 1), unsigned(t[1] + 1), unsigned(t[2] + 1),
                   type, component[t[0]]);
     face += buf;
+    w.spill();
   }
-  return {vert, face};
 }
 
 /// Reads the MSMS .vert and .face files (their paths for messages); the atoms
@@ -238,9 +244,16 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   geometry::check_writable(mesh);
   const auto [vert_path, face_path] = msms_paths(path);
   const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
-  const auto [vert, face] = msms_text(mesh, data, name.substr(0, name.size() - 5));
+  const std::string stem = name.substr(0, name.size() - 5);
+  const std::vector<int> component = vertex_components(mesh);
+  int n_atoms = 0;
+  for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
+  using geometry::ChunkedWriter;
   // The .face first, then the .vert: a reader polling for the .vert finds the pair complete.
-  geometry::write_files_atomically({{face_path, face}, {vert_path, vert}}, "mesh");
+  geometry::write_files_atomically(
+      {{face_path, [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, n_atoms, w); }},
+       {vert_path, [&](ChunkedWriter& w) { write_msms_vert(mesh, data, stem, component, n_atoms, w); }}},
+      "mesh");
 }
 
 IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* data) {

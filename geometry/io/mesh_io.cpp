@@ -49,7 +49,8 @@ void append_index(std::string& out, std::uint64_t i) {
   out.append(buf.data(), r.ptr);
 }
 
-void append_triangle_lines(std::string& out, const std::vector<std::array<Index, 3>>& triangles) {
+void append_triangle_lines(ChunkedWriter& w, const std::vector<std::array<Index, 3>>& triangles) {
+  std::string& out = w.buffer();
   for (const auto& t : triangles) {
     out += '3';
     for (Index v : t) {
@@ -57,6 +58,7 @@ void append_triangle_lines(std::string& out, const std::vector<std::array<Index,
       append_index(out, v);
     }
     out += '\n';
+    w.spill();
   }
 }
 
@@ -74,16 +76,16 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
 
 namespace {
 
-using mesh_io_detail::obj_text;
-using mesh_io_detail::off_text;
-using mesh_io_detail::ply_bytes;
 using mesh_io_detail::read_obj;
 using mesh_io_detail::read_off;
 using mesh_io_detail::read_ply;
 using mesh_io_detail::read_stl;
 using mesh_io_detail::read_vtk;
-using mesh_io_detail::stl_bytes;
-using mesh_io_detail::vtk_text;
+using mesh_io_detail::write_obj;
+using mesh_io_detail::write_off;
+using mesh_io_detail::write_ply;
+using mesh_io_detail::write_stl;
+using mesh_io_detail::write_vtk;
 
 }  // namespace
 
@@ -110,10 +112,11 @@ void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& at
 
 namespace {
 
-/// Writes `bytes` to a fresh temporary file beside `path` and returns its
-/// name. On failure the temporary is removed and InputError(path, 0, "cannot
-/// write <what> (reason)") is thrown.
-std::string write_temporary(const std::string& path, const std::string& bytes, const std::string& what) {
+/// Writes the bytes `produce` makes to a fresh temporary file beside `path`,
+/// chunk by chunk, and returns its name. On failure the temporary is removed
+/// and InputError(path, 0, "cannot write <what> (reason)") is thrown; an
+/// exception from `produce` removes it too and is passed on.
+std::string write_temporary(const std::string& path, const FileProducer& produce, const std::string& what) {
   static std::atomic<unsigned> counter{0};
   std::string tmp;
   std::FILE* f = nullptr;
@@ -126,13 +129,29 @@ std::string write_temporary(const std::string& path, const std::string& bytes, c
   int error = 0;  // errno of the first failing step (EIO if the step left none)
   const auto failure = [] { return errno != 0 ? errno : EIO; };
   errno = 0;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() || std::fflush(f) != 0) error = failure();
+  ChunkedWriter out([&](std::string_view chunk) {
+    if (error == 0 && std::fwrite(chunk.data(), 1, chunk.size(), f) != chunk.size()) error = failure();
+  });
+  try {
+    produce(out);
+    out.flush();
+  } catch (...) {
+    std::fclose(f);
+    std::remove(tmp.c_str());
+    throw;
+  }
+  if (error == 0 && std::fflush(f) != 0) error = failure();
   if (std::fclose(f) != 0 && error == 0) error = failure();
   if (error != 0) {
     std::remove(tmp.c_str());
     throw InputError(path, 0, "cannot write " + what + " (" + std::strerror(error) + ")");
   }
   return tmp;
+}
+
+/// A producer of the bytes of `bytes`.
+FileProducer bytes_producer(const std::string& bytes) {
+  return [&bytes](ChunkedWriter& out) { out.write(bytes); };
 }
 
 /// Renames the temporary `tmp` onto `path`; on failure removes it and throws
@@ -147,13 +166,17 @@ void rename_onto(const std::string& tmp, const std::string& path, const std::str
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what) {
-  rename_onto(write_temporary(path, bytes, what), path, what);
+void write_file_atomically(const std::string& path, const FileProducer& produce, const std::string& what) {
+  rename_onto(write_temporary(path, produce, what), path, what);
 }
 
-void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files, const std::string& what) {
+void write_file_atomically(const std::string& path, const std::string& bytes, const std::string& what) {
+  write_file_atomically(path, bytes_producer(bytes), what);
+}
+
+void write_files_atomically(const std::vector<std::pair<std::string, FileProducer>>& files, const std::string& what) {
   // A folder in the way would fail a later rename only: refused first.
-  for (const auto& [path, bytes] : files)
+  for (const auto& [path, produce] : files)
     if (std::filesystem::is_directory(path))
       throw InputError(path, 0, "cannot write " + what + " (a folder has this name)");
   std::vector<std::string> temporaries;
@@ -161,7 +184,7 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
     for (std::size_t k = from; k < temporaries.size(); ++k) std::remove(temporaries[k].c_str());
   };
   try {
-    for (const auto& [path, bytes] : files) temporaries.push_back(write_temporary(path, bytes, what));
+    for (const auto& [path, produce] : files) temporaries.push_back(write_temporary(path, produce, what));
   } catch (...) {
     remove_temporaries(0);
     throw;
@@ -174,6 +197,12 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
       throw;
     }
   }
+}
+
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files, const std::string& what) {
+  std::vector<std::pair<std::string, FileProducer>> producers;
+  for (const auto& [path, bytes] : files) producers.emplace_back(path, bytes_producer(bytes));
+  write_files_atomically(producers, what);
 }
 
 // Mesh I/O Function Definitions
@@ -199,19 +228,24 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
   check_writable(mesh, attributes);
   switch (format) {
     case MeshFormat::Ply:
-      write_file_atomically(path, ply_bytes(mesh, attributes, opt), "mesh");
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_ply(mesh, attributes, opt, out); }, "mesh");
       return;
     case MeshFormat::Off:
-      write_file_atomically(path, off_text(mesh, opt), "mesh");
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_off(mesh, opt, out); }, "mesh");
       return;
     case MeshFormat::Obj:
-      write_file_atomically(path, obj_text(mesh, opt), "mesh");
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_obj(mesh, opt, out); }, "mesh");
       return;
     case MeshFormat::Stl:
-      write_file_atomically(path, stl_bytes(mesh), "mesh");
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_stl(mesh, out); }, "mesh");
       return;
     case MeshFormat::Vtk:
-      write_file_atomically(path, vtk_text(mesh, attributes, opt), "mesh");
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_vtk(mesh, attributes, opt, out); }, "mesh");
       return;
   }
 }

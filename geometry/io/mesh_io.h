@@ -9,8 +9,11 @@
 // geometry/io/mesh_io_{ply,off,obj,stl,vtk}.cpp (see geometry/io/mesh_io_internal.h).
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -116,6 +119,56 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
 /// skinmesh writes them (exact). The verifier's vertex-distance tolerance must
 /// not be below it.
 double position_rounding(MeshFormat format, const IndexedMesh& mesh);
+
+/// The bytes of one file as a writer makes them, handed to a sink in chunks of
+/// about kChunkBytes, so that no writer holds a whole file: the PLY of a
+/// 66 M-triangle mesh is 1.8 GB, beside the mesh it comes from. A writer
+/// appends to buffer() and calls spill() after each record; whoever made the
+/// ChunkedWriter calls flush() at the end. The bytes reach the sink in order,
+/// the same bytes as one string would hold.
+class ChunkedWriter {
+ public:
+  static constexpr std::size_t kChunkBytes = std::size_t{1} << 20;  // [chosen] few writes, little memory
+  using Sink = std::function<void(std::string_view)>;
+  explicit ChunkedWriter(Sink sink) : sink_(std::move(sink)) {}
+  /// The bytes made and not yet handed on: append here.
+  std::string& buffer() { return buffer_; }
+  /// Hands the buffer on once it holds kChunkBytes or more.
+  void spill() {
+    if (buffer_.size() >= kChunkBytes) flush();
+  }
+  /// Hands on whatever the buffer holds.
+  void flush() {
+    if (!buffer_.empty()) sink_(buffer_);
+    buffer_.clear();
+  }
+  /// Hands on the buffer, then `bytes` as they are (not copied).
+  void write(std::string_view bytes) {
+    flush();
+    if (!bytes.empty()) sink_(bytes);
+  }
+
+ private:
+  Sink sink_;
+  std::string buffer_;
+};
+
+/// Makes the bytes of one file into a ChunkedWriter (through buffer() and
+/// spill(); the caller flushes).
+using FileProducer = std::function<void(ChunkedWriter& out)>;
+
+/// Writes the bytes `produce` makes to a fresh temporary file beside `path`,
+/// chunk by chunk, then renames it onto `path`, so that readers never see a
+/// partial file and the whole file is never in memory. On any failure
+/// (including an exception from `produce`, passed on) the temporary file is
+/// removed; a failed write throws InputError(path, 0, "cannot write <what>
+/// (reason)").
+void write_file_atomically(const std::string& path, const FileProducer& produce, const std::string& what = "file");
+
+/// write_files_atomically() below with producers: each file written chunk by
+/// chunk.
+void write_files_atomically(const std::vector<std::pair<std::string, FileProducer>>& files,
+                            const std::string& what = "file");
 
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it onto
 /// `path`, so that readers never see a partial file. On any failure the

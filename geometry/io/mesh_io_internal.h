@@ -36,43 +36,45 @@ void append_number(std::string& out, double v, bool double_precision);
 /// Appends the decimal text of `i`.
 void append_index(std::string& out, std::uint64_t i);
 
-/// Appends one line "3 a b c" per triangle (0-based indices): the polygon list
-/// of OFF and of legacy VTK.
-void append_triangle_lines(std::string& out, const std::vector<std::array<Index, 3>>& triangles);
+/// Appends one line "3 a b c" per triangle (0-based indices), spilling after
+/// each: the polygon list of OFF and of legacy VTK.
+void append_triangle_lines(ChunkedWriter& out, const std::vector<std::array<Index, 3>>& triangles);
 
 /// Checks that every triangle index is < positions.size(); `lines[i]` (if given)
 /// is the source line of triangle i. Throws InputError(path, line, "face i: vertex
 /// index v out of range (n vertices)").
 void check_indices(const std::string& path, const IndexedMesh& m, const std::vector<int>& lines);
 
-// Formats: writers return the whole file; readers take the whole file `data`
-// read from `path` (for messages) and throw InputError as read_mesh() says.
+// Formats: writers make the whole file into a ChunkedWriter (mesh_io.h),
+// spilling it record by record, and leave the last chunk for the caller to
+// flush; readers take the whole file `data` read from `path` (for messages) and
+// throw InputError as read_mesh() says.
 
 /// The binary little-endian PLY file of `m` (layout: write_mesh() in mesh_io.h).
 /// Pre: `m` passed the checks of write_mesh() (check_writable in mesh_io.cpp).
-std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
-                      const MeshWriteOptions& opt);
+void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
+               ChunkedWriter& out);
 
 /// Reads a PLY file (ascii, binary_little_endian or binary_big_endian); the
 /// scalar vertex properties besides the position and normal into `attributes`.
 IndexedMesh read_ply(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
 
 /// The OFF file of `m` (NOFF with normals if m.normals is set).
-std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+void write_off(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& out);
 
 /// Reads an OFF file ([ST][C][N]OFF, ascii).
 IndexedMesh read_off(const std::string& path, const std::string& data);
 
 /// The Wavefront OBJ file of `m` (`v`, then `vn` and `f a//a b//b c//c` if
 /// m.normals is set, else `f a b c`; 1-based indices).
-std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt);
+void write_obj(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& out);
 
 /// Reads a Wavefront OBJ file (`v`, `vn`, `f`; other statements ignored).
 IndexedMesh read_obj(const std::string& path, const std::string& data);
 
 /// The binary STL file of `m` (80-byte header, triangle count, per triangle
 /// the unit facet normal and the three corners as float32, 2 zero bytes).
-std::string stl_bytes(const IndexedMesh& m);
+void write_stl(const IndexedMesh& m, ChunkedWriter& out);
 
 /// Reads a binary or ascii STL file; corners with identical coordinates
 /// become one vertex (in order of first appearance). No normals.
@@ -80,7 +82,8 @@ IndexedMesh read_stl(const std::string& path, const std::string& data);
 
 /// The legacy VTK file of `m` (ascii POLYDATA; POINT_DATA normals when set and
 /// one SCALARS array per attribute; CELL_DATA min_angle in degrees).
-std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt);
+void write_vtk(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
+               ChunkedWriter& out);
 
 /// Reads an ascii legacy VTK POLYDATA file (POINTS, POLYGONS of triangles;
 /// VERTICES and LINES skipped; POINT_DATA NORMALS kept, one-component SCALARS

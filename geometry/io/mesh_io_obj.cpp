@@ -14,8 +14,9 @@
 
 namespace skinmesh::geometry::mesh_io_detail {
 
-std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
-  std::string out = "# written by skinmesh\n";
+void write_obj(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& w) {
+  std::string& out = w.buffer();
+  out += "# written by skinmesh\n";
   // One statement `<keyword> x y z`.
   auto vector_line = [&](const char* keyword, const Vec3& v) {
     out += keyword;
@@ -24,6 +25,7 @@ std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
       append_number(out, v[k], opt.double_precision);
     }
     out += '\n';
+    w.spill();
   };
   for (const Vec3& p : m.positions) vector_line("v", p);
   for (const Vec3& n : m.normals) vector_line("vn", n);
@@ -38,8 +40,8 @@ std::string obj_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
       }
     }
     out += '\n';
+    w.spill();
   }
-  return out;
 }
 
 IndexedMesh read_obj(const std::string& path, const std::string& data) {

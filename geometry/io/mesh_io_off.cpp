@@ -12,8 +12,9 @@
 
 namespace skinmesh::geometry::mesh_io_detail {
 
-std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
-  std::string out = m.normals.empty() ? "OFF\n" : "NOFF\n";
+void write_off(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& w) {
+  std::string& out = w.buffer();
+  out += m.normals.empty() ? "OFF\n" : "NOFF\n";
   out += std::to_string(m.positions.size()) + " " + std::to_string(m.triangles.size()) + " 0\n";
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
@@ -26,9 +27,9 @@ std::string off_text(const IndexedMesh& m, const MeshWriteOptions& opt) {
         append_number(out, m.normals[i][k], opt.double_precision);
       }
     out += '\n';
+    w.spill();
   }
-  append_triangle_lines(out, m.triangles);
-  return out;
+  append_triangle_lines(w, m.triangles);
 }
 
 IndexedMesh read_off(const std::string& path, const std::string& data) {

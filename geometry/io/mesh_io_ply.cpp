@@ -308,10 +308,11 @@ void read_ply_body(const std::string& path, Reader& in, const std::vector<PlyEle
 
 }  // namespace
 
-std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
-                      const MeshWriteOptions& opt) {
+void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
+               ChunkedWriter& w) {
   const char* real = opt.double_precision ? "double" : "float";
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by skinmesh\n";
+  std::string& out = w.buffer();
+  out += "ply\nformat binary_little_endian 1.0\ncomment written by skinmesh\n";
   out += "element vertex " + std::to_string(m.positions.size()) + "\n";
   for (const char* p : {"x", "y", "z"}) out += std::string("property ") + real + " " + p + "\n";
   if (!m.normals.empty())
@@ -320,11 +321,6 @@ std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& 
     out += std::string("property ") + (a.integer ? "int" : real) + " " + a.name + "\n";
   out += "element face " + std::to_string(m.triangles.size()) + "\n";
   out += "property list uchar int vertex_indices\nend_header\n";
-  const std::size_t real_size = opt.double_precision ? 8 : 4;
-  std::size_t attribute_size = 0;
-  for (const VertexAttribute& a : attributes) attribute_size += a.integer ? 4 : real_size;
-  out.reserve(out.size() + m.positions.size() * (3 * real_size * (m.normals.empty() ? 1 : 2) + attribute_size) +
-              m.triangles.size() * 13);
   auto put_real = [&](double v) {
     if (opt.double_precision)
       append_le(out, v);
@@ -341,12 +337,13 @@ std::string ply_bytes(const IndexedMesh& m, const std::vector<VertexAttribute>& 
       else
         put_real(a.values[i]);
     }
+    w.spill();
   }
   for (const auto& t : m.triangles) {
     append_le(out, static_cast<std::uint8_t>(3));
     for (Index v : t) append_le(out, static_cast<std::int32_t>(v));
+    w.spill();
   }
-  return out;
 }
 
 IndexedMesh read_ply(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes) {

@@ -143,9 +143,8 @@ IndexedMesh read_stl_ascii(const std::string& path, const std::string& data) {
 
 }  // namespace
 
-std::string stl_bytes(const IndexedMesh& m) {
-  std::string out;
-  out.reserve(84 + 50 * m.triangles.size());
+void write_stl(const IndexedMesh& m, ChunkedWriter& w) {
+  std::string& out = w.buffer();
   std::string header = "binary STL written by skinmesh: " + std::to_string(m.triangles.size()) + " triangles";
   header.resize(80, ' ');
   out += header;
@@ -158,8 +157,8 @@ std::string stl_bytes(const IndexedMesh& m) {
     for (Index v : t)
       for (int k = 0; k < 3; ++k) put_f32(out, m.positions[v][k]);
     out.append(2, '\0');  // attribute byte count
+    w.spill();
   }
-  return out;
 }
 
 IndexedMesh read_stl(const std::string& path, const std::string& data) {

@@ -83,11 +83,12 @@ bool is_integer_type(std::string_view type) {
 
 }  // namespace
 
-std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes,
-                     const MeshWriteOptions& opt) {
+void write_vtk(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
+               ChunkedWriter& w) {
   const bool dp = opt.double_precision;
   const char* type = dp ? "double" : "float";
-  std::string out = "# vtk DataFile Version 3.0\nskinmesh: a triangulated skin surface\nASCII\nDATASET POLYDATA\n";
+  std::string& out = w.buffer();
+  out += "# vtk DataFile Version 3.0\nskinmesh: a triangulated skin surface\nASCII\nDATASET POLYDATA\n";
   out += "POINTS " + std::to_string(m.positions.size()) + " " + type + "\n";
   for (const Vec3& p : m.positions) {
     for (int k = 0; k < 3; ++k) {
@@ -95,9 +96,10 @@ std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& a
       append_number(out, p[k], dp);
     }
     out += '\n';
+    w.spill();
   }
   out += "POLYGONS " + std::to_string(m.triangles.size()) + " " + std::to_string(4 * m.triangles.size()) + "\n";
-  append_triangle_lines(out, m.triangles);
+  append_triangle_lines(w, m.triangles);
   if (!m.normals.empty() || !attributes.empty()) {
     out += "POINT_DATA " + std::to_string(m.positions.size()) + "\n";
     if (!m.normals.empty()) {
@@ -108,6 +110,7 @@ std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& a
           append_number(out, n[k], dp);
         }
         out += '\n';
+        w.spill();
       }
     }
     for (const VertexAttribute& a : attributes) {
@@ -118,6 +121,7 @@ std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& a
         else
           append_number(out, v, dp);
         out += '\n';
+        w.spill();
       }
     }
   }
@@ -126,9 +130,9 @@ std::string vtk_text(const IndexedMesh& m, const std::vector<VertexAttribute>& a
     for (const auto& t : m.triangles) {
       append_number(out, min_angle(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) * 180 / kPi, dp);
       out += '\n';
+      w.spill();
     }
   }
-  return out;
 }
 
 IndexedMesh read_vtk(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes) {

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/errors.h"
@@ -359,6 +360,82 @@ TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
     CHECK_THROWS_AS(write_mesh(scratch().path("out.stp"), m), InputError);
     CHECK_FALSE(std::filesystem::exists(scratch().path("out.stp")));
   }
+}
+
+TEST_CASE("mesh_io: files are written chunk by chunk, the same bytes as one string") {
+  using skinmesh::geometry::ChunkedWriter;
+  // The chunks reach the sink in order; every one but the last holds at least
+  // kChunkBytes, and none much more (a record at most past the threshold).
+  std::vector<std::string> chunks;
+  ChunkedWriter w([&](std::string_view c) { chunks.emplace_back(c); });
+  std::string whole;
+  std::mt19937 rng(7);
+  for (int i = 0; i < 300000; ++i) {
+    const std::string record(1 + rng() % 40, static_cast<char>('a' + i % 26));
+    w.buffer() += record;
+    whole += record;
+    w.spill();
+  }
+  w.write("tail");
+  whole += "tail";
+  w.flush();  // nothing left: no empty chunk
+  REQUIRE(chunks.size() >= 4);
+  std::string joined;
+  for (std::size_t k = 0; k < chunks.size(); ++k) {
+    joined += chunks[k];
+    if (k + 2 < chunks.size()) {
+      CHECK(chunks[k].size() >= ChunkedWriter::kChunkBytes);
+      CHECK(chunks[k].size() < ChunkedWriter::kChunkBytes + 41);
+    }
+  }
+  CHECK(chunks.back() == "tail");
+  CHECK(joined == whole);
+
+  // A mesh of several chunks in every format: it reads back as written, and a
+  // second write gives the same bytes.
+  IndexedMesh m;
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  const std::size_t n = 60000;
+  for (std::size_t i = 0; i < n; ++i) {
+    m.positions.emplace_back(u(rng), u(rng), u(rng));
+    m.normals.push_back(Vec3(u(rng), u(rng), u(rng)).normalized());
+  }
+  for (std::size_t i = 0; i + 2 < n; ++i)
+    m.triangles.push_back(
+        {static_cast<skinmesh::Index>(i), static_cast<skinmesh::Index>(i + 1), static_cast<skinmesh::Index>(i + 2)});
+  for (const char* ext : {"ply", "off", "obj", "vtk"}) {
+    CAPTURE(ext);
+    const std::string path = scratch().path(std::string("chunked.") + ext);
+    write_mesh(path, m);
+    CHECK(std::filesystem::file_size(path) > 2 * ChunkedWriter::kChunkBytes);
+    check_same_geometry(m, read_mesh(path), true);
+  }
+  const std::string stl = scratch().path("chunked.stl");
+  write_mesh(stl, m);
+  CHECK(std::filesystem::file_size(stl) == 84 + 50 * m.triangles.size());
+  CHECK(read_mesh(stl).triangles.size() == m.triangles.size());
+}
+
+TEST_CASE("mesh_io: a producer that fails half-way leaves no file and no temporary behind") {
+  using skinmesh::geometry::ChunkedWriter;
+  const std::filesystem::path sub = scratch().dir / "failing";
+  std::filesystem::create_directories(sub);
+  const std::string path = (sub / "half.bin").string();
+  CHECK_THROWS_AS(skinmesh::geometry::write_file_atomically(path,
+                                                            [](ChunkedWriter& w) {
+                                                              w.buffer().assign(3 * ChunkedWriter::kChunkBytes, 'x');
+                                                              w.spill();  // a chunk reaches the file
+                                                              throw std::runtime_error("the writer failed");
+                                                            }),
+                  std::runtime_error);
+  CHECK(std::filesystem::is_empty(sub));
+  // The same producer without the failure writes the file whole.
+  skinmesh::geometry::write_file_atomically(path, [](ChunkedWriter& w) {
+    w.buffer().assign(3 * ChunkedWriter::kChunkBytes, 'x');
+    w.spill();
+    w.buffer() += "end";
+  });
+  CHECK(std::filesystem::file_size(path) == 3 * ChunkedWriter::kChunkBytes + 3);
 }
 
 TEST_CASE("hostile input: a header that claims more records than the file holds is refused before allocating") {
