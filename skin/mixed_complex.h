@@ -139,9 +139,8 @@ class MixedComplex {
   /// of cell() and planes() make them again, bit for bit the same. Its cost
   /// is the number of cells made since the last release, not the number of
   /// cells, so that releasing after each window of a large input costs what
-  /// the window made. Pre: no
-  /// other thread uses the complex, and no reference from cell() or span
-  /// from planes() is used afterwards.
+  /// the window made. Pre: no other thread uses the complex, and no reference
+  /// from cell() or span from planes() is used afterwards.
   void release_made() const;
   /// Bytes of the cells (88 each) and planes (40 each) made since the
   /// construction or the last release_made().
