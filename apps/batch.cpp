@@ -93,14 +93,18 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
     if (!res.ok()) {
       item.exit_code = 3;
       item.status = "failed check";
-      item.message = res.check.problems.empty() ? std::string() : res.check.problems.front();
+      const std::vector<std::string> problems = res.problems();
+      item.message = problems.empty() ? std::string() : problems.front();
       if (!a.force) {
-        item.message += " (not written; --force writes it)";
+        if (res.check.ok())
+          item.message = stored_check_error(item.output, res);
+        else
+          item.message += " (not written; --force writes it)";
         item.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         return;
       }
     }
-    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data);
+    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, write_options(a));
     if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
     if (!res.static_fallback.empty() && item.message.empty())
       item.message = res.static_fallback + "; meshed by the static baseline instead";
@@ -151,6 +155,7 @@ int run_batch(const MeshArgs& a) {
   require_writable(items.front().output);
   mesher::MeshOptions base = mesh_options(a);
   if (!a.threads_given) base.threads = 1;  // the workers share the cores
+  base.stored_positions = skin::position_storage("mesh." + a.batch_format, write_options(a));
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   std::atomic<std::size_t> next{0}, done{0};

@@ -147,6 +147,7 @@ int run_mesh(MeshArgs& a) {
   const double read_s = since(start);
   peaks.end("read");
   mesher::MeshOptions options = mesh_options(a);
+  options.stored_positions = skin::position_storage(a.out, write_options(a));
   if (a.trace) options.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   ProgressReporter progress(!a.mol.quiet);
   options.progress = [&progress, &peaks](const std::string& stage, double f) {
@@ -163,13 +164,26 @@ int run_mesh(MeshArgs& a) {
 
   const bool failed = !res.ok();
   if (failed && !a.force) {
-    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
-    std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
-    if (!a.stats.empty()) write_text_file(a.stats, res.check.to_json());
+    for (const std::string& p : res.problems()) std::cerr << "problem: " << p << "\n";
+    if (res.check.ok())
+      std::cerr << "error: " << stored_check_error(a.out, res) << "\n";
+    else
+      std::cerr << "error: the mesh failed its checks; not written (use --force to write it anyway)\n";
+    if (!a.stats.empty()) {
+      // The check's report; a failed check of the stored positions beside it.
+      nlohmann::ordered_json report = nlohmann::ordered_json::parse(res.check.to_json());
+      if (res.stored_check) {
+        report["ok"] = false;
+        report["stored_positions"] = {{"storage", res.stored_as},
+                                      {"max_displacement_A", res.stored_displacement},
+                                      {"report", nlohmann::ordered_json::parse(res.stored_check->to_json())}};
+      }
+      write_text_file(a.stats, report.dump(2) + "\n");
+    }
     return 3;
   }
   const auto write_start = Clock::now();
-  skin::write_skin_mesh(a.out, res.mesh, res.vertex_data);
+  skin::write_skin_mesh(a.out, res.mesh, res.vertex_data, write_options(a));
   const double write_s = since(write_start);
   peaks.end("write");
   const double total = since(start);
@@ -196,7 +210,7 @@ int run_mesh(MeshArgs& a) {
               << (res.checked ? ", min angle " + std::to_string(res.check.mesh.min_angle_deg) + "°" : std::string())
               << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s\n";
   if (failed)
-    for (const std::string& p : res.check.problems) std::cerr << "problem: " << p << "\n";
+    for (const std::string& p : res.problems()) std::cerr << "problem: " << p << "\n";
   return failed ? 3 : 0;
 }
 
@@ -234,6 +248,27 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
 }
 
 }  // namespace
+
+skin::SkinMeshWriteOptions write_options(const MeshArgs& a) {
+  skin::SkinMeshWriteOptions w;
+  w.msms_decimals = a.msms_decimals;
+  w.probe_radius = a.mol.probe;
+  return w;
+}
+
+std::string stored_check_error(const std::string& path, const mesher::MeshResult& res) {
+  const std::vector<std::string>& p = res.stored_check->problems;
+  char moved[32];
+  std::snprintf(moved, sizeof moved, "%.2g", res.stored_displacement);
+  std::string text = path + " stores positions as " + res.stored_as + " (up to " + moved +
+                     " Å off), which breaks the mesh: " + (p.empty() ? std::string("?") : p.front()) +
+                     (p.size() > 1 ? " (and more)" : "") + "; not written (";
+  if (skin::is_msms_path(path))
+    text += "--msms-decimals 6 or more keeps it, ";
+  else
+    text += ".ply keeps positions exact, ";
+  return text + "--force writes it anyway)";
+}
 
 mesher::MeshOptions mesh_options(const MeshArgs& a) {
   mesher::MeshOptions options = a.opt;
@@ -319,7 +354,13 @@ Command add_mesh_command(CLI::App& app) {
                   "this many seconds (nothing is written; 0: no limit)")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
-  cmd->add_flag("--no-check", mesh.no_check, "do not verify the mesh before writing it");
+  cmd->add_option("--msms-decimals", mesh.msms_decimals,
+                  "digits after the point of MSMS .vert positions (MSMS writes 3; small cavities and thin necks "
+                  "may need more: the mesh is checked as the file stores it)")
+      ->check(CLI::Range(skin::kMinMsmsDecimals, skin::kMaxMsmsDecimals))
+      ->capture_default_str();
+  cmd->add_flag("--no-check", mesh.no_check,
+                "do not verify the mesh before writing it (nor the positions as a lossy format stores them)");
   cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");
   const char* debug = "Debugging the sweep (papers/front/sweep.md)";
   cmd->add_flag("--paranoid", mesh.opt.sweep.paranoid, "check for folds after every operation of the sweep")

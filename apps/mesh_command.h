@@ -7,6 +7,7 @@
 
 #include "apps/cli.h"
 #include "mesher/pipeline.h"
+#include "skin/skin_mesh_io.h"
 
 namespace skinmesh::app {
 
@@ -34,6 +35,8 @@ struct MeshArgs {
   bool threads_given = false;
   /// --timeout: seconds that reading and meshing one input may take (0: no limit).
   double timeout = 0;
+  /// --msms-decimals: digits after the point of MSMS positions.
+  int msms_decimals = 3;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height
@@ -41,6 +44,14 @@ struct MeshArgs {
 /// command line, and the program's memory release between the meshing and
 /// the check. Throws CLI::ValidationError for a bad --direction.
 mesher::MeshOptions mesh_options(const MeshArgs& a);
+
+/// How the mesh files of a run are written: MSMS decimals and the probe
+/// radius for its header.
+skin::SkinMeshWriteOptions write_options(const MeshArgs& a);
+
+/// The one-line error of a mesh that passed its checks but not as `path`
+/// stores it (MeshResult::stored_check failed): what broke and what to do.
+std::string stored_check_error(const std::string& path, const mesher::MeshResult& res);
 
 /// `skinmesh mesh IN IN ... -O DIR` (or --list): every input meshed by --jobs
 /// workers, one failing input does not stop the others; a summary table on

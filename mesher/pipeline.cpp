@@ -143,7 +143,8 @@ void write_output(const skin::SkinSurface& skin, const std::vector<geometry::Sur
 }
 
 /// mesh_skin() on points already in their local frame.
-MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options);
+MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options,
+                           const Vec3& centre);
 
 /// An error message that names positions, with the frame they are given in.
 std::string in_frame(const std::string& what, const Vec3& centre) {
@@ -163,13 +164,44 @@ StageOptions with_size(StageOptions stage_options, const skin::SizeConstants& si
 
 }  // namespace
 
+verify::SkinCheckReport check_stored_positions(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
+                                               const Vec3& to_input, const Vec3& centre,
+                                               const geometry::PositionStorage& storage,
+                                               verify::SkinCheckOptions options, double& displacement) {
+  geometry::IndexedMesh stored;
+  stored.triangles = mesh.triangles;
+  stored.positions.resize(mesh.positions.size());
+  double moved = 0;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Vec3 world = mesh.positions[v] + to_input;  // for the pipeline's mesh, as mesh_skin() brings it back
+    const Vec3 p = storage.stored(world);
+    moved = std::max(moved, (p - world).norm());
+    stored.positions[v] = p - centre;
+  }
+  // The exact positions passed within max_vertex_distance; the stored ones
+  // are at most `moved` farther (plus the frame's translation, a few units
+  // in the last place).
+  options.max_vertex_distance += moved * (1 + 1e-6);
+  options.check_size_conditions = false;
+  options.check_restricted_delaunay = false;
+  displacement = moved;
+  return verify::check_skin_mesh(skin, stored, options);
+}
+
+std::vector<std::string> MeshResult::problems() const {
+  std::vector<std::string> out = check.problems;
+  if (stored_check)
+    for (const std::string& p : stored_check->problems) out.push_back("as stored (" + stored_as + "): " + p);
+  return out;
+}
+
 MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, const MeshOptions& options) {
   if (options.algorithm == Algorithm::Dynamic) dynamic::validate(options.dynamic);
   // Every stage works in the local frame of the points (their bounding-box
   // centre at the origin); the output mesh is translated back at the end.
   const Vec3 centre = skin::local_frame_centre(input_points);
   try {
-    MeshResult res = mesh_skin_local(skin::translated(input_points, centre), options);
+    MeshResult res = mesh_skin_local(skin::translated(input_points, centre), options, centre);
     res.frame_centre = centre;
     res.static_fallback = in_frame(res.static_fallback, centre);
     for (Vec3& p : res.mesh.positions) p += centre;
@@ -408,9 +440,25 @@ void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // The mesher's cell of every vertex starts the check's walks there.
   if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
   res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
-  std::vector<Index>().swap(res.vertex_cells);
   res.checked = true;
   clock.end("check");
+}
+
+/// Stage 5b: the check of res.mesh's positions as options.stored_positions
+/// stores them, on `clock` (MeshOptions::stored_positions). `centre` is the
+/// local frame's centre: files hold positions in the input's frame.
+void run_stored_check(const skin::SkinSurface& skin, const MeshOptions& options, const Vec3& centre, StageClock& clock,
+                      MeshResult& res) {
+  clock.begin("stored check");
+  verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
+  check_options.expected_topology = res.expected_topology;
+  if (check_options.threads == verify::SkinCheckOptions{}.threads)
+    check_options.threads = thread_count(options.threads);
+  if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
+  res.stored_check = check_stored_positions(skin, res.mesh, centre, centre, options.stored_positions, check_options,
+                                            res.stored_displacement);
+  res.stored_as = options.stored_positions.describe();
+  clock.end("stored check");
 }
 
 /// The whole-skin fallback: res's sweep results are replaced by the static
@@ -435,7 +483,8 @@ void remesh_static(const skin::SkinSurface& skin, const MeshOptions& options, St
   if (options.observers.memory_released) options.observers.memory_released();
 }
 
-MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
+MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options,
+                           const Vec3& centre) {
   MeshResult res;
   res.algorithm = options.algorithm;
   StageClock clock(options.progress);
@@ -490,6 +539,9 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
       remesh_static(skin, options, fallback_clock, res, "the sweep's mesh failed its check" + first);
       run_check(skin, options, fallback_clock, res);
     }
+    if (res.check.ok() && options.stored_positions.lossy())
+      run_stored_check(skin, options, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
+    std::vector<Index>().swap(res.vertex_cells);
   }
   res.seconds = clock.seconds();
   for (const auto& [stage, t] : fallback_clock.seconds()) res.seconds.emplace_back("fallback " + stage, t);

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "dynamic/dynamic_skin.h"
 #include "front/decomposed.h"
 #include "front/sweep.h"
+#include "geometry/io/mesh_io.h"
 #include "geometry/kernel/weighted_point.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "morse/critical_points.h"
@@ -129,6 +131,16 @@ struct MeshOptions {
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
   verify::SkinCheckOptions checks;
+  /// How the file the mesh goes to stores positions (skin::position_storage
+  /// of its path; default exact). When lossy and the check passed, the check
+  /// runs again on the positions as the file will hold them (in the input's
+  /// frame, rounded, then brought into the local frame as a reader's check
+  /// does): closed, manifold, oriented, exact self-intersections, topology,
+  /// angles and distance to the skin (to the largest displacement the
+  /// rounding made); [L], [U] and the restricted Delaunay property are
+  /// properties of the exact positions (verify::SkinCheckOptions::
+  /// check_size_conditions). The verdict is MeshResult::stored_check.
+  geometry::PositionStorage stored_positions;
   /// Threads (0: every core of the machine). The mesh and every count in
   /// MeshResult are the same, byte for byte, for every thread count: the
   /// threads run independent computations side by side — the skin's dual
@@ -210,8 +222,19 @@ struct MeshResult {
   /// back. The check's report refers to the local frame.
   Vec3 frame_centre = Vec3::Zero();
 
-  /// True unless the check ran and failed.
-  bool ok() const { return !checked || check.ok(); }
+  /// The check of the positions as MeshOptions::stored_positions stores
+  /// them, if it ran (a lossy storage, and the check passed).
+  std::optional<verify::SkinCheckReport> stored_check;
+  /// The largest distance (Å) that storage moved a vertex, if stored_check ran.
+  double stored_displacement = 0;
+  /// How the storage rounds ("3 decimals", "float32"), if stored_check ran.
+  std::string stored_as;
+  /// The problems of `check`, then those of `stored_check`, each of these
+  /// prefixed "as stored (<stored_as>): ", one line each.
+  std::vector<std::string> problems() const;
+
+  /// True unless the check ran and failed, on the exact or the stored positions.
+  bool ok() const { return !checked || (check.ok() && (!stored_check || stored_check->ok())); }
 };
 
 /// Meshes the skin of the weighted points `points` (centres in Å, weights in
@@ -235,5 +258,21 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
 /// mesh_skin() of a molecule's atoms, weighted with options.probe_radius
 /// (std::invalid_argument unless 0 <= probe_radius <= skin::kMaxRadius).
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options = {});
+
+/// The check of `mesh`'s positions as `storage` stores them
+/// (MeshOptions::stored_positions). `skin` is in the local frame whose centre
+/// is `centre`; files hold positions in the input's frame, which `mesh`'s
+/// positions reach by adding `to_input` (`centre` for a mesh in the local
+/// frame, zero for one in the input's frame): each position p is checked at
+/// storage.stored(p + to_input) - centre. Checked with
+/// `options` but for [L], [U] and the restricted Delaunay property (left
+/// out) and a vertex-distance tolerance raised by the largest displacement,
+/// which goes to `displacement` (Å). The pipeline runs it after its own
+/// check; callers holding a mesh and its skin (the Python module's
+/// Mesh.write) run it before writing to a lossy format.
+verify::SkinCheckReport check_stored_positions(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
+                                               const Vec3& to_input, const Vec3& centre,
+                                               const geometry::PositionStorage& storage,
+                                               verify::SkinCheckOptions options, double& displacement);
 
 }  // namespace skinmesh::mesher

@@ -177,8 +177,15 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (res.checked) {
     j["min_angle_deg"] = res.check.mesh.min_angle_deg;
     j["max_angle_deg"] = res.check.mesh.max_angle_deg;
-    j["checks_passed"] = res.check.ok();
+    j["checks_passed"] = res.ok();
     j["problems"] = res.check.problems;
+    if (res.stored_check) {
+      j["stored_positions"] = {{"storage", options.stored_positions.describe()},
+                               {"max_displacement_A", res.stored_displacement},
+                               {"min_angle_deg", res.stored_check->mesh.min_angle_deg},
+                               {"checks_passed", res.stored_check->ok()},
+                               {"problems", res.stored_check->problems}};
+    }
   }
   j["critical_points"] = {
       {"minima", res.critical.minima}, {"saddles", res.critical.saddles}, {"maxima", res.critical.maxima}};

@@ -41,6 +41,11 @@ struct PyMesh {
   skin::SkinVertexData vertex_data;
   py::dict stats;
   bool ok = true;
+  /// The weighted points of the skin a checked mesh passed against (empty
+  /// otherwise): write() checks the positions a lossy format stores against it.
+  std::vector<geometry::WeightedPoint> points;
+  /// The probe radius (Å) of mesh(), for the MSMS header.
+  double probe = 0;
 };
 
 /// The atoms of `source`: a path (str or os.PathLike) read with
@@ -134,6 +139,8 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     // The same schema as `skinmesh mesh --stats` (mesher/summary.h).
     summary = mesher::run_summary(res, options, context).dump();
     out.ok = res.ok();
+    out.probe = probe;
+    if (res.checked && res.ok()) out.points = points;
     out.mesh = std::move(res.mesh);
     out.vertex_data = std::move(res.vertex_data);
   }
@@ -142,7 +149,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
 }
 
 /// The check's report as a Python dict (through its JSON).
-py::dict check(const py::object& source, const py::object& mesh_or_path, double probe) {
+py::dict check(const py::object& source, const py::object& mesh_or_path, double probe, bool strict) {
   const skin::Molecule mol = molecule_of(source);
   geometry::IndexedMesh m;
   verify::SkinCheckOptions options;
@@ -152,8 +159,12 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
     const std::string path = py::str(py::module_::import("os").attr("fspath")(mesh_or_path));
     py::gil_scoped_release release;
     m = skin::read_skin_mesh(path);
-    // Formats that round positions: distances checked to the rounding, as `skinmesh check` does.
-    options.max_vertex_distance = std::max(options.max_vertex_distance, skin::position_rounding(path, m));
+    // Formats that round positions, as `skinmesh check` reads them: distances
+    // checked to the rounding; [L], [U] and the restricted Delaunay property,
+    // which hold for the exact positions, left out unless strict.
+    const double rounding = skin::position_rounding(path, m);
+    options.max_vertex_distance = std::max(options.max_vertex_distance, rounding);
+    if (rounding > 0 && !strict) options.check_size_conditions = options.check_restricted_delaunay = false;
   }
   std::string json;
   {
@@ -228,13 +239,36 @@ PYBIND11_MODULE(skinmesh, m) {
       .def_readonly("ok", &PyMesh::ok)
       .def(
           "write",
-          [](const PyMesh& s, const py::object& path) {
+          [](const PyMesh& s, const py::object& path, int msms_decimals, bool force) {
             const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
             py::gil_scoped_release release;
-            skin::write_skin_mesh(p, s.mesh, s.vertex_data);
+            skin::SkinMeshWriteOptions w;
+            w.msms_decimals = msms_decimals;
+            w.probe_radius = s.probe;
+            const geometry::PositionStorage storage = skin::position_storage(p, w);
+            // As the command line does: a mesh that passed its check is checked
+            // again at the positions a lossy format stores.
+            if (storage.lossy() && !force && !s.points.empty()) {
+              const Vec3 centre = skin::local_frame_centre(s.points);
+              const skin::SkinSurface skin(skin::translated(s.points, centre), 0);
+              double moved = 0;
+              const verify::SkinCheckReport rep =
+                  mesher::check_stored_positions(skin, s.mesh, Vec3::Zero(), centre, storage, {}, moved);
+              if (!rep.ok())
+                throw InputError(p, 0,
+                                 "stores positions as " + storage.describe() +
+                                     ", which breaks the mesh: " + rep.problems.front() + "; not written (" +
+                                     (skin::is_msms_path(p) ? "msms_decimals=6 or more keeps it, "
+                                                            : ".ply keeps positions exact, ") +
+                                     "force=True writes it anyway)");
+            }
+            skin::write_skin_mesh(p, s.mesh, s.vertex_data, w);
           },
-          py::arg("path"),
-          "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face).")
+          py::arg("path"), py::arg("msms_decimals") = 3, py::arg("force") = false,
+          "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face, "
+          "positions with msms_decimals decimals, 3 to 12). A checked mesh written to a format that rounds "
+          "positions (MSMS, STL) is checked again as the file stores them; if that fails, InputError names what "
+          "broke and nothing is written, unless force=True.")
       .def("__repr__", [](const PyMesh& s) {
         return "<skinmesh.Mesh: " + std::to_string(s.mesh.positions.size()) + " vertices, " +
                std::to_string(s.mesh.triangles.size()) + " triangles" + (s.ok ? "" : ", FAILED its check") + ">";
@@ -261,10 +295,12 @@ PYBIND11_MODULE(skinmesh, m) {
       "Area (area_A2, Å²) and enclosed volume (volume_A3, Å³, cavities negative) of the exact skin of a molecule, "
       "integrated over its sphere and hyperboloid patches without a mesh (relative accuracy about 1e-10). "
       "Returns a dict; patch_cells counts the mixed cells whose patch is not empty.");
-  m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4,
+  m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4, py::arg("strict") = false,
         "Verifies a mesh (a Mesh, or a mesh file) against the skin of the molecule: closed, manifold, oriented, "
         "no self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay. Returns "
-        "the report as a dict; report['problems'] is empty if every check passed.");
+        "the report as a dict; report['problems'] is empty if every check passed. A file that rounds positions "
+        "(MSMS, STL, float32 coordinates) is checked to its rounding, without [L], [U] and the restricted "
+        "Delaunay test (they hold for the exact positions) unless strict=True, as `skinmesh check` does.");
   m.def(
       "read_mesh",
       [](const py::object& path) {

@@ -4,8 +4,9 @@
 // pair of text files NAME.vert and NAME.face.
 //   NAME.vert: three header lines ("# ...", "#vertex #sphere density probe_r",
 //     then the counts: vertices, atoms — the largest atom index of a vertex
-//     plus one, as the mesh does not know atoms without vertices — and 0 0,
-//     the skin having neither density nor probe), then per vertex
+//     plus one, as the mesh does not know atoms without vertices —, the
+//     density in vertices per Å² of mesh area and the probe radius in Å, as
+//     MSMS's -density and -probe_radius), then per vertex
 //     "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d": position (Å), unit
 //     normal, the number of its surface component (1-based), the 1-based index
 //     of its atom, and the MSMS type of its patch.
@@ -16,7 +17,9 @@
 // vertex cell is 3, the concave sphere patch of a tetrahedron cell 2, the
 // hyperboloid patches of edge and triangle cells 1 (SkinVertexData::patch); a
 // triangle has the type its corners share, 1 when they differ. Positions have
-// three decimals, as MSMS writes them.
+// three decimals, as MSMS writes them, or more if asked (every MSMS reader we
+// know splits records at blanks; the field then widens by a digit per
+// decimal); normals keep three.
 #include "skin/skin_mesh_io.h"
 
 #include <algorithm>
@@ -24,6 +27,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -78,22 +82,33 @@ std::size_t msms_header(const std::string& path, const std::vector<std::string_v
   return static_cast<std::size_t>(n);
 }
 
+/// The header line of counts of an MSMS file: `count` records, `n_atoms`,
+/// the density (vertices per Å² of mesh area, 0 for no area) and the probe
+/// radius (Å).
+std::string msms_counts(std::size_t count, int n_atoms, double density, double probe) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", count, n_atoms, density, probe);
+  return buf;
+}
+
 /// Writes the MSMS .vert file of `m` with its vertex data into `w`; `name`
-/// goes into the comment lines, `component` is vertex_components(m).
+/// goes into the comment lines, `component` is vertex_components(m), `counts`
+/// msms_counts(); positions with `decimals` digits after the point.
 void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
-                     const std::vector<int>& component, int n_atoms, geometry::ChunkedWriter& w) {
-  char buf[160];
+                     const std::vector<int>& component, const std::string& counts, int decimals,
+                     geometry::ChunkedWriter& w) {
+  char buf[256];
   std::string& vert = w.buffer();
   vert += "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
   vert += "#vertex #sphere density probe_r\n";
-  std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.positions.size(), n_atoms, 0.0, 0.0);
-  vert += buf;
+  vert += counts;
+  const int width = 6 + decimals;  // 9 at MSMS's three decimals
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     const Vec3& p = m.positions[v];
     const Vec3 n = m.normals.empty() ? Vec3::Zero() : m.normals[v];
     const int atom = data.atom.empty() ? 0 : data.atom[v] + 1;
-    std::snprintf(buf, sizeof buf, "%9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7d %7d %2d\n", p.x(), p.y(), p.z(), n.x(),
-                  n.y(), n.z(), component[v], atom, msms_type(data, v));
+    std::snprintf(buf, sizeof buf, "%*.*f %*.*f %*.*f %9.3f %9.3f %9.3f %7d %7d %2d\n", width, decimals, p.x(), width,
+                  decimals, p.y(), width, decimals, p.z(), n.x(), n.y(), n.z(), component[v], atom, msms_type(data, v));
     vert += buf;
     w.spill();
   }
@@ -101,13 +116,12 @@ void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std
 
 /// Writes the MSMS .face file of `m` into `w` (as write_msms_vert()).
 void write_msms_face(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
-                     const std::vector<int>& component, int n_atoms, geometry::ChunkedWriter& w) {
+                     const std::vector<int>& component, const std::string& counts, geometry::ChunkedWriter& w) {
   char buf[160];
   std::string& face = w.buffer();
   face += "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
   face += "#faces  #sphere density probe_r\n";
-  std::snprintf(buf, sizeof buf, "%7zu %6d %5.2f %5.2f\n", m.triangles.size(), n_atoms, 0.0, 0.0);
-  face += buf;
+  face += counts;
   for (const auto& t : m.triangles) {
     const int a = msms_type(data, t[0]), b = msms_type(data, t[1]), c = msms_type(data, t[2]);
     const int type = a == b && b == c ? a : (a == 0 || b == 0 || c == 0 ? 0 : 1);
@@ -229,8 +243,13 @@ std::vector<VertexAttribute> file_attributes(const SkinVertexData& data, geometr
   return out;
 }
 
+geometry::PositionStorage position_storage(const std::string& path, const SkinMeshWriteOptions& opt) {
+  if (is_msms_path(path)) return {geometry::PositionStorage::Kind::Decimals, opt.msms_decimals};
+  return geometry::position_storage(geometry::mesh_format_from_extension(path), opt.geometry);
+}
+
 void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const SkinVertexData& data,
-                     const geometry::MeshWriteOptions& opt) {
+                     const SkinMeshWriteOptions& opt) {
   require_mesh_format(path);
   const std::size_t n = mesh.positions.size();
   SKINMESH_ASSERT_MSG(data.atom.empty() || data.atom.size() == n, "one atom id per vertex");
@@ -238,21 +257,31 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   SKINMESH_ASSERT_MSG(data.patch.empty() || data.patch.size() == n, "one patch dimension per vertex");
   if (!is_msms_path(path)) {
     const geometry::MeshFormat format = geometry::mesh_format_from_extension(path);
-    geometry::write_mesh(path, mesh, opt, file_attributes(data, format));
+    geometry::write_mesh(path, mesh, opt.geometry, file_attributes(data, format));
     return;
   }
   geometry::check_writable(mesh);
+  if (opt.msms_decimals < kMinMsmsDecimals || opt.msms_decimals > kMaxMsmsDecimals)
+    throw std::invalid_argument("MSMS decimals must lie in [" + std::to_string(kMinMsmsDecimals) + ", " +
+                                std::to_string(kMaxMsmsDecimals) + "]");
   const auto [vert_path, face_path] = msms_paths(path);
   const std::string name = vert_path.substr(vert_path.find_last_of('/') + 1);
   const std::string stem = name.substr(0, name.size() - 5);
   const std::vector<int> component = vertex_components(mesh);
   int n_atoms = 0;
   for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
+  double area = 0;
+  for (const geometry::ComponentMeasure& c : geometry::component_measures(mesh)) area += c.area;
+  const std::string vert_counts =
+      msms_counts(mesh.positions.size(), n_atoms, area > 0 ? mesh.positions.size() / area : 0, opt.probe_radius);
+  const std::string face_counts =
+      msms_counts(mesh.triangles.size(), n_atoms, area > 0 ? mesh.positions.size() / area : 0, opt.probe_radius);
   using geometry::ChunkedWriter;
   // The .face first, then the .vert: a reader polling for the .vert finds the pair complete.
   geometry::write_files_atomically(
-      {{face_path, [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, n_atoms, w); }},
-       {vert_path, [&](ChunkedWriter& w) { write_msms_vert(mesh, data, stem, component, n_atoms, w); }}},
+      {{face_path, [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, face_counts, w); }},
+       {vert_path,
+        [&](ChunkedWriter& w) { write_msms_vert(mesh, data, stem, component, vert_counts, opt.msms_decimals, w); }}},
       "mesh");
 }
 
@@ -275,7 +304,19 @@ IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* data) {
 double position_rounding(const std::string& path, const IndexedMesh& mesh) {
   constexpr double kMsmsRounding = 1e-3;  // Å; [derived] three decimals move a vertex by at most 0.87e-3
   if (is_msms_path(path)) return kMsmsRounding;
-  return geometry::position_rounding(geometry::mesh_format_from_extension(path), mesh);
+  const geometry::MeshFormat format = geometry::mesh_format_from_extension(path);
+  // A file of float32 coordinates (a PLY `float`, or text another tool wrote
+  // from floats) holds only numbers a float represents; a mesh of exact
+  // doubles off the skin's surface all but never does.
+  const geometry::PositionStorage float32{geometry::PositionStorage::Kind::Float32, 0};
+  bool floats = !mesh.positions.empty();
+  for (const Vec3& p : mesh.positions)
+    if (float32.stored(p) != p) {
+      floats = false;
+      break;
+    }
+  if (floats) return std::max(geometry::position_rounding(format, mesh), 2 * float32.max_error(mesh));
+  return geometry::position_rounding(format, mesh);
 }
 
 }  // namespace skinmesh::skin

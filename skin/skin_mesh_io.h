@@ -36,19 +36,44 @@ void require_mesh_format(const std::string& path);
 /// are empty are left out.
 std::vector<geometry::VertexAttribute> file_attributes(const SkinVertexData& data, geometry::MeshFormat format);
 
+/// Fewest and most decimals of MSMS positions: MSMS's own three, up to the
+/// digits that still change a double of a molecule's size (|x| < 10^4 Å).
+constexpr int kMinMsmsDecimals = 3, kMaxMsmsDecimals = 12;
+
+/// How write_skin_mesh() writes.
+struct SkinMeshWriteOptions {
+  /// For PLY, OFF, OBJ, STL and VTK (geometry::write_mesh()).
+  geometry::MeshWriteOptions geometry;
+  /// Digits after the point of MSMS positions, in [kMinMsmsDecimals,
+  /// kMaxMsmsDecimals]: 3 as MSMS writes them; more for meshes whose small
+  /// features three decimals break (the mesher checks them as written).
+  int msms_decimals = 3;
+  /// The probe radius (Å) the skin was built with, for the MSMS header.
+  double probe_radius = 0;
+};
+
+/// How the file `path` written with `opt` stores positions:
+/// PositionStorage::Kind::Decimals with opt.msms_decimals for MSMS, else
+/// geometry::position_storage() of its format. Throws InputError(path, 0,
+/// "unknown mesh format ...") for another extension.
+geometry::PositionStorage position_storage(const std::string& path, const SkinMeshWriteOptions& opt = {});
+
 /// Writes `mesh` with its vertex data `data` to `path` in the format of its
 /// extension: geometry::write_mesh() with file_attributes(data, format) for
 /// PLY, OFF, OBJ, STL and VTK (see there), or for .vert/.face (MSMS) both
 /// NAME.vert and NAME.face, in the layout MSMS writes (three header lines; per
 /// vertex position, normal, component, 1-based atom, patch type; per face
-/// 1-based vertices, type, component; positions to 1e-3 Å;
-/// skin/skin_mesh_io.cpp), written as one (geometry::write_files_atomically).
+/// 1-based vertices, type, component; positions with opt.msms_decimals
+/// decimals; the header's density in vertices per Å² of mesh area and probe
+/// opt.probe_radius; skin/skin_mesh_io.cpp), written as one
+/// (geometry::write_files_atomically).
 /// Pre (checked, std::logic_error): mesh and data as geometry::write_mesh()
 /// requires (every array of `data` empty or one entry per vertex).
 /// Throws InputError(path, 0, "unknown mesh format ...") or
-/// InputError(path, 0, "cannot write ...").
+/// InputError(path, 0, "cannot write ..."), and std::invalid_argument for
+/// opt.msms_decimals out of range when writing MSMS.
 void write_skin_mesh(const std::string& path, const geometry::IndexedMesh& mesh, const SkinVertexData& data,
-                     const geometry::MeshWriteOptions& opt = {});
+                     const SkinMeshWriteOptions& opt = {});
 
 /// Reads a mesh of the skin from `path` (any format write_skin_mesh() writes;
 /// for MSMS either name) and, if `data` is given, the vertex data the file
@@ -66,9 +91,11 @@ geometry::IndexedMesh read_msms_from_bytes(const std::string& bytes, const std::
                                            SkinVertexData* data = nullptr);
 
 /// How far (Å) the format of `path` may have moved the positions of `mesh`
-/// read from it: 1e-3 for MSMS (three decimals, at most 0.87e-3 off), else
-/// geometry::position_rounding(). The verifier's vertex-distance tolerance
-/// must not be below it.
+/// read from it: 1e-3 for MSMS (three decimals, at most 0.87e-3 off); for
+/// another format whose every coordinate of `mesh` is a float32 value (a PLY
+/// `float`, an OBJ another tool wrote from floats) the float32 rounding, as
+/// for STL; else geometry::position_rounding(). The verifier's
+/// vertex-distance tolerance must not be below it.
 double position_rounding(const std::string& path, const geometry::IndexedMesh& mesh);
 
 }  // namespace skinmesh::skin

@@ -114,8 +114,10 @@ std::string SkinCheckReport::to_json() const {
   j["max_angle_deg"] = finite_or_null(mesh.max_angle_deg);
   j["min_angle_required_deg"] = finite_or_null(min_angle_required_deg);
   j["angle_histogram_10deg"] = mesh.angle_histogram;
-  j["num_L_violations"] = num_L_violations;
-  j["num_U_violations"] = num_U_violations;
+  j["num_L_violations"] =
+      size_conditions_checked ? nlohmann::ordered_json(num_L_violations) : nlohmann::ordered_json(nullptr);
+  j["num_U_violations"] =
+      size_conditions_checked ? nlohmann::ordered_json(num_U_violations) : nlohmann::ordered_json(nullptr);
   j["num_rdt_violations"] =
       restricted_delaunay_checked ? nlohmann::ordered_json(num_rdt_violations) : nlohmann::ordered_json(nullptr);
   j["problems"] = problems;
@@ -139,6 +141,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   else
     rep.mesh = geometry::check_mesh(mesh, mopt);
   rep.min_angle_required_deg = opt.min_angle_deg;
+  rep.size_conditions_checked = opt.check_size_conditions;
   std::vector<std::string> skin_problems;
   const std::size_t nv = mesh.positions.size();
   const auto& P = mesh.positions;
@@ -238,13 +241,14 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     if (!valid(t)) continue;
     const Vec3 &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
     if ((b - a).cross(c - a).dot(normal[t[0]] + normal[t[1]] + normal[t[2]]) <= 0) ++rep.num_inward_triangles;
-    if (!skin::satisfies_U(a, b, c, rho[t[0]], rho[t[1]], rho[t[2]], opt.size)) ++rep.num_U_violations;
+    if (opt.check_size_conditions && !skin::satisfies_U(a, b, c, rho[t[0]], rho[t[1]], rho[t[2]], opt.size))
+      ++rep.num_U_violations;
     for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
   }
   // What the tests below do not read goes back as soon as it is read: they
   // run beside the mesh-only checks, at the peak of the whole run's memory.
   release(normal);  // before the [L] count's edge lists (24 against 12 bytes per triangle)
-  rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
+  if (opt.check_size_conditions) rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
   release(edge_start);
   release(rho);
   if (rep.num_inward_triangles)

@@ -33,6 +33,13 @@ struct SkinCheckOptions {
   double min_angle_deg = 21.5;
   bool check_self_intersections = true;
   bool check_restricted_delaunay = true;
+  /// Count the edges violating [L] and the triangles violating [U] (default).
+  /// The check of a mesh as a lossy file stores it (mesher/pipeline.h,
+  /// MeshOptions::stored_positions) turns this and the restricted Delaunay
+  /// test off: those are strict inequalities that refinement meets with
+  /// arbitrarily small margins, so any rounding may tip one without damage a
+  /// reader can see, and they hold for the positions before rounding.
+  bool check_size_conditions = true;
   /// Threads (0: every core of the machine): with 2 or more, the mesh-only
   /// checks of geometry::check_mesh (closed, manifold, orientation, exact
   /// self-intersections, angles) run on a thread of their own beside the skin
@@ -74,6 +81,7 @@ struct SkinCheckReport {
   std::size_t num_L_violations = 0;      ///< edges violating [L]
   std::size_t num_U_violations = 0;      ///< triangles violating [U]
   bool restricted_delaunay_checked = false;
+  bool size_conditions_checked = false;  ///< [L] and [U] counted (SkinCheckOptions::check_size_conditions)
   /// Triangles whose surface Delaunay ball holds another vertex strictly inside
   /// (relative tolerance 1e-9), or whose dual line misses the skin.
   std::size_t num_rdt_violations = 0;

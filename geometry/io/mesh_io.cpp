@@ -250,6 +250,55 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
   }
 }
 
+double PositionStorage::stored(double x) const {
+  if (!std::isfinite(x)) return x;
+  switch (kind) {
+    case Kind::Exact:
+      return x;
+    case Kind::Float32:
+      return static_cast<double>(static_cast<float>(x));
+    case Kind::Decimals: {
+      // Through the text itself: the decimal a correctly rounding printf
+      // writes, read back as the nearest double (what every reader does).
+      std::array<char, 400> buf;  // a fixed-format double needs at most 309 + 1 + 17 digits
+      const std::to_chars_result r =
+          std::to_chars(buf.data(), buf.data() + buf.size(), x, std::chars_format::fixed, decimals);
+      double back = x;
+      std::from_chars(buf.data(), r.ptr, back);
+      return back;
+    }
+  }
+  return x;
+}
+
+double PositionStorage::max_error(const IndexedMesh& mesh) const {
+  if (kind == Kind::Exact) return 0;
+  double largest = 0;
+  for (const Vec3& p : mesh.positions)
+    if (p.allFinite()) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  if (kind == Kind::Float32) return std::ldexp(largest, -24) * std::sqrt(3.0);  // half a float32 ulp per axis
+  // Half a unit of the last decimal, then the decimal read as the nearest
+  // double (half a double ulp, which matters only at many decimals).
+  return (0.5 * std::pow(10.0, -decimals) + std::ldexp(largest, -53)) * std::sqrt(3.0);
+}
+
+std::string PositionStorage::describe() const {
+  switch (kind) {
+    case Kind::Exact:
+      return "exact doubles";
+    case Kind::Float32:
+      return "float32";
+    case Kind::Decimals:
+      return std::to_string(decimals) + " decimals";
+  }
+  return "";
+}
+
+PositionStorage position_storage(MeshFormat format, const MeshWriteOptions& opt) {
+  if (format == MeshFormat::Stl || !opt.double_precision) return {PositionStorage::Kind::Float32, 0};
+  return {};
+}
+
 double position_rounding(MeshFormat format, const IndexedMesh& mesh) {
   if (format != MeshFormat::Stl) return 0;
   double largest = 0;

@@ -113,6 +113,41 @@ IndexedMesh read_mesh(const std::string& path, std::vector<VertexAttribute>* att
 IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, const std::string& name = "",
                                  std::vector<VertexAttribute>* attributes = nullptr);
 
+/// How a file stores vertex positions, and so what a reader gets back: the
+/// same doubles (Exact), each coordinate rounded to the nearest float32
+/// (Float32: STL, and PLY/OFF/OBJ/VTK with double_precision false), or to a
+/// fixed number of decimals (Decimals: MSMS text, skin/skin_mesh_io.h). A
+/// writer that rounds can break a mesh its checks passed (a cavity of 1e-3 Å²
+/// collapses at three decimals), so the mesher checks the positions as the file
+/// will hold them (mesher/pipeline.h, MeshOptions::stored_positions).
+struct PositionStorage {
+  enum class Kind { Exact, Float32, Decimals };
+  Kind kind = Kind::Exact;
+  int decimals = 0;  ///< digits after the point, for Kind::Decimals (0..17)
+  /// True unless positions are stored exactly.
+  bool lossy() const { return kind != Kind::Exact; }
+  /// The coordinate `x` as a reader gets it back from the file: the double
+  /// nearest the float32 nearest `x`, or nearest the decimal text printf's
+  /// "%.Nf" writes for `x` (correctly rounded, as glibc's printf and
+  /// std::to_chars are). Non-finite values are returned unchanged.
+  double stored(double x) const;
+  /// stored() applied to each coordinate.
+  Vec3 stored(const Vec3& p) const { return {stored(p.x()), stored(p.y()), stored(p.z())}; }
+  /// An upper bound (Å) on |stored(p) - p| over the positions of `mesh`:
+  /// 0 for Exact; sqrt(3) half-units in the last place (float32) of the
+  /// largest coordinate for Float32; sqrt(3) (10^-decimals / 2 + half a
+  /// double unit in the last place of the largest coordinate) for Decimals.
+  double max_error(const IndexedMesh& mesh) const;
+  /// How the positions are stored, for messages: "exact doubles",
+  /// "float32", "3 decimals".
+  std::string describe() const;
+};
+
+/// The position storage of write_mesh() for `format` with `opt`: Float32 for
+/// STL (always) and for the other formats when opt.double_precision is false;
+/// Exact otherwise.
+PositionStorage position_storage(MeshFormat format, const MeshWriteOptions& opt = {});
+
 /// How far (Å) the format `format` may have moved the positions of `mesh`
 /// read from it: for STL (float32 corners) twice sqrt(3) half-units in the
 /// last place of its largest coordinate; 0 for PLY, OFF, OBJ and VTK as

@@ -121,6 +121,27 @@ def test_write_and_check_round_trip(tmp_path):
     assert report["problems"]
 
 
+def test_a_lossy_format_that_breaks_the_mesh_is_refused(tmp_path):
+    # Crambin at probe 0 has a cavity of about 8e-4 Å² that MSMS's three
+    # decimals collapse (zero-area, self-intersecting, inward triangles).
+    m = skinmesh.mesh(CRAMBIN, probe=0, threads=2)
+    assert m.ok
+    with pytest.raises(skinmesh.InputError, match=r"c\.vert: stores positions as 3 decimals, which breaks the mesh"):
+        m.write(tmp_path / "c.vert")
+    assert not (tmp_path / "c.vert").exists() and not (tmp_path / "c.face").exists()
+    m.write(tmp_path / "c.vert", msms_decimals=6)
+    report = skinmesh.check(CRAMBIN, tmp_path / "c.vert", probe=0)
+    assert report["problems"] == [] and report["num_L_violations"] is None
+    assert skinmesh.check(CRAMBIN, tmp_path / "c.vert", probe=0, strict=True)["num_L_violations"] is not None
+    with open(tmp_path / "c.vert") as f:
+        counts = [f.readline() for _ in range(3)][2].split()
+    assert int(counts[0]) == len(m.vertices) and float(counts[2]) > 0 and float(counts[3]) == 0.0
+    m.write(tmp_path / "f.vert", force=True)
+    assert (tmp_path / "f.vert").exists()
+    with pytest.raises(ValueError):
+        m.write(tmp_path / "bad.vert", msms_decimals=2)
+
+
 def test_dynamic_algorithm():
     m = skinmesh.mesh(np.array([[0, 0, 0, 1.6], [3.0, 0, 0, 1.6]]), algorithm="dynamic")
     assert m.ok

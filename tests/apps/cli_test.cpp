@@ -318,10 +318,79 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
     CHECK(nlohmann::json::parse(c.out).at("problems").empty());
   }
   // MSMS keeps three decimals: the check reads it, with the distance tolerance
-  // of that rounding (its [L] and [U] margins see the rounded positions).
+  // of that rounding, and leaves out [L], [U] and the restricted Delaunay
+  // test, which hold for the exact positions, unless --strict.
   const Run msms = run(s, "check " + mol + " a.face");
+  CHECK(msms.exit_code == 0);
   CHECK(msms.err.find("checked to 0.001") != std::string::npos);
-  CHECK(nlohmann::json::parse(msms.out).at("num_far_vertices") == 0);
+  const nlohmann::json report = nlohmann::json::parse(msms.out);
+  CHECK(report.at("num_far_vertices") == 0);
+  CHECK(report.at("num_L_violations").is_null());
+  CHECK(report.at("num_rdt_violations").is_null());
+  const Run strict = run(s, "check " + mol + " a.face --strict");
+  CHECK(nlohmann::json::parse(strict.out).at("num_L_violations").is_number());
+}
+
+TEST_CASE("a mesh that a lossy format breaks is not written: the error names the file and the fix") {
+  // Crambin at probe 0 has a cavity of about 8e-4 Å² (1,036 triangles): at
+  // MSMS's three decimals it collapses into zero-area, self-intersecting and
+  // inward triangles, though the mesh itself passes every check.
+  Scratch s;
+  const std::string mol = quoted(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const Run bad = run(s, "mesh " + mol + " --probe 0 -o c.vert --quiet --stats bad.json");
+  CHECK(bad.exit_code == 3);
+  CHECK(!fs::exists(s.dir / "c.vert"));
+  CHECK(!fs::exists(s.dir / "c.face"));
+  CHECK(bad.err.find("error: c.vert stores positions as 3 decimals") != std::string::npos);
+  CHECK(bad.err.find("--msms-decimals") != std::string::npos);
+  CHECK(bad.err.find("as stored (3 decimals): ") != std::string::npos);
+  std::size_t error_lines = 0;
+  for (std::size_t at = bad.err.find("error:"); at != std::string::npos; at = bad.err.find("error:", at + 1))
+    ++error_lines;
+  CHECK(error_lines == 1);
+  const nlohmann::json stats = nlohmann::json::parse(slurp(s.dir / "bad.json"));
+  CHECK(stats.at("ok") == false);
+  CHECK(stats.at("problems").empty());  // the exact positions pass
+  const nlohmann::json& as_stored = stats.at("stored_positions").at("report");
+  CHECK(as_stored.at("ok") == false);
+  CHECK(as_stored.at("self_intersections").get<int>() > 0);
+
+  // Six decimals keep it: written, with the density and probe in the header,
+  // and `check` passes the file the program wrote.
+  const Run good = run(s, "mesh " + mol + " --probe 0 -o c.vert --quiet --msms-decimals 6 --stats good.json");
+  REQUIRE(good.exit_code == 0);
+  const nlohmann::json g = nlohmann::json::parse(slurp(s.dir / "good.json"));
+  CHECK(g.at("checks_passed") == true);
+  const nlohmann::json& stored = g.at("stored_positions");
+  CHECK(stored.at("storage") == "6 decimals");
+  CHECK(stored.at("checks_passed") == true);
+  CHECK(stored.at("max_displacement_A").get<double>() > 0);
+  CHECK(stored.at("max_displacement_A").get<double>() <= 0.5e-6 * std::sqrt(3.0));
+  const std::string vert = slurp(s.dir / "c.vert");
+  std::istringstream header(vert);
+  std::string line;
+  for (int i = 0; i < 3; ++i) std::getline(header, line);
+  std::istringstream counts(line);
+  double nv = 0, atoms = 0, density = 0, probe = -1;
+  counts >> nv >> atoms >> density >> probe;
+  CHECK(nv == g.at("vertices").get<double>());
+  CHECK(density == doctest::Approx(nv / g.at("surface").at("area_A2").get<double>()).epsilon(0.01));
+  CHECK(probe == 0);
+  std::getline(header, line);
+  CHECK(line.find('.') != std::string::npos);
+  CHECK(line.substr(line.find('.') + 1, 7).find(' ') == 6);  // six digits after the point
+  const Run c = run(s, "check " + mol + " --probe 0 c.vert");
+  CHECK(c.exit_code == 0);
+
+  // --force writes the broken file and says so.
+  const Run forced = run(s, "mesh " + mol + " --probe 0 -o f.vert --force");
+  CHECK(forced.exit_code == 3);
+  CHECK(fs::exists(s.dir / "f.vert"));
+  CHECK(forced.err.find("FAILED its checks") != std::string::npos);
+
+  // A lossless format runs no second check.
+  REQUIRE(run(s, "mesh " + mol + " --probe 0 -o c.ply --quiet --stats ply.json").exit_code == 0);
+  CHECK(!nlohmann::json::parse(slurp(s.dir / "ply.json")).contains("stored_positions"));
 }
 
 TEST_CASE("--stats reports the area and enclosed volume of the mesh, per component and in all") {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -173,6 +174,72 @@ TEST_CASE("formats: MSMS files written by another program, and broken ones") {
   // In memory: the .vert content followed by the .face content.
   const IndexedMesh mem = read_msms_from_bytes(slurp(s.path("x.vert")) + slurp(s.path("x.face")), "x");
   CHECK(mem.triangles == r.triangles);
+}
+
+TEST_CASE("position storage: a reader gets back exactly stored(), within max_error(), in every format that rounds") {
+  // Coordinates of every size and sign, halfway cases of three decimals
+  // among them (1.0005 is not a double, so printf rounds its exact value).
+  IndexedMesh m = sphere_mesh();
+  std::uint64_t state = 12345;
+  auto next = [&state] {  // splitmix64 -> [-1, 1)
+    state += 0x9E3779B97F4A7C15ull;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-52 - 1.0;
+  };
+  const double scales[] = {1e-3, 0.7, 13.0, 250.0, 4096.0};
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const double scale = scales[v % 5];
+    m.positions[v] = Vec3(next(), next(), next()) * scale;
+  }
+  m.positions[0] = Vec3(1.0005, -2.0015, 0.0625);
+  using skinmesh::geometry::PositionStorage;
+  Scratch s("skinmesh_position_storage_test_");
+  for (int decimals : {3, 4, 6, 9, 12}) {
+    CAPTURE(decimals);
+    skinmesh::skin::SkinMeshWriteOptions opt;
+    opt.msms_decimals = decimals;
+    const PositionStorage storage = skinmesh::skin::position_storage(s.path("m.vert"), opt);
+    REQUIRE(storage.kind == PositionStorage::Kind::Decimals);
+    write_skin_mesh(s.path("m.vert"), m, {}, opt);
+    const IndexedMesh back = read_skin_mesh(s.path("m.vert"));
+    REQUIRE(back.positions.size() == m.positions.size());
+    const double bound = storage.max_error(m);
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      CHECK(back.positions[v] == storage.stored(m.positions[v]));
+      CHECK((back.positions[v] - m.positions[v]).norm() <= bound);
+    }
+  }
+  for (const char* name : {"m.stl", "m.ply"}) {
+    CAPTURE(name);
+    skinmesh::skin::SkinMeshWriteOptions opt;
+    opt.geometry.double_precision = std::string(name) == "m.stl";  // STL rounds either way
+    const PositionStorage storage = skinmesh::skin::position_storage(s.path(name), opt);
+    REQUIRE(storage.kind == PositionStorage::Kind::Float32);
+    write_skin_mesh(s.path(name), m, {}, opt);
+    const IndexedMesh back = read_skin_mesh(s.path(name));
+    const double bound = storage.max_error(m);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 &p = m.positions[m.triangles[t][k]], &q = back.positions[back.triangles[t][k]];
+        CHECK(q == storage.stored(p));
+        CHECK((q - p).norm() <= bound);
+      }
+    // The checker recognises float32 coordinates in any format.
+    CHECK(skinmesh::skin::position_rounding(s.path(name), back) >= bound);
+  }
+  // Exact formats: stored() is the identity and a reader gets the doubles back.
+  const PositionStorage exact = skinmesh::skin::position_storage(s.path("m.ply"));
+  CHECK_FALSE(exact.lossy());
+  write_skin_mesh(s.path("m.ply"), m, {});
+  CHECK(read_skin_mesh(s.path("m.ply")).positions == m.positions);
+  CHECK(skinmesh::skin::position_rounding(s.path("m.ply"), m) == 0);
+  // Decimals out of range are refused before anything is written.
+  skinmesh::skin::SkinMeshWriteOptions bad;
+  bad.msms_decimals = 2;
+  CHECK_THROWS_AS(write_skin_mesh(s.path("bad.vert"), m, {}, bad), std::invalid_argument);
+  CHECK_FALSE(fs::exists(s.path("bad.vert")));
 }
 
 TEST_CASE("formats: MSMS writes both files or neither") {
