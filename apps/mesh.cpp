@@ -253,6 +253,8 @@ skin::SkinMeshWriteOptions write_options(const MeshArgs& a) {
   skin::SkinMeshWriteOptions w;
   w.msms_decimals = a.msms_decimals;
   w.probe_radius = a.mol.probe;
+  w.geometry.double_precision = !a.float32;
+  w.geometry.off_normals = a.off_normals;
   return w;
 }
 
@@ -266,7 +268,7 @@ std::string stored_check_error(const std::string& path, const mesher::MeshResult
   if (skin::is_msms_path(path))
     text += "--msms-decimals 6 or more keeps it, ";
   else
-    text += ".ply keeps positions exact, ";
+    text += ".ply without --float keeps positions exact, ";
   return text + "--force writes it anyway)";
 }
 
@@ -359,6 +361,11 @@ Command add_mesh_command(CLI::App& app) {
                   "may need more: the mesh is checked as the file stores it)")
       ->check(CLI::Range(skin::kMinMsmsDecimals, skin::kMaxMsmsDecimals))
       ->capture_default_str();
+  cmd->add_flag("--float", mesh.float32,
+                "float32 positions and normals in .ply, .off, .obj and .vtk (half the size; gmsh reads only float "
+                "PLY); the mesh is checked as the file stores it (default: exact doubles)");
+  cmd->add_flag("--off-normals", mesh.off_normals,
+                "write .off as NOFF, with each vertex's normal (default: plain OFF, which every OFF reader takes)");
   cmd->add_flag("--no-check", mesh.no_check,
                 "do not verify the mesh before writing it (nor the positions as a lossy format stores them)");
   cmd->add_flag("--force", mesh.force, "write the mesh even if it fails its checks (the report says what failed)");

@@ -37,6 +37,10 @@ struct MeshArgs {
   double timeout = 0;
   /// --msms-decimals: digits after the point of MSMS positions.
   int msms_decimals = 3;
+  /// --float: float32 positions and normals in PLY, OFF, OBJ and VTK.
+  bool float32 = false;
+  /// --off-normals: NOFF (positions and normals) instead of plain OFF.
+  bool off_normals = false;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height

@@ -35,6 +35,11 @@ struct MeshWriteOptions {
   /// false: 32-bit floats (PLY `float`, the PLY norm; OFF/OBJ text of the value
   /// rounded to float), half the size.
   bool double_precision = true;
+  /// OFF: false (default) writes plain OFF, positions only, the one variant
+  /// every OFF reader takes (meshio, PyMOL, VMD, TetGen refuse NOFF or read
+  /// its normals as coordinates); true writes NOFF, x y z nx ny nz per vertex,
+  /// when the mesh has normals.
+  bool off_normals = false;
 };
 
 // Mesh I/O Public Functions
@@ -61,7 +66,8 @@ void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& at
 ///   then one property per attribute in order (`int NAME` for an integer one,
 ///   else `double NAME` or `float NAME`); element face with
 ///   `list uchar int vertex_indices`.
-/// - .off: OFF, or NOFF (x y z nx ny nz per vertex) if normals are set;
+/// - .off: plain OFF; NOFF (x y z nx ny nz per vertex) if normals are set and
+///   opt.off_normals;
 ///   attributes are not stored.
 /// - .obj: `v` lines, `vn` lines (one per vertex, faces written `f a//a b//b c//c`)
 ///   if normals are set; attributes are not stored.

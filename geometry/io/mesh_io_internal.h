@@ -4,7 +4,7 @@
 //   mesh_io.cpp      dispatch by extension (mesh_io.h), atomic file writing,
 //                    file reading, and the shared helpers below
 //   mesh_io_ply.cpp  PLY: binary little-endian writer; ascii / binary reader
-//   mesh_io_off.cpp  OFF / NOFF writer and reader
+//   mesh_io_off.cpp  OFF (NOFF on request) writer and OFF/NOFF reader
 //   mesh_io_obj.cpp  Wavefront OBJ writer and reader
 //   mesh_io_stl.cpp  STL: binary writer; binary / ascii reader
 //   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
@@ -59,7 +59,7 @@ void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attribu
 /// scalar vertex properties besides the position and normal into `attributes`.
 IndexedMesh read_ply(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
 
-/// The OFF file of `m` (NOFF with normals if m.normals is set).
+/// The OFF file of `m`: plain OFF, or NOFF if opt.off_normals and m.normals is set.
 void write_off(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& out);
 
 /// Reads an OFF file ([ST][C][N]OFF, ascii).

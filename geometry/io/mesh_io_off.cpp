@@ -14,14 +14,15 @@ namespace skinmesh::geometry::mesh_io_detail {
 
 void write_off(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& w) {
   std::string& out = w.buffer();
-  out += m.normals.empty() ? "OFF\n" : "NOFF\n";
+  const bool normals = opt.off_normals && !m.normals.empty();
+  out += normals ? "NOFF\n" : "OFF\n";
   out += std::to_string(m.positions.size()) + " " + std::to_string(m.triangles.size()) + " 0\n";
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
       if (k > 0) out += ' ';
       append_number(out, m.positions[i][k], opt.double_precision);
     }
-    if (!m.normals.empty())
+    if (normals)
       for (int k = 0; k < 3; ++k) {
         out += ' ';
         append_number(out, m.normals[i][k], opt.double_precision);

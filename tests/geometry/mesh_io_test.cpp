@@ -133,7 +133,9 @@ TEST_CASE("mesh_io: OFF and OBJ round trips are bit-exact") {
   for (const char* name : {"octa.off", "octa.obj"}) {
     CAPTURE(name);
     const std::string path = scratch().path(name);
-    write_mesh(path, m, {}, kOctahedronAtoms);
+    MeshWriteOptions with_normals;
+    with_normals.off_normals = true;  // NOFF; OBJ writes its normals anyway
+    write_mesh(path, m, with_normals, kOctahedronAtoms);
     std::vector<VertexAttribute> read;
     const IndexedMesh r = read_mesh(path, &read);
     check_same_geometry(m, r, true);
@@ -147,6 +149,16 @@ TEST_CASE("mesh_io: OFF and OBJ round trips are bit-exact") {
   std::string first;
   std::getline(off, first);
   CHECK(first == "OFF");  // the mesh without normals was written last
+  // By default a mesh with normals is written as plain OFF, positions only,
+  // as every OFF reader takes it.
+  write_mesh(scratch().path("plain.off"), m);
+  std::ifstream plain_off(scratch().path("plain.off"));
+  std::getline(plain_off, first);
+  CHECK(first == "OFF");
+  const IndexedMesh back = read_mesh(scratch().path("plain.off"));
+  CHECK(back.positions == m.positions);
+  CHECK(back.normals.empty());
+  CHECK(back.triangles == m.triangles);
 }
 
 TEST_CASE("mesh_io: empty mesh round trips") {
@@ -406,7 +418,9 @@ TEST_CASE("mesh_io: files are written chunk by chunk, the same bytes as one stri
   for (const char* ext : {"ply", "off", "obj", "vtk"}) {
     CAPTURE(ext);
     const std::string path = scratch().path(std::string("chunked.") + ext);
-    write_mesh(path, m);
+    MeshWriteOptions with_normals;
+    with_normals.off_normals = true;  // NOFF, so that every format carries the normals
+    write_mesh(path, m, with_normals);
     CHECK(std::filesystem::file_size(path) > 2 * ChunkedWriter::kChunkBytes);
     check_same_geometry(m, read_mesh(path), true);
   }

@@ -1,0 +1,64 @@
+"""The mesh files read by the tools people feed them to, through those tools'
+own readers: Debian's python3-meshio (the reader behind many simulation and
+learning pipelines) and TetGen 1.5 (volume meshes of the skin), both
+installed by .ci/install-deps. Run by `make test` (ctest `python`).
+
+What they check: each reader gets the same points (bit for bit where the
+format stores doubles, the float32 values for STL), the same triangles and
+the atom index; TetGen fills the plain OFF file with tetrahedra whose
+volume is the volume the mesh encloses."""
+import os
+import subprocess
+
+import numpy as np
+
+import meshio
+import skinmesh
+
+DATA = os.environ.get("SKINMESH_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+LIGAND = os.path.join(DATA, "ligand_2zmm.pdb")
+
+
+def triangle_corners(points, triangles):
+    """Each triangle as its three corners' coordinates, rows sorted: a
+    comparison that does not depend on how a reader numbers the points."""
+    corners = points[triangles].reshape(len(triangles), 9)
+    return corners[np.lexsort(corners.T[::-1])]
+
+
+def test_meshio_reads_ply_off_obj_stl_as_written(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1)
+    assert m.ok
+    for name in ["l.ply", "l.off", "l.obj", "l.stl"]:
+        m.write(tmp_path / name)
+        got = meshio.read(tmp_path / name)
+        triangles = [c.data for c in got.cells if c.type == "triangle"]
+        assert len(triangles) == 1 and len(got.cells) == 1, name
+        if name == "l.stl":  # float32 corners, merged by meshio
+            expected = triangle_corners(m.vertices.astype(np.float32).astype(np.float64), m.triangles)
+            assert np.array_equal(triangle_corners(got.points.astype(np.float64), triangles[0]), expected)
+        else:
+            assert np.array_equal(got.points, m.vertices), name
+            assert np.array_equal(triangles[0], m.triangles), name
+    ply = meshio.read(tmp_path / "l.ply")
+    assert np.array_equal(ply.point_data["atom"], m.atom)
+    assert np.array_equal(np.column_stack([ply.point_data[k] for k in ("nx", "ny", "nz")]), m.normals)
+
+
+def test_tetgen_fills_the_off_file_with_the_enclosed_volume(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1)
+    components = m.stats["surface"]["components"]
+    assert len(components) == 1  # one shell: TetGen fills it whole
+    m.write(tmp_path / "l.off")
+    # -p: a piecewise linear complex (the surface), -Y: keep its triangles,
+    # -Q: quiet. TetGen writes l.1.node and l.1.ele.
+    subprocess.run(["tetgen", "-pYQ", str(tmp_path / "l.off")], check=True, timeout=120)
+    node = np.loadtxt(tmp_path / "l.1.node", comments="#", skiprows=1)
+    ele = np.loadtxt(tmp_path / "l.1.ele", comments="#", skiprows=1, dtype=np.int64)
+    points = node[:, 1:4]
+    first = int(node[0, 0])  # TetGen numbers from 0 or 1, as its input did
+    tets = points[ele[:, 1:5] - first]
+    volume = np.abs(np.einsum("ij,ij->i", tets[:, 1] - tets[:, 0],
+                              np.cross(tets[:, 2] - tets[:, 0], tets[:, 3] - tets[:, 0]))).sum() / 6
+    assert len(ele) > len(m.triangles) / 4
+    assert abs(volume - components[0]["volume_A3"]) <= 1e-9 * components[0]["volume_A3"]
