@@ -104,7 +104,7 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
         return;
       }
     }
-    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, write_options(a));
+    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, write_options(a, &mol));
     if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
     if (!res.static_fallback.empty() && item.message.empty())
       item.message = res.static_fallback + "; meshed by the static baseline instead";

@@ -183,7 +183,7 @@ int run_mesh(MeshArgs& a) {
     return 3;
   }
   const auto write_start = Clock::now();
-  skin::write_skin_mesh(a.out, res.mesh, res.vertex_data, write_options(a));
+  skin::write_skin_mesh(a.out, res.mesh, res.vertex_data, write_options(a, &mol));
   const double write_s = since(write_start);
   peaks.end("write");
   const double total = since(start);
@@ -249,8 +249,10 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
 
 }  // namespace
 
-skin::SkinMeshWriteOptions write_options(const MeshArgs& a) {
+skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule* mol) {
   skin::SkinMeshWriteOptions w;
+  if (a.msms_atom_names && mol != nullptr)
+    for (const skin::Atom& atom : mol->atoms) w.msms_atom_names.push_back(skin::msms_atom_name(atom));
   w.msms_decimals = a.msms_decimals;
   w.probe_radius = a.mol.probe;
   w.geometry.double_precision = !a.float32;
@@ -361,6 +363,9 @@ Command add_mesh_command(CLI::App& app) {
                   "may need more: the mesh is checked as the file stores it)")
       ->check(CLI::Range(skin::kMinMsmsDecimals, skin::kMaxMsmsDecimals))
       ->capture_default_str();
+  cmd->add_flag("--msms-atom-names", mesh.msms_atom_names,
+                "add each vertex's atom name to its MSMS .vert record as a 10th field, "
+                "chain_resnum_icode_resname_atomname (MaSIF's reader needs it; Biopython's reads 9 fields only)");
   cmd->add_flag("--float", mesh.float32,
                 "float32 positions and normals in .ply, .off, .obj and .vtk (half the size; gmsh reads only float "
                 "PLY); the mesh is checked as the file stores it (default: exact doubles)");

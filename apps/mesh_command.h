@@ -41,6 +41,8 @@ struct MeshArgs {
   bool float32 = false;
   /// --off-normals: NOFF (positions and normals) instead of plain OFF.
   bool off_normals = false;
+  /// --msms-atom-names: the atom's name as the 10th field of MSMS vertices.
+  bool msms_atom_names = false;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height
@@ -49,9 +51,9 @@ struct MeshArgs {
 /// the check. Throws CLI::ValidationError for a bad --direction.
 mesher::MeshOptions mesh_options(const MeshArgs& a);
 
-/// How the mesh files of a run are written: MSMS decimals and the probe
-/// radius for its header.
-skin::SkinMeshWriteOptions write_options(const MeshArgs& a);
+/// How the mesh files of a run of `mol` are written: precision, OFF normals,
+/// MSMS decimals, atom names (from `mol`) and the probe radius for its header.
+skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule* mol = nullptr);
 
 /// The one-line error of a mesh that passed its checks but not as `path`
 /// stores it (MeshResult::stored_check failed): what broke and what to do.

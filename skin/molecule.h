@@ -26,6 +26,9 @@ struct Atom {
   std::string residue;
   std::string chain;
   int residue_number = 0;
+  /// The residue's insertion code (PDB column 27, mmCIF pdbx_PDB_ins_code);
+  /// ' ' for none and for formats without one.
+  char insertion_code = ' ';
   int serial = 0;
   int line = 0;
 };

@@ -458,6 +458,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         atom.residue = res.name;
         atom.chain = chain.name;
         atom.residue_number = resnum;
+        atom.insertion_code = res.seqid.icode == '\0' || res.seqid.icode == '?' ? ' ' : res.seqid.icode;
         atom.serial = a.serial;
         atom.line = src.line;
         if (!src.element_from_column) ++guessed_elements;

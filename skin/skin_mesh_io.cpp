@@ -93,10 +93,11 @@ std::string msms_counts(std::size_t count, int n_atoms, double density, double p
 
 /// Writes the MSMS .vert file of `m` with its vertex data into `w`; `name`
 /// goes into the comment lines, `component` is vertex_components(m), `counts`
-/// msms_counts(); positions with `decimals` digits after the point.
+/// msms_counts(); positions with `decimals` digits after the point; each
+/// vertex's atom name from `atom_names` (indexed by atom) if not empty.
 void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
                      const std::vector<int>& component, const std::string& counts, int decimals,
-                     geometry::ChunkedWriter& w) {
+                     const std::vector<std::string>& atom_names, geometry::ChunkedWriter& w) {
   char buf[256];
   std::string& vert = w.buffer();
   vert += "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
@@ -107,9 +108,14 @@ void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std
     const Vec3& p = m.positions[v];
     const Vec3 n = m.normals.empty() ? Vec3::Zero() : m.normals[v];
     const int atom = data.atom.empty() ? 0 : data.atom[v] + 1;
-    std::snprintf(buf, sizeof buf, "%*.*f %*.*f %*.*f %9.3f %9.3f %9.3f %7d %7d %2d\n", width, decimals, p.x(), width,
+    std::snprintf(buf, sizeof buf, "%*.*f %*.*f %*.*f %9.3f %9.3f %9.3f %7d %7d %2d", width, decimals, p.x(), width,
                   decimals, p.y(), width, decimals, p.z(), n.x(), n.y(), n.z(), component[v], atom, msms_type(data, v));
     vert += buf;
+    if (!atom_names.empty()) {
+      vert += ' ';
+      vert += atom >= 1 && static_cast<std::size_t>(atom) <= atom_names.size() ? atom_names[atom - 1] : "x_0_x_UNK_X";
+    }
+    vert += '\n';
     w.spill();
   }
 }
@@ -243,6 +249,18 @@ std::vector<VertexAttribute> file_attributes(const SkinVertexData& data, geometr
   return out;
 }
 
+std::string msms_atom_name(const Atom& atom) {
+  auto part = [](const std::string& text, const char* blank) {
+    std::string out;
+    for (char c : text) out += std::isspace(static_cast<unsigned char>(c)) ? '-' : c;
+    const std::size_t first = out.find_first_not_of('-'), last = out.find_last_not_of('-');
+    return first == std::string::npos ? std::string(blank) : out.substr(first, last - first + 1);
+  };
+  const char icode[2] = {atom.insertion_code, '\0'};
+  return part(atom.chain, "x") + "_" + std::to_string(atom.residue_number) + "_" + part(icode, "x") + "_" +
+         part(atom.residue, "UNK") + "_" + part(atom.name, "X");
+}
+
 geometry::PositionStorage position_storage(const std::string& path, const SkinMeshWriteOptions& opt) {
   if (is_msms_path(path)) return {geometry::PositionStorage::Kind::Decimals, opt.msms_decimals};
   return geometry::position_storage(geometry::mesh_format_from_extension(path), opt.geometry);
@@ -281,7 +299,9 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   geometry::write_files_atomically(
       {{face_path, [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, face_counts, w); }},
        {vert_path,
-        [&](ChunkedWriter& w) { write_msms_vert(mesh, data, stem, component, vert_counts, opt.msms_decimals, w); }}},
+        [&](ChunkedWriter& w) {
+          write_msms_vert(mesh, data, stem, component, vert_counts, opt.msms_decimals, opt.msms_atom_names, w);
+        }}},
       "mesh");
 }
 

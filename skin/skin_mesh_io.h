@@ -14,6 +14,7 @@
 
 #include "geometry/io/mesh_io.h"
 #include "geometry/mesh/indexed_mesh.h"
+#include "skin/molecule.h"
 #include "skin/vertex_data.h"
 
 namespace skinmesh::skin {
@@ -50,7 +51,18 @@ struct SkinMeshWriteOptions {
   int msms_decimals = 3;
   /// The probe radius (Å) the skin was built with, for the MSMS header.
   double probe_radius = 0;
+  /// If not empty, one name per atom (msms_atom_name()): each MSMS vertex
+  /// record gets its atom's name as a 10th field, as MSMS writes when its
+  /// .xyzrn input names the atoms (MaSIF's read_msms.py reads it; readers
+  /// that keep only 9-field records, as Biopython's, do not, hence opt-in).
+  std::vector<std::string> msms_atom_names;
 };
+
+/// The name MSMS writes for `atom` in its 10th vertex field, in the form
+/// surface-learning pipelines split at '_': chain_resnum_icode_resname_name
+/// ("A_12_x_ALA_CA"); a blank chain or insertion code is written "x", a
+/// blank residue "UNK", a blank atom name "X", and blanks inside a part "-".
+std::string msms_atom_name(const Atom& atom);
 
 /// How the file `path` written with `opt` stores positions:
 /// PositionStorage::Kind::Decimals with opt.msms_decimals for MSMS, else
@@ -64,14 +76,11 @@ geometry::PositionStorage position_storage(const std::string& path, const SkinMe
 /// NAME.vert and NAME.face, in the layout MSMS writes (three header lines; per
 /// vertex position, normal, component, 1-based atom, patch type; per face
 /// 1-based vertices, type, component; positions with opt.msms_decimals
-/// decimals; the header's density in vertices per Å² of mesh area and probe
-/// opt.probe_radius; skin/skin_mesh_io.cpp), written as one
-/// (geometry::write_files_atomically).
-/// Pre (checked, std::logic_error): mesh and data as geometry::write_mesh()
-/// requires (every array of `data` empty or one entry per vertex).
-/// Throws InputError(path, 0, "unknown mesh format ...") or
-/// InputError(path, 0, "cannot write ..."), and std::invalid_argument for
-/// opt.msms_decimals out of range when writing MSMS.
+/// decimals; the atom's name if opt.msms_atom_names is set; the header's density in vertices per Å² of mesh area and
+/// probe opt.probe_radius; skin/skin_mesh_io.cpp), written as one (geometry::write_files_atomically). Pre (checked,
+/// std::logic_error): mesh and data as geometry::write_mesh() requires (every array of `data` empty or one entry per
+/// vertex). Throws InputError(path, 0, "unknown mesh format ...") or InputError(path, 0, "cannot write ..."), and
+/// std::invalid_argument for opt.msms_decimals out of range when writing MSMS.
 void write_skin_mesh(const std::string& path, const geometry::IndexedMesh& mesh, const SkinVertexData& data,
                      const SkinMeshWriteOptions& opt = {});
 

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "skin/molecule_io.h"
 #include "skin/skin_mesh_io.h"
 
 namespace fs = std::filesystem;
@@ -329,6 +330,51 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
   CHECK(report.at("num_rdt_violations").is_null());
   const Run strict = run(s, "check " + mol + " a.face --strict");
   CHECK(nlohmann::json::parse(strict.out).at("num_L_violations").is_number());
+}
+
+TEST_CASE("--msms-atom-names: each MSMS vertex record ends with its atom's chain_resnum_icode_resname_name") {
+  Scratch s;
+  const std::string path = std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb";
+  const skinmesh::skin::Molecule mol = skinmesh::skin::read_molecule(path);
+  REQUIRE(run(s, "mesh " + quoted(path) + " -o plain.vert --quiet").exit_code == 0);
+  REQUIRE(run(s, "mesh " + quoted(path) + " -o named.vert --quiet --msms-atom-names").exit_code == 0);
+  auto records = [&](const char* name) {
+    std::vector<std::vector<std::string>> out;
+    std::istringstream in(slurp(s.dir / name));
+    std::string line;
+    for (int k = 0; k < 3; ++k) std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::istringstream fields(line);
+      std::vector<std::string> f;
+      for (std::string x; fields >> x;) f.push_back(x);
+      out.push_back(f);
+    }
+    return out;
+  };
+  const auto plain = records("plain.vert"), named = records("named.vert");
+  REQUIRE(plain.size() == named.size());
+  REQUIRE(!named.empty());
+  std::size_t atoms_seen = 0;
+  std::vector<bool> seen(mol.atoms.size(), false);
+  for (std::size_t v = 0; v < named.size(); ++v) {
+    CHECK(plain[v].size() == 9);  // Biopython's reader keeps 9-field records only
+    REQUIRE(named[v].size() == 10);
+    CHECK(std::equal(plain[v].begin(), plain[v].end(), named[v].begin()));
+    const std::size_t atom = std::stoul(named[v][7]) - 1;
+    REQUIRE(atom < mol.atoms.size());
+    const skinmesh::skin::Atom& a = mol.atoms[atom];
+    // MaSIF splits the name at '_' into chain, residue number, insertion code, residue, atom.
+    CHECK(named[v][9] == (a.chain.empty() ? "x" : a.chain) + "_" + std::to_string(a.residue_number) + "_x_" +
+                             a.residue + "_" + a.name);
+    if (!seen[atom]) seen[atom] = true, ++atoms_seen;
+  }
+  CHECK(atoms_seen > mol.atoms.size() / 2);
+  // The file still reads back, with the same atoms.
+  skinmesh::skin::SkinVertexData a, b;
+  const auto pm = skinmesh::skin::read_skin_mesh((s.dir / "plain.vert").string(), &a);
+  const auto nm = skinmesh::skin::read_skin_mesh((s.dir / "named.vert").string(), &b);
+  CHECK(pm.positions == nm.positions);
+  CHECK(a.atom == b.atom);
 }
 
 TEST_CASE("a mesh that a lossy format breaks is not written: the error names the file and the fix") {

@@ -242,6 +242,26 @@ TEST_CASE("position storage: a reader gets back exactly stored(), within max_err
   CHECK_FALSE(fs::exists(s.path("bad.vert")));
 }
 
+TEST_CASE("msms_atom_name: five parts split at '_', blanks named, inner blanks joined by '-'") {
+  using skinmesh::skin::Atom;
+  using skinmesh::skin::msms_atom_name;
+  Atom a;
+  a.chain = "A", a.residue_number = 12, a.residue = "ALA", a.name = "CA";
+  CHECK(msms_atom_name(a) == "A_12_x_ALA_CA");
+  a.insertion_code = 'B';
+  CHECK(msms_atom_name(a) == "A_12_B_ALA_CA");
+  // Blank fields (built without string literals: GCC 12 warns falsely on
+  // a short literal assigned over a longer string, -Wrestrict).
+  a.chain.clear();
+  a.residue.assign(1, ' ');
+  a.name.clear();
+  a.residue_number = -3;
+  a.insertion_code = ' ';
+  CHECK(msms_atom_name(a) == "x_-3_x_UNK_X");
+  a.chain = "AB", a.residue = "LIG", a.name = "C 1 ";
+  CHECK(msms_atom_name(a) == "AB_-3_x_LIG_C-1");
+}
+
 TEST_CASE("formats: MSMS writes both files or neither") {
   Scratch s("skinmesh_skin_mesh_io_test_");
   fs::create_directories(s.path("blocked.vert"));  // the .vert cannot be written over a folder
