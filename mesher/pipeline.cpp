@@ -431,15 +431,21 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
 }
 
 /// Stage 5: the skin-aware check of res.mesh, timed on `clock`.
-void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
-  clock.begin("check");
+/// The verifier's options of stage 5 for res.mesh: options.checks with the
+/// run's size constants, threads and expected topology, and the mesher's cell
+/// of every vertex, where the check's walks start.
+verify::SkinCheckOptions check_options_of(const MeshOptions& options, const MeshResult& res) {
   verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
   if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
   if (check_options.threads == verify::SkinCheckOptions{}.threads)
     check_options.threads = thread_count(options.threads);
-  // The mesher's cell of every vertex starts the check's walks there.
   if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
-  res.check = verify::check_skin_mesh(skin, res.mesh, check_options);
+  return check_options;
+}
+
+void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
+  clock.begin("check");
+  res.check = verify::check_skin_mesh(skin, res.mesh, check_options_of(options, res));
   res.checked = true;
   clock.end("check");
 }
@@ -450,13 +456,8 @@ void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageC
 void run_stored_check(const skin::SkinSurface& skin, const MeshOptions& options, const Vec3& centre, StageClock& clock,
                       MeshResult& res) {
   clock.begin("stored check");
-  verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
-  check_options.expected_topology = res.expected_topology;
-  if (check_options.threads == verify::SkinCheckOptions{}.threads)
-    check_options.threads = thread_count(options.threads);
-  if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
-  res.stored_check = check_stored_positions(skin, res.mesh, centre, centre, options.stored_positions, check_options,
-                                            res.stored_displacement);
+  res.stored_check = check_stored_positions(skin, res.mesh, centre, centre, options.stored_positions,
+                                            check_options_of(options, res), res.stored_displacement);
   res.stored_as = options.stored_positions.describe();
   clock.end("stored check");
 }

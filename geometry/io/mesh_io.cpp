@@ -301,9 +301,7 @@ PositionStorage position_storage(MeshFormat format, const MeshWriteOptions& opt)
 
 double position_rounding(MeshFormat format, const IndexedMesh& mesh) {
   if (format != MeshFormat::Stl) return 0;
-  double largest = 0;
-  for (const Vec3& p : mesh.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-  return 2 * std::ldexp(largest, -24) * std::sqrt(3.0);
+  return 2 * position_storage(format).max_error(mesh);
 }
 
 IndexedMesh read_mesh(const std::string& path, std::vector<VertexAttribute>* attributes) {
