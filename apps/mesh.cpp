@@ -257,6 +257,7 @@ skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule
   w.probe_radius = a.mol.probe;
   w.geometry.double_precision = !a.float32;
   w.geometry.off_normals = a.off_normals;
+  w.geometry.ascii = a.ascii;
   return w;
 }
 
@@ -270,7 +271,7 @@ std::string stored_check_error(const std::string& path, const mesher::MeshResult
   if (skin::is_msms_path(path))
     text += "--msms-decimals 6 or more keeps it, ";
   else
-    text += ".ply without --float keeps positions exact, ";
+    text += ".ply, or --ascii .stl, without --float keeps positions exact, ";
   return text + "--force writes it anyway)";
 }
 
@@ -369,6 +370,9 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--float", mesh.float32,
                 "float32 positions and normals in .ply, .off, .obj and .vtk (half the size; gmsh reads only float "
                 "PLY); the mesh is checked as the file stores it (default: exact doubles)");
+  cmd->add_flag("--ascii", mesh.ascii,
+                "write .ply and .stl as text (TetGen reads only text PLY and STL; ASCII STL keeps positions exact, "
+                "binary STL rounds them to float32)");
   cmd->add_flag("--off-normals", mesh.off_normals,
                 "write .off as NOFF, with each vertex's normal (default: plain OFF, which every OFF reader takes)");
   cmd->add_flag("--no-check", mesh.no_check,

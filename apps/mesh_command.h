@@ -41,6 +41,8 @@ struct MeshArgs {
   bool float32 = false;
   /// --off-normals: NOFF (positions and normals) instead of plain OFF.
   bool off_normals = false;
+  /// --ascii: PLY and STL as text.
+  bool ascii = false;
   /// --msms-atom-names: the atom's name as the 10th field of MSMS vertices.
   bool msms_atom_names = false;
 };

@@ -239,11 +239,12 @@ PYBIND11_MODULE(skinmesh, m) {
       .def_readonly("ok", &PyMesh::ok)
       .def(
           "write",
-          [](const PyMesh& s, const py::object& path, int msms_decimals, bool force) {
+          [](const PyMesh& s, const py::object& path, int msms_decimals, bool force, bool ascii) {
             const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
             py::gil_scoped_release release;
             skin::SkinMeshWriteOptions w;
             w.msms_decimals = msms_decimals;
+            w.geometry.ascii = ascii;
             w.probe_radius = s.probe;
             const geometry::PositionStorage storage = skin::position_storage(p, w);
             // As the command line does: a mesh that passed its check is checked
@@ -259,16 +260,17 @@ PYBIND11_MODULE(skinmesh, m) {
                                  "stores positions as " + storage.describe() +
                                      ", which breaks the mesh: " + rep.problems.front() + "; not written (" +
                                      (skin::is_msms_path(p) ? "msms_decimals=6 or more keeps it, "
-                                                            : ".ply keeps positions exact, ") +
+                                                            : ".ply or ascii=True keeps positions exact, ") +
                                      "force=True writes it anyway)");
             }
             skin::write_skin_mesh(p, s.mesh, s.vertex_data, w);
           },
-          py::arg("path"), py::arg("msms_decimals") = 3, py::arg("force") = false,
+          py::arg("path"), py::arg("msms_decimals") = 3, py::arg("force") = false, py::arg("ascii") = false,
           "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face, "
-          "positions with msms_decimals decimals, 3 to 12). A checked mesh written to a format that rounds "
-          "positions (MSMS, STL) is checked again as the file stores them; if that fails, InputError names what "
-          "broke and nothing is written, unless force=True.")
+          "positions with msms_decimals decimals, 3 to 12). ascii=True writes .ply and .stl as text (TetGen reads "
+          "only text PLY and STL; ASCII STL keeps exact positions). A checked mesh written to a format that rounds "
+          "positions (MSMS, binary STL) is checked again as the file stores them; if that fails, InputError names "
+          "what broke and nothing is written, unless force=True.")
       .def("__repr__", [](const PyMesh& s) {
         return "<skinmesh.Mesh: " + std::to_string(s.mesh.positions.size()) + " vertices, " +
                std::to_string(s.mesh.triangles.size()) + " triangles" + (s.ok ? "" : ", FAILED its check") + ">";

@@ -326,16 +326,11 @@ double position_rounding(const std::string& path, const IndexedMesh& mesh) {
   if (is_msms_path(path)) return kMsmsRounding;
   const geometry::MeshFormat format = geometry::mesh_format_from_extension(path);
   // A file of float32 coordinates (a PLY `float`, or text another tool wrote
-  // from floats) holds only numbers a float represents; a mesh of exact
+  // from floats) holds only floats or their shortest text; a mesh of exact
   // doubles off the skin's surface all but never does.
-  const geometry::PositionStorage float32{geometry::PositionStorage::Kind::Float32, 0};
-  bool floats = !mesh.positions.empty();
-  for (const Vec3& p : mesh.positions)
-    if (float32.stored(p) != p) {
-      floats = false;
-      break;
-    }
-  if (floats) return std::max(geometry::position_rounding(format, mesh), 2 * float32.max_error(mesh));
+  if (geometry::float32_coordinates(mesh))
+    return std::max(geometry::position_rounding(format, mesh),
+                    2 * geometry::PositionStorage{geometry::PositionStorage::Kind::Float32Text, 0}.max_error(mesh));
   return geometry::position_rounding(format, mesh);
 }
 

@@ -241,7 +241,7 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
       return;
     case MeshFormat::Stl:
       write_file_atomically(
-          path, [&](ChunkedWriter& out) { write_stl(mesh, out); }, "mesh");
+          path, [&](ChunkedWriter& out) { write_stl(mesh, opt, out); }, "mesh");
       return;
     case MeshFormat::Vtk:
       write_file_atomically(
@@ -257,6 +257,14 @@ double PositionStorage::stored(double x) const {
       return x;
     case Kind::Float32:
       return static_cast<double>(static_cast<float>(x));
+    case Kind::Float32Text: {
+      // The text append_number() writes, read back as the nearest double.
+      std::array<char, 64> buf;
+      const std::to_chars_result r = std::to_chars(buf.data(), buf.data() + buf.size(), static_cast<float>(x));
+      double back = x;
+      std::from_chars(buf.data(), r.ptr, back);
+      return back;
+    }
     case Kind::Decimals: {
       // Through the text itself: the decimal a correctly rounding printf
       // writes, read back as the nearest double (what every reader does).
@@ -276,7 +284,8 @@ double PositionStorage::max_error(const IndexedMesh& mesh) const {
   double largest = 0;
   for (const Vec3& p : mesh.positions)
     if (p.allFinite()) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-  if (kind == Kind::Float32) return std::ldexp(largest, -24) * std::sqrt(3.0);  // half a float32 ulp per axis
+  if (kind == Kind::Float32) return std::ldexp(largest, -24) * std::sqrt(3.0);      // half a float32 ulp per axis
+  if (kind == Kind::Float32Text) return std::ldexp(largest, -23) * std::sqrt(3.0);  // the float's, then the text's
   // Half a unit of the last decimal, then the decimal read as the nearest
   // double (half a double ulp, which matters only at many decimals).
   return (0.5 * std::pow(10.0, -decimals) + std::ldexp(largest, -53)) * std::sqrt(3.0);
@@ -288,6 +297,8 @@ std::string PositionStorage::describe() const {
       return "exact doubles";
     case Kind::Float32:
       return "float32";
+    case Kind::Float32Text:
+      return "float32 text";
     case Kind::Decimals:
       return std::to_string(decimals) + " decimals";
   }
@@ -295,13 +306,24 @@ std::string PositionStorage::describe() const {
 }
 
 PositionStorage position_storage(MeshFormat format, const MeshWriteOptions& opt) {
-  if (format == MeshFormat::Stl || !opt.double_precision) return {PositionStorage::Kind::Float32, 0};
+  const bool binary = (format == MeshFormat::Ply || format == MeshFormat::Stl) && !opt.ascii;
+  if (binary && (format == MeshFormat::Stl || !opt.double_precision)) return {PositionStorage::Kind::Float32, 0};
+  if (!opt.double_precision) return {PositionStorage::Kind::Float32Text, 0};
   return {};
 }
 
+bool float32_coordinates(const IndexedMesh& mesh) {
+  const PositionStorage value{PositionStorage::Kind::Float32, 0}, text{PositionStorage::Kind::Float32Text, 0};
+  for (const Vec3& p : mesh.positions)
+    for (int k = 0; k < 3; ++k)
+      if (value.stored(p[k]) != p[k] && text.stored(p[k]) != p[k]) return false;
+  return !mesh.positions.empty();
+}
+
 double position_rounding(MeshFormat format, const IndexedMesh& mesh) {
-  if (format != MeshFormat::Stl) return 0;
-  return 2 * position_storage(format).max_error(mesh);
+  // Binary STL holds floats only; an ASCII STL may hold exact doubles.
+  if (format != MeshFormat::Stl || !float32_coordinates(mesh)) return 0;
+  return 2 * PositionStorage{PositionStorage::Kind::Float32Text, 0}.max_error(mesh);
 }
 
 IndexedMesh read_mesh(const std::string& path, std::vector<VertexAttribute>* attributes) {

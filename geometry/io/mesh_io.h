@@ -40,6 +40,12 @@ struct MeshWriteOptions {
   /// its normals as coordinates); true writes NOFF, x y z nx ny nz per vertex,
   /// when the mesh has normals.
   bool off_normals = false;
+  /// PLY and STL: false (default) writes them binary; true writes `format
+  /// ascii 1.0` PLY and `solid` STL text, for readers that take only text
+  /// (TetGen 1.5 reads ASCII PLY and STL only). Numbers are the shortest text
+  /// that reads back to the double (or to the float with !double_precision), so
+  /// ASCII STL keeps exact positions where binary STL rounds them to float32.
+  bool ascii = false;
 };
 
 // Mesh I/O Public Functions
@@ -61,7 +67,7 @@ void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& at
 
 /// Writes `mesh` and its per-vertex `attributes` to `path` in the format of its
 /// extension:
-/// - .ply: binary little-endian PLY; element vertex with x, y, z, then nx, ny, nz
+/// - .ply: binary little-endian PLY (ASCII with opt.ascii); element vertex with x, y, z, then nx, ny, nz
 ///   if mesh.normals is set (both double or both float, see MeshWriteOptions),
 ///   then one property per attribute in order (`int NAME` for an integer one,
 ///   else `double NAME` or `float NAME`); element face with
@@ -73,6 +79,8 @@ void check_writable(const IndexedMesh& m, const std::vector<VertexAttribute>& at
 ///   if normals are set; attributes are not stored.
 /// - .stl: binary STL, float32 corners and facet normals (the usual format of 3D
 ///   printing); one record per triangle, no shared vertices, no attributes.
+///   With opt.ascii: `solid` text, corners as exact doubles (floats with
+///   !double_precision).
 /// - .vtk: legacy VTK, ascii POLYDATA (ParaView, VTK): POINTS, POLYGONS, and as
 ///   POINT_DATA `normals` (if set) and one `SCALARS NAME int|double|float 1` per
 ///   attribute in order; CELL_DATA `min_angle` (degrees).
@@ -127,38 +135,54 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
 /// collapses at three decimals), so the mesher checks the positions as the file
 /// will hold them (mesher/pipeline.h, MeshOptions::stored_positions).
 struct PositionStorage {
-  enum class Kind { Exact, Float32, Decimals };
+  /// Exact: the doubles themselves. Float32: binary float32 (binary PLY
+  /// `float`, binary STL). Float32Text: the shortest text of the float32
+  /// value (OFF, OBJ, VTK, ASCII PLY and STL without double precision), which
+  /// a reader parses as the nearest double, not always the float itself.
+  /// Decimals: printf's "%.Nf" text (MSMS).
+  enum class Kind { Exact, Float32, Float32Text, Decimals };
   Kind kind = Kind::Exact;
   int decimals = 0;  ///< digits after the point, for Kind::Decimals (0..17)
   /// True unless positions are stored exactly.
   bool lossy() const { return kind != Kind::Exact; }
-  /// The coordinate `x` as a reader gets it back from the file: the double
-  /// nearest the float32 nearest `x`, or nearest the decimal text printf's
-  /// "%.Nf" writes for `x` (correctly rounded, as glibc's printf and
-  /// std::to_chars are). Non-finite values are returned unchanged.
+  /// The coordinate `x` as a reader gets it back from the file: the float32
+  /// nearest `x`, or the double nearest the text written for `x` (the
+  /// shortest text of that float32, or printf's "%.Nf"; correctly rounded, as
+  /// glibc's printf and std::to_chars are). Non-finite values are returned
+  /// unchanged.
   double stored(double x) const;
   /// stored() applied to each coordinate.
   Vec3 stored(const Vec3& p) const { return {stored(p.x()), stored(p.y()), stored(p.z())}; }
   /// An upper bound (Å) on |stored(p) - p| over the positions of `mesh`:
   /// 0 for Exact; sqrt(3) half-units in the last place (float32) of the
-  /// largest coordinate for Float32; sqrt(3) (10^-decimals / 2 + half a
-  /// double unit in the last place of the largest coordinate) for Decimals.
+  /// largest coordinate for Float32, sqrt(3) whole units for Float32Text (the
+  /// text's double may lie up to half a float unit from the float);
+  /// sqrt(3) (10^-decimals / 2 + half a double unit in the last place of the
+  /// largest coordinate) for Decimals.
   double max_error(const IndexedMesh& mesh) const;
   /// How the positions are stored, for messages: "exact doubles",
-  /// "float32", "3 decimals".
+  /// "float32", "float32 text", "3 decimals".
   std::string describe() const;
 };
 
 /// The position storage of write_mesh() for `format` with `opt`: Float32 for
-/// STL (always) and for the other formats when opt.double_precision is false;
-/// Exact otherwise.
+/// binary STL (always) and binary PLY when opt.double_precision is false,
+/// Float32Text for the text formats (OFF, OBJ, VTK, ASCII PLY and STL) when it
+/// is false; Exact otherwise (ASCII STL included).
 PositionStorage position_storage(MeshFormat format, const MeshWriteOptions& opt = {});
 
+/// True if every coordinate of `mesh` is what a float32 writer gives: a
+/// float32 value, or the double parsed from the shortest text of one (false
+/// for an empty mesh). A mesh of exact doubles on a curved surface all but
+/// never is.
+bool float32_coordinates(const IndexedMesh& mesh);
+
 /// How far (Å) the format `format` may have moved the positions of `mesh`
-/// read from it: for STL (float32 corners) twice sqrt(3) half-units in the
-/// last place of its largest coordinate; 0 for PLY, OFF, OBJ and VTK as
-/// skinmesh writes them (exact). The verifier's vertex-distance tolerance must
-/// not be below it.
+/// read from it: for STL whose coordinates are all float32 (binary STL always
+/// is; float32_coordinates) twice PositionStorage{Float32Text}.max_error; 0
+/// for an ASCII STL of doubles and for PLY, OFF, OBJ and VTK as skinmesh
+/// writes them (exact). The verifier's vertex-distance tolerance must not be
+/// below it.
 double position_rounding(MeshFormat format, const IndexedMesh& mesh);
 
 /// The bytes of one file as a writer makes them, handed to a sink in chunks of

@@ -3,10 +3,10 @@
 // one reader per format, each format in its own file:
 //   mesh_io.cpp      dispatch by extension (mesh_io.h), atomic file writing,
 //                    file reading, and the shared helpers below
-//   mesh_io_ply.cpp  PLY: binary little-endian writer; ascii / binary reader
+//   mesh_io_ply.cpp  PLY: binary little-endian or ascii writer; ascii / binary reader
 //   mesh_io_off.cpp  OFF (NOFF on request) writer and OFF/NOFF reader
 //   mesh_io_obj.cpp  Wavefront OBJ writer and reader
-//   mesh_io_stl.cpp  STL: binary writer; binary / ascii reader
+//   mesh_io_stl.cpp  STL: binary or ascii writer; binary / ascii reader
 //   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
 // Numbers go through std::to_chars / std::from_chars: shortest text that reads
 // back to the same double, and correctly rounded parsing, so text round trips are
@@ -50,7 +50,8 @@ void check_indices(const std::string& path, const IndexedMesh& m, const std::vec
 // flush; readers take the whole file `data` read from `path` (for messages) and
 // throw InputError as read_mesh() says.
 
-/// The binary little-endian PLY file of `m` (layout: write_mesh() in mesh_io.h).
+/// The PLY file of `m`, binary little-endian or, with opt.ascii, ASCII
+/// (layout: write_mesh() in mesh_io.h).
 /// Pre: `m` passed the checks of write_mesh() (check_writable in mesh_io.cpp).
 void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
                ChunkedWriter& out);
@@ -73,8 +74,10 @@ void write_obj(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter&
 IndexedMesh read_obj(const std::string& path, const std::string& data);
 
 /// The binary STL file of `m` (80-byte header, triangle count, per triangle
-/// the unit facet normal and the three corners as float32, 2 zero bytes).
-void write_stl(const IndexedMesh& m, ChunkedWriter& out);
+/// the unit facet normal and the three corners as float32, 2 zero bytes), or
+/// with opt.ascii the `solid skinmesh` text with the same records, numbers as
+/// append_number() writes them.
+void write_stl(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& out);
 
 /// Reads a binary or ascii STL file; corners with identical coordinates
 /// become one vertex (in order of first appearance). No normals.

@@ -312,7 +312,8 @@ void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attribu
                ChunkedWriter& w) {
   const char* real = opt.double_precision ? "double" : "float";
   std::string& out = w.buffer();
-  out += "ply\nformat binary_little_endian 1.0\ncomment written by skinmesh\n";
+  out += opt.ascii ? "ply\nformat ascii 1.0\n" : "ply\nformat binary_little_endian 1.0\n";
+  out += "comment written by skinmesh\n";
   out += "element vertex " + std::to_string(m.positions.size()) + "\n";
   for (const char* p : {"x", "y", "z"}) out += std::string("property ") + real + " " + p + "\n";
   if (!m.normals.empty())
@@ -321,6 +322,31 @@ void write_ply(const IndexedMesh& m, const std::vector<VertexAttribute>& attribu
     out += std::string("property ") + (a.integer ? "int" : real) + " " + a.name + "\n";
   out += "element face " + std::to_string(m.triangles.size()) + "\n";
   out += "property list uchar int vertex_indices\nend_header\n";
+  if (opt.ascii) {
+    // One line per element, the numbers separated by single spaces.
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        if (k > 0) out += ' ';
+        append_number(out, m.positions[i][k], opt.double_precision);
+      }
+      if (!m.normals.empty())
+        for (int k = 0; k < 3; ++k) {
+          out += ' ';
+          append_number(out, m.normals[i][k], opt.double_precision);
+        }
+      for (const VertexAttribute& a : attributes) {
+        out += ' ';
+        if (a.integer)
+          out += std::to_string(static_cast<std::int32_t>(a.values[i]));
+        else
+          append_number(out, a.values[i], opt.double_precision);
+      }
+      out += '\n';
+      w.spill();
+    }
+    append_triangle_lines(w, m.triangles);
+    return;
+  }
   auto put_real = [&](double v) {
     if (opt.double_precision)
       append_le(out, v);

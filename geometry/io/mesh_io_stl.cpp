@@ -143,16 +143,39 @@ IndexedMesh read_stl_ascii(const std::string& path, const std::string& data) {
 
 }  // namespace
 
-void write_stl(const IndexedMesh& m, ChunkedWriter& w) {
+void write_stl(const IndexedMesh& m, const MeshWriteOptions& opt, ChunkedWriter& w) {
   std::string& out = w.buffer();
+  auto facet_normal = [&m](const std::array<Index, 3>& t) {
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+  };
+  if (opt.ascii) {
+    auto put = [&](const char* keyword, const Vec3& v) {
+      out += keyword;
+      for (int k = 0; k < 3; ++k) {
+        out += ' ';
+        append_number(out, v[k], opt.double_precision);
+      }
+      out += '\n';
+    };
+    out += "solid skinmesh\n";
+    for (const auto& t : m.triangles) {
+      put("facet normal", facet_normal(t));
+      out += "outer loop\n";
+      for (Index v : t) put("vertex", m.positions[v]);
+      out += "endloop\nendfacet\n";
+      w.spill();
+    }
+    out += "endsolid skinmesh\n";
+    return;
+  }
   std::string header = "binary STL written by skinmesh: " + std::to_string(m.triangles.size()) + " triangles";
   header.resize(80, ' ');
   out += header;
   put_u32(out, static_cast<std::uint32_t>(m.triangles.size()));
   for (const auto& t : m.triangles) {
-    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    Vec3 n = (b - a).cross(c - a);
-    n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+    const Vec3 n = facet_normal(t);
     for (int k = 0; k < 3; ++k) put_f32(out, n[k]);
     for (Index v : t)
       for (int k = 0; k < 3; ++k) put_f32(out, m.positions[v][k]);

@@ -5,8 +5,9 @@ installed by .ci/install-deps. Run by `make test` (ctest `python`).
 
 What they check: each reader gets the same points (bit for bit where the
 format stores doubles, the float32 values for STL), the same triangles and
-the atom index; TetGen fills the plain OFF file with tetrahedra whose
-volume is the volume the mesh encloses."""
+the atom index; TetGen fills the plain OFF file, and the ASCII PLY and STL
+files (`ascii=True`, `--ascii`: TetGen reads no binary PLY or STL), with
+tetrahedra whose volume is the volume the mesh encloses."""
 import os
 import subprocess
 
@@ -45,20 +46,45 @@ def test_meshio_reads_ply_off_obj_stl_as_written(tmp_path):
     assert np.array_equal(np.column_stack([ply.point_data[k] for k in ("nx", "ny", "nz")]), m.normals)
 
 
-def test_tetgen_fills_the_off_file_with_the_enclosed_volume(tmp_path):
+def test_meshio_reads_ascii_ply_and_stl_exactly(tmp_path):
     m = skinmesh.mesh(LIGAND, threads=1)
-    components = m.stats["surface"]["components"]
-    assert len(components) == 1  # one shell: TetGen fills it whole
-    m.write(tmp_path / "l.off")
-    # -p: a piecewise linear complex (the surface), -Y: keep its triangles,
-    # -Q: quiet. TetGen writes l.1.node and l.1.ele.
-    subprocess.run(["tetgen", "-pYQ", str(tmp_path / "l.off")], check=True, timeout=120)
-    node = np.loadtxt(tmp_path / "l.1.node", comments="#", skiprows=1)
-    ele = np.loadtxt(tmp_path / "l.1.ele", comments="#", skiprows=1, dtype=np.int64)
+    for name in ["a.ply", "a.stl"]:
+        m.write(tmp_path / name, ascii=True)
+        with open(tmp_path / name, "rb") as f:
+            assert f.read(5) in (b"ply\nf", b"solid")
+        got = meshio.read(tmp_path / name)
+        triangles = [c.data for c in got.cells if c.type == "triangle"]
+        assert len(triangles) == 1 and len(got.cells) == 1, name
+        # Exact doubles in both: ASCII STL does not round to float32.
+        expected = triangle_corners(m.vertices, m.triangles)
+        assert np.array_equal(triangle_corners(got.points.astype(np.float64), triangles[0]), expected), name
+    ply = meshio.read(tmp_path / "a.ply")
+    assert np.array_equal(ply.points, m.vertices)
+    assert np.array_equal(ply.point_data["atom"], m.atom)
+
+
+def tetgen_volume(path):
+    """The volume of TetGen's tetrahedra filling the surface mesh file `path`
+    (`tetgen -pYQ`: a piecewise linear complex, its triangles kept, quiet),
+    and their count. TetGen writes <stem>.1.node and <stem>.1.ele beside it."""
+    subprocess.run(["tetgen", "-pYQ", str(path)], check=True, timeout=120)
+    stem = str(path)[: str(path).rfind(".")]
+    node = np.loadtxt(stem + ".1.node", comments="#", skiprows=1)
+    ele = np.loadtxt(stem + ".1.ele", comments="#", skiprows=1, dtype=np.int64)
     points = node[:, 1:4]
     first = int(node[0, 0])  # TetGen numbers from 0 or 1, as its input did
     tets = points[ele[:, 1:5] - first]
     volume = np.abs(np.einsum("ij,ij->i", tets[:, 1] - tets[:, 0],
                               np.cross(tets[:, 2] - tets[:, 0], tets[:, 3] - tets[:, 0]))).sum() / 6
-    assert len(ele) > len(m.triangles) / 4
-    assert abs(volume - components[0]["volume_A3"]) <= 1e-9 * components[0]["volume_A3"]
+    return volume, len(ele)
+
+
+def test_tetgen_fills_the_off_and_ascii_ply_and_stl_files_with_the_enclosed_volume(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1)
+    components = m.stats["surface"]["components"]
+    assert len(components) == 1  # one shell: TetGen fills it whole
+    for name, ascii in [("l.off", False), ("a.ply", True), ("a.stl", True)]:
+        m.write(tmp_path / name, ascii=ascii)
+        volume, tetrahedra = tetgen_volume(tmp_path / name)
+        assert tetrahedra > len(m.triangles) / 4, name
+        assert abs(volume - components[0]["volume_A3"]) <= 1e-9 * components[0]["volume_A3"], name

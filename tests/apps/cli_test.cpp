@@ -377,6 +377,35 @@ TEST_CASE("--msms-atom-names: each MSMS vertex record ends with its atom's chain
   CHECK(a.atom == b.atom);
 }
 
+TEST_CASE("--ascii writes text PLY and STL; ASCII STL keeps the exact positions binary STL rounds") {
+  Scratch s;
+  const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_2zmm.pdb");
+  REQUIRE(run(s, "mesh " + mol + " -o b.ply --quiet").exit_code == 0);
+  const auto exact = skinmesh::skin::read_skin_mesh((s.dir / "b.ply").string());
+  for (const char* name : {"a.stl", "a.ply"}) {
+    CAPTURE(name);
+    const Run r = run(s, "mesh " + mol + " -o " + name + " --ascii --quiet --stats " + name + ".json");
+    REQUIRE(r.exit_code == 0);
+    const std::string text = slurp(s.dir / name);
+    CHECK(text.starts_with(std::string(name) == "a.stl" ? "solid skinmesh\n" : "ply\nformat ascii 1.0\n"));
+    // Exact doubles: no second check at stored positions, and every corner
+    // is a vertex of the binary PLY, bit for bit.
+    const nlohmann::json stats = nlohmann::json::parse(slurp(s.dir / (std::string(name) + ".json")));
+    CHECK(stats.at("checks_passed") == true);
+    CHECK(!stats.contains("stored_positions"));
+    const auto back = skinmesh::skin::read_skin_mesh((s.dir / name).string());
+    REQUIRE(back.positions.size() == exact.positions.size());
+    std::vector<skinmesh::Vec3> a = back.positions, b = exact.positions;
+    const auto less = [](const skinmesh::Vec3& p, const skinmesh::Vec3& q) {
+      return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+    };
+    std::sort(a.begin(), a.end(), less);
+    std::sort(b.begin(), b.end(), less);
+    CHECK(a == b);
+    CHECK(run(s, "check " + mol + " " + name).exit_code == 0);
+  }
+}
+
 TEST_CASE("a mesh that a lossy format breaks is not written: the error names the file and the fix") {
   // Crambin at probe 0 has a cavity of about 8e-4 Å² (1,036 triangles): at
   // MSMS's three decimals it collapses into zero-area, self-intersecting and

@@ -128,6 +128,57 @@ TEST_CASE("mesh_io: PLY with float32 stores float-rounded values") {
   CHECK(std::filesystem::file_size(path) < std::filesystem::file_size(scratch().path("octa.ply")));
 }
 
+TEST_CASE("mesh_io: ASCII PLY and STL (--ascii) read back bit-exact, float32 with double_precision false") {
+  const IndexedMesh m = octahedron();
+  for (const char* name : {"octa_ascii.ply", "octa_ascii.stl"}) {
+    CAPTURE(name);
+    const bool ply = std::string_view(name).ends_with(".ply");
+    const std::string path = scratch().path(name);
+    write_mesh(path, m, MeshWriteOptions{.ascii = true}, kOctahedronAtoms);
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // Text only, in the variant the documentation names.
+    CHECK(std::none_of(text.begin(), text.end(), [](char c) { return c == '\0'; }));
+    CHECK(text.starts_with(ply ? "ply\nformat ascii 1.0\n" : "solid skinmesh\n"));
+    std::vector<VertexAttribute> read;
+    const IndexedMesh r = read_mesh(path, &read);
+    // The STL reader merges corners by their coordinates, in order of first use:
+    // the octahedron's triangles meet its vertices in the order 0, 2, 4, 1, 3, 5.
+    const std::vector<int> order = ply ? std::vector<int>{0, 1, 2, 3, 4, 5} : std::vector<int>{0, 2, 4, 1, 3, 5};
+    REQUIRE(r.positions.size() == m.positions.size());
+    for (std::size_t i = 0; i < order.size(); ++i) CHECK(same_bits(r.positions[i], m.positions[order[i]]));
+    CHECK(skinmesh::geometry::position_storage(ply ? MeshFormat::Ply : MeshFormat::Stl, {.ascii = true}).lossy() ==
+          false);
+    CHECK(skinmesh::geometry::position_rounding(ply ? MeshFormat::Ply : MeshFormat::Stl, r) == 0);
+    if (ply) {
+      check_same_geometry(m, r, true);
+      REQUIRE(read.size() == 1);
+      CHECK(read[0].values == kOctahedronAtoms[0].values);
+    }
+    // With float32 numbers: the shortest text of each float, read back as
+    // PositionStorage::stored() says; an STL's rounding is recognised.
+    const MeshWriteOptions float_text{.double_precision = false, .ascii = true};
+    const std::string fpath = scratch().path(std::string("f_") + name);
+    write_mesh(fpath, m, float_text);
+    const IndexedMesh f = read_mesh(fpath);
+    const auto storage = skinmesh::geometry::position_storage(ply ? MeshFormat::Ply : MeshFormat::Stl, float_text);
+    CHECK(storage.kind == skinmesh::geometry::PositionStorage::Kind::Float32Text);
+    REQUIRE(f.positions.size() == m.positions.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      CHECK(same_bits(f.positions[i], storage.stored(m.positions[order[i]])));
+      CHECK((f.positions[i] - m.positions[order[i]]).norm() <= storage.max_error(m));
+      for (int k = 0; k < 3; ++k)
+        CHECK(static_cast<float>(f.positions[i][k]) == static_cast<float>(m.positions[order[i]][k]));
+    }
+    CHECK(skinmesh::geometry::float32_coordinates(f));
+    CHECK_FALSE(skinmesh::geometry::float32_coordinates(m));
+    if (!ply)  // the rounding the reader estimates from the file covers what the writer moved
+      for (std::size_t i = 0; i < order.size(); ++i)
+        CHECK((f.positions[i] - m.positions[order[i]]).norm() <=
+              skinmesh::geometry::position_rounding(MeshFormat::Stl, f));
+  }
+}
+
 TEST_CASE("mesh_io: OFF and OBJ round trips are bit-exact") {
   const IndexedMesh m = octahedron();
   for (const char* name : {"octa.off", "octa.obj"}) {

@@ -211,12 +211,16 @@ TEST_CASE("position storage: a reader gets back exactly stored(), within max_err
       CHECK((back.positions[v] - m.positions[v]).norm() <= bound);
     }
   }
-  for (const char* name : {"m.stl", "m.ply"}) {
+  // Every float32 variant: binary (the float itself) and text (the shortest
+  // text of the float, read back as the nearest double).
+  for (const char* name : {"m.stl", "m.ply", "a.ply", "a.stl", "m.off", "m.obj", "m.vtk"}) {
     CAPTURE(name);
     skinmesh::skin::SkinMeshWriteOptions opt;
-    opt.geometry.double_precision = std::string(name) == "m.stl";  // STL rounds either way
+    opt.geometry.double_precision = std::string(name) == "m.stl";  // binary STL rounds either way
+    opt.geometry.ascii = name[0] == 'a';
     const PositionStorage storage = skinmesh::skin::position_storage(s.path(name), opt);
-    REQUIRE(storage.kind == PositionStorage::Kind::Float32);
+    const bool binary = std::string(name) == "m.stl" || std::string(name) == "m.ply";
+    REQUIRE(storage.kind == (binary ? PositionStorage::Kind::Float32 : PositionStorage::Kind::Float32Text));
     write_skin_mesh(s.path(name), m, {}, opt);
     const IndexedMesh back = read_skin_mesh(s.path(name));
     const double bound = storage.max_error(m);
