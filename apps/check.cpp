@@ -83,6 +83,7 @@ Command add_check_command(CLI::App& app) {
   cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
       ->capture_default_str();
   add_threads_option(*cmd, check.opt.threads, "0: every core", "report is");
+  add_shell_options(*cmd, check.opt.shells, "expect in MESH (as `skinmesh mesh` kept them)");
   cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");
   cmd->add_flag("--strict", check.strict,

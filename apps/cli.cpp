@@ -89,6 +89,18 @@ void add_threads_option(CLI::App& cmd, int& threads, const char* zero, const cha
       ->capture_default_str();
 }
 
+void add_shell_options(CLI::App& cmd, skin::ShellSelection& shells, const char* what) {
+  cmd.add_option_function<std::string>(
+         "--cavities", [&shells](const std::string& name) { shells.cavities = skin::cavity_choice_named(name); },
+         std::string("which shells to ") + what +
+             ": keep (every one), remove (the outer surfaces only, as MSMS writes), only (the cavities only); a "
+             "cavity is a shell enclosing a negative volume (default: keep)")
+      ->check(CLI::IsMember({"keep", "remove", "only"}));
+  cmd.add_option("--min-cavity-volume", shells.min_cavity_volume,
+                 "leave out the cavities enclosing less than this volume in Å³ (default: 0, none)")
+      ->check(number_at_least_zero(false));
+}
+
 void add_size_options(CLI::App& cmd, skin::SizeConstants& size) {
   cmd.add_option("--C", size.C, "size constant C of [L] and [U]")
       ->check(number_at_least_zero(true))

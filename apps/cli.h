@@ -15,6 +15,7 @@
 
 #include "core/types.h"
 #include "skin/molecule.h"
+#include "skin/shells.h"
 #include "skin/size_conditions.h"
 
 namespace skinmesh::app {
@@ -68,6 +69,11 @@ Vec3 height_direction(const std::vector<double>& d);
 /// --threads of mesh, check and trace: "threads (ZERO); the WHAT is the same
 /// for every count", an integer in [0, 4096].
 void add_threads_option(CLI::App& cmd, int& threads, const char* zero, const char* what);
+
+/// Adds --cavities keep|remove|only and --min-cavity-volume V (Å³, >= 0) to
+/// `cmd`, filling `shells` (skin/shells.h); `what` ends the help of
+/// --cavities ("write", "expect").
+void add_shell_options(CLI::App& cmd, skin::ShellSelection& shells, const char* what);
 
 /// --C and --Q of mesh, check and trace.
 void add_size_options(CLI::App& cmd, skin::SizeConstants& size);

@@ -208,7 +208,8 @@ int run_mesh(MeshArgs& a) {
   if (!a.mol.quiet)
     std::cerr << "wrote " << a.out << ": " << res.mesh.triangles.size() << " triangles"
               << (res.checked ? ", min angle " + std::to_string(res.check.mesh.min_angle_deg) + "°" : std::string())
-              << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s\n";
+              << (failed ? " (FAILED its checks, written because of --force)" : "") << ", " << total << " s"
+              << shells_note(res) << "\n";
   if (failed)
     for (const std::string& p : res.problems()) std::cerr << "problem: " << p << "\n";
   return failed ? 3 : 0;
@@ -259,6 +260,15 @@ skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule
   w.geometry.off_normals = a.off_normals;
   w.geometry.ascii = a.ascii;
   return w;
+}
+
+std::string shells_note(const mesher::MeshResult& res) {
+  if (!res.shells) return "";
+  const skin::ShellCounts& c = *res.shells;
+  char text[160];
+  std::snprintf(text, sizeof text, "; kept %zu bodies and %zu cavities, left out %zu and %zu (%.3g Å³ of cavities)",
+                c.bodies, c.cavities, c.removed_bodies, c.removed_cavities, c.removed_cavity_volume);
+  return text;
 }
 
 std::string stored_check_error(const std::string& path, const mesher::MeshResult& res) {
@@ -359,6 +369,7 @@ Command add_mesh_command(CLI::App& app) {
                   "this many seconds (nothing is written; 0: no limit)")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
+  add_shell_options(*cmd, mesh.opt.shells, "write (the check verifies every shell first)");
   cmd->add_option("--msms-decimals", mesh.msms_decimals,
                   "digits after the point of MSMS .vert positions (MSMS writes 3; small cavities and thin necks "
                   "may need more: the mesh is checked as the file stores it)")

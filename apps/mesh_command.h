@@ -61,6 +61,10 @@ skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule
 /// stores it (MeshResult::stored_check failed): what broke and what to do.
 std::string stored_check_error(const std::string& path, const mesher::MeshResult& res);
 
+/// "; kept B bodies and C cavities, left out ..." when --cavities or
+/// --min-cavity-volume selected shells (MeshResult::shells); empty otherwise.
+std::string shells_note(const mesher::MeshResult& res);
+
 /// `skinmesh mesh IN IN ... -O DIR` (or --list): every input meshed by --jobs
 /// workers, one failing input does not stop the others; a summary table on
 /// stdout and in DIR/summary.csv and DIR/summary.json. Returns 0 if every

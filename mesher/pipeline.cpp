@@ -437,6 +437,10 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
 verify::SkinCheckOptions check_options_of(const MeshOptions& options, const MeshResult& res) {
   verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
   if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
+  if (res.shells) {  // the kept shells of a mesh whose every shell the check passed
+    check_options.expected_topology = skin::kept_topology(*check_options.expected_topology, *res.shells);
+    check_options.expected_component_euler = res.shells->kept_euler;
+  }
   if (check_options.threads == verify::SkinCheckOptions{}.threads)
     check_options.threads = thread_count(options.threads);
   if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
@@ -540,6 +544,11 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
       remesh_static(skin, options, fallback_clock, res, "the sweep's mesh failed its check" + first);
       run_check(skin, options, fallback_clock, res);
     }
+  }
+  // The shells the user keeps, once the mesh of them all is checked.
+  if (options.shells.selects())
+    res.shells = skin::select_shells(res.mesh, &res.vertex_data, &res.vertex_cells, options.shells);
+  if (options.check) {
     if (res.check.ok() && options.stored_positions.lossy())
       run_stored_check(skin, options, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
     std::vector<Index>().swap(res.vertex_cells);

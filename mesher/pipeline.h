@@ -40,6 +40,7 @@
 #include "refine/local_refinement.h"
 #include "skin/dual_complex.h"
 #include "skin/molecule.h"
+#include "skin/shells.h"
 #include "skin/size_conditions.h"
 #include "skin/vertex_data.h"
 #include "verify/skin_mesh_check.h"
@@ -141,6 +142,12 @@ struct MeshOptions {
   /// properties of the exact positions (verify::SkinCheckOptions::
   /// check_size_conditions). The verdict is MeshResult::stored_check.
   geometry::PositionStorage stored_positions;
+  /// The shells of the skin the mesh keeps (skin/shells.h; default all). The
+  /// check (stage 5) verifies the mesh of every shell; the shells left out
+  /// are then removed from MeshResult::mesh and its vertex data, and the
+  /// stored-positions check expects the kept shells (their count and Euler
+  /// characteristics). MeshResult::shells says what was kept.
+  skin::ShellSelection shells;
   /// Threads (0: every core of the machine). The mesh and every count in
   /// MeshResult are the same, byte for byte, for every thread count: the
   /// threads run independent computations side by side — the skin's dual
@@ -221,6 +228,9 @@ struct MeshResult {
   /// on the points translated by -frame_centre, and `mesh` was translated
   /// back. The check's report refers to the local frame.
   Vec3 frame_centre = Vec3::Zero();
+
+  /// What MeshOptions::shells kept and left out, if it selects.
+  std::optional<skin::ShellCounts> shells;
 
   /// The check of the positions as MeshOptions::stored_positions stores
   /// them, if it ran (a lossy storage, and the check passed).

@@ -156,6 +156,14 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
       volume += c.volume;
     }
     j["surface"] = {{"area_A2", area}, {"volume_A3", volume}, {"components", std::move(parts)}};
+    if (res.shells)
+      j["surface"]["shells"] = {{"cavities", skin::cavity_choice_name(options.shells.cavities)},
+                                {"min_cavity_volume_A3", options.shells.min_cavity_volume},
+                                {"kept_bodies", res.shells->bodies},
+                                {"kept_cavities", res.shells->cavities},
+                                {"removed_bodies", res.shells->removed_bodies},
+                                {"removed_cavities", res.shells->removed_cavities},
+                                {"removed_cavity_volume_A3", res.shells->removed_cavity_volume}};
     // The same two numbers of the exact skin, integrated over its sphere and
     // hyperboloid patches, and how far the mesh is off.
     if (context.exact_measures_of) {

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,7 +25,9 @@
 #include "geometry/io/mesh_io.h"
 #include "mesher/pipeline.h"
 #include "mesher/summary.h"
+#include "skin/dual_complex.h"
 #include "skin/molecule_io.h"
+#include "skin/shells.h"
 #include "skin/skin_measures.h"
 #include "skin/skin_mesh_io.h"
 #include "skin/skin_surface.h"
@@ -46,7 +49,25 @@ struct PyMesh {
   std::vector<geometry::WeightedPoint> points;
   /// The probe radius (Å) of mesh(), for the MSMS header.
   double probe = 0;
+  /// What mesh()'s cavities / min_cavity_volume left out, if they selected:
+  /// write() then expects the kept shells.
+  std::optional<skin::ShellCounts> shells;
 };
+
+/// The shell selection of mesh() and check(): cavities "keep", "remove" or
+/// "only", and the smallest cavity volume kept (Å³). Throws InputError.
+skin::ShellSelection shell_selection(const std::string& cavities, double min_cavity_volume) {
+  skin::ShellSelection s;
+  try {
+    s.cavities = skin::cavity_choice_named(cavities);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", 0, e.what());
+  }
+  if (!(min_cavity_volume >= 0 && std::isfinite(min_cavity_volume)))
+    throw InputError("", 0, "min_cavity_volume must be a finite volume >= 0 (Å³)");
+  s.min_cavity_volume = min_cavity_volume;
+  return s;
+}
 
 /// The atoms of `source`: a path (str or os.PathLike) read with
 /// read_molecule, or an array (n, 4) of x, y, z (Å) and radius (Å).
@@ -112,7 +133,7 @@ void check_probe_and_threads(double probe, int threads) {
 }
 
 PyMesh mesh(const py::object& source, double probe, const std::string& algorithm, bool check, int threads,
-            bool analytic) {
+            bool analytic, const std::string& cavities, double min_cavity_volume) {
   if (algorithm != "sweep" && algorithm != "dynamic")
     throw InputError("", 0, "algorithm must be 'sweep' or 'dynamic', not '" + algorithm + "'");
   check_probe_and_threads(probe, threads);
@@ -122,6 +143,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
   options.probe_radius = probe;
   options.check = check;
   options.threads = threads;
+  options.shells = shell_selection(cavities, min_cavity_volume);
   // As on the command line: where the sweep fails, the static baseline meshes
   // the skin, and stats["static_fallback"] says why.
   options.static_fallback = true;
@@ -140,6 +162,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     summary = mesher::run_summary(res, options, context).dump();
     out.ok = res.ok();
     out.probe = probe;
+    out.shells = res.shells;
     if (res.checked && res.ok()) out.points = points;
     out.mesh = std::move(res.mesh);
     out.vertex_data = std::move(res.vertex_data);
@@ -149,10 +172,12 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
 }
 
 /// The check's report as a Python dict (through its JSON).
-py::dict check(const py::object& source, const py::object& mesh_or_path, double probe, bool strict) {
+py::dict check(const py::object& source, const py::object& mesh_or_path, double probe, bool strict,
+               const std::string& cavities, double min_cavity_volume) {
   const skin::Molecule mol = molecule_of(source);
   geometry::IndexedMesh m;
   verify::SkinCheckOptions options;
+  options.shells = shell_selection(cavities, min_cavity_volume);
   if (py::isinstance<PyMesh>(mesh_or_path)) {
     m = mesh_or_path.cast<const PyMesh&>().mesh;
   } else {
@@ -253,8 +278,14 @@ PYBIND11_MODULE(skinmesh, m) {
               const Vec3 centre = skin::local_frame_centre(s.points);
               const skin::SkinSurface skin(skin::translated(s.points, centre), 0);
               double moved = 0;
+              verify::SkinCheckOptions expect;
+              if (s.shells) {  // the kept shells of a mesh whose every shell passed
+                expect.expected_topology =
+                    skin::kept_topology(skin::dual_complex_topology(skin.mixed_complex()), *s.shells);
+                expect.expected_component_euler = s.shells->kept_euler;
+              }
               const verify::SkinCheckReport rep =
-                  mesher::check_stored_positions(skin, s.mesh, Vec3::Zero(), centre, storage, {}, moved);
+                  mesher::check_stored_positions(skin, s.mesh, Vec3::Zero(), centre, storage, expect, moved);
               if (!rep.ok())
                 throw InputError(p, 0,
                                  "stores positions as " + storage.describe() +
@@ -277,7 +308,8 @@ PYBIND11_MODULE(skinmesh, m) {
       });
 
   m.def("mesh", &mesh, py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("algorithm") = "sweep",
-        py::arg("check") = true, py::arg("threads") = 0, py::arg("analytic") = false,
+        py::arg("check") = true, py::arg("threads") = 0, py::arg("analytic") = false, py::arg("cavities") = "keep",
+        py::arg("min_cavity_volume") = 0.0,
         "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr, optionally .gz) or an "
         "array (n, 4) of x, y, z, radius in Å. Atom weights are 2 (r + probe)². algorithm: 'sweep' (Cheng & Shi "
         "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
@@ -286,7 +318,9 @@ PYBIND11_MODULE(skinmesh, m) {
         "stats['surface']['analytic'], the same of the exact skin (see measures()). Where the sweep fails, the "
         "whole skin is meshed by the static dynamic-skin baseline instead: stats['algorithm'] is then 'dynamic' "
         "and stats['static_fallback'] says why. Raises InputError for a bad file, array or option, TopologyError "
-        "or GeometryError if the algorithm fails.");
+        "or GeometryError if the algorithm fails. cavities='remove' keeps the outer surfaces only (as MSMS writes), "
+        "'only' the cavities only, and cavities enclosing less than min_cavity_volume Å³ are left out: the check "
+        "verifies every shell first, and stats['surface']['shells'] says what was kept.");
   m.def(
       "measures",
       [](const py::object& source, double probe, int threads) {
@@ -298,11 +332,13 @@ PYBIND11_MODULE(skinmesh, m) {
       "integrated over its sphere and hyperboloid patches without a mesh (relative accuracy about 1e-10). "
       "Returns a dict; patch_cells counts the mixed cells whose patch is not empty.");
   m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4, py::arg("strict") = false,
+        py::arg("cavities") = "keep", py::arg("min_cavity_volume") = 0.0,
         "Verifies a mesh (a Mesh, or a mesh file) against the skin of the molecule: closed, manifold, oriented, "
         "no self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay. Returns "
         "the report as a dict; report['problems'] is empty if every check passed. A file that rounds positions "
         "(MSMS, STL, float32 coordinates) is checked to its rounding, without [L], [U] and the restricted "
-        "Delaunay test (they hold for the exact positions) unless strict=True, as `skinmesh check` does.");
+        "Delaunay test (they hold for the exact positions) unless strict=True, as `skinmesh check` does. cavities and "
+        "min_cavity_volume say which shells the mesh holds, as mesh() took them.");
   m.def(
       "read_mesh",
       [](const py::object& path) {

@@ -330,6 +330,32 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   }
   std::sort(rep.expected_component_euler.begin(), rep.expected_component_euler.end());
   const std::int64_t total = std::accumulate(rep.component_euler.begin(), rep.component_euler.end(), std::int64_t{0});
+  if (opt.shells.selects() && opt.expected_component_euler.empty()) {
+    // Some shells only: K0 says how many bodies (betti0) and cavities
+    // (betti2) the skin has, not which genus each shell has, so the kept
+    // shells' Euler characteristics are bounded by the skin's total genus
+    // (exact when that is 0: every shell a sphere).
+    rep.expected_component_euler.clear();
+    std::int64_t bodies = 0, cavities = 0, genus = 0;
+    bool even = true;
+    for (const auto& comp : rep.mesh.components) {
+      (comp.volume < 0 ? cavities : bodies)++;
+      even = even && comp.euler <= 2 && comp.euler % 2 == 0;
+      genus += (2 - comp.euler) / 2;
+    }
+    const std::int64_t want_bodies = opt.shells.cavities == skin::CavityChoice::Only ? 0 : rep.expected.betti0;
+    const std::int64_t max_cavities = opt.shells.cavities == skin::CavityChoice::Remove ? 0 : rep.expected.betti2;
+    const bool cavities_ok = opt.shells.partial_cavities() ? cavities <= max_cavities : cavities == max_cavities;
+    rep.topology_matches = bodies == want_bodies && cavities_ok && even && genus <= rep.expected.total_genus();
+    if (!rep.topology_matches)
+      rep.problems.push_back("topology: " + std::to_string(bodies) + " bodies and " + std::to_string(cavities) +
+                             " cavities of total genus " + std::to_string(genus) + ", expected " +
+                             std::to_string(want_bodies) + " bodies and " +
+                             (opt.shells.partial_cavities() ? "at most " : "") + std::to_string(max_cavities) +
+                             " cavities of total genus at most " + std::to_string(rep.expected.total_genus()) +
+                             " (--cavities " + skin::cavity_choice_name(opt.shells.cavities) + ")");
+    return rep;
+  }
   rep.topology_matches = static_cast<int>(rep.component_euler.size()) == rep.expected.components() &&
                          total == rep.expected.euler_skin() &&
                          (rep.expected_component_euler.empty() || rep.expected_component_euler == rep.component_euler);

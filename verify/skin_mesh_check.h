@@ -16,6 +16,7 @@
 #include "geometry/check/mesh_checks.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "skin/dual_complex.h"
+#include "skin/shells.h"
 #include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
@@ -58,6 +59,12 @@ struct SkinCheckOptions {
   /// already computed it (the pipeline has); empty: computed here. It is a
   /// deterministic function of the skin, so the report is the same either way.
   std::optional<skin::SkinTopology> expected_topology;
+  /// The shells the mesh holds of the skin's (skin/shells.h), when it holds
+  /// some only (`skinmesh check --cavities ...`) and expected_component_euler
+  /// is empty: the topology test then counts the mesh's bodies (components
+  /// enclosing a positive volume) and cavities against K0's, and each
+  /// component's genus against the skin's total (papers/skin/shells.md).
+  skin::ShellSelection shells;
   /// The mixed cell holding each vertex of the mesh, if the caller knows it
   /// (the mesher does), one per vertex: each vertex's point location starts
   /// there. Empty: from the cell of a neighbouring vertex. A wrong cell costs

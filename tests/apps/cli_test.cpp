@@ -406,6 +406,61 @@ TEST_CASE("--ascii writes text PLY and STL; ASCII STL keeps the exact positions 
   }
 }
 
+TEST_CASE("--cavities and --min-cavity-volume choose the shells written; check expects the same") {
+  // Crambin at probe 0: one body and ten cavities (6.9 Å³ in all).
+  Scratch s;
+  const std::string mol = quoted(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  struct Case {
+    std::string options;
+    bool bodies, all_cavities;
+  };
+  std::size_t all_cavities = 0;
+  for (const Case& c : {Case{"", true, true}, Case{"--cavities remove", true, false},
+                        Case{"--cavities only", false, true}, Case{"--min-cavity-volume 0.5", true, false}}) {
+    CAPTURE(c.options);
+    const Run r = run(s, "mesh " + mol + " --probe 0 -o c.ply --quiet --stats c.json " + c.options);
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json stats = nlohmann::json::parse(slurp(s.dir / "c.json"));
+    CHECK(stats.at("checks_passed") == true);
+    std::size_t bodies = 0, cavities = 0;
+    for (const auto& comp : stats.at("surface").at("components")) {
+      const bool cavity = comp.at("kind") == "cavity";
+      (cavity ? cavities : bodies)++;
+      if (cavity && c.options.find("min-cavity") != std::string::npos)
+        CHECK(-comp.at("volume_A3").get<double>() >= 0.5);
+    }
+    CHECK(bodies == (c.bodies ? 1u : 0u));
+    if (c.options.empty()) {
+      all_cavities = cavities;
+      CHECK(all_cavities == 10);
+      CHECK(!stats.at("surface").contains("shells"));
+    } else {
+      const nlohmann::json& shells = stats.at("surface").at("shells");
+      CHECK(shells.at("kept_cavities") == cavities);
+      CHECK(shells.at("kept_cavities").get<std::size_t>() + shells.at("removed_cavities").get<std::size_t>() ==
+            all_cavities);
+      if (c.all_cavities) CHECK(cavities == all_cavities);
+      if (c.options == "--cavities remove") CHECK(cavities == 0);
+      if (c.options.find("min-cavity") != std::string::npos) CHECK((cavities > 0 && cavities < all_cavities));
+    }
+    // `check` with the same options passes the file; without them, a file
+    // missing shells fails its topology test.
+    CHECK(run(s, "check " + mol + " --probe 0 c.ply --quiet " + c.options).exit_code == 0);
+    if (!c.options.empty()) {
+      const Run plain = run(s, "check " + mol + " --probe 0 c.ply --quiet -o plain.json");
+      CHECK(plain.exit_code == 1);
+      CHECK(nlohmann::json::parse(slurp(s.dir / "plain.json")).at("topology_matches") == false);
+    }
+  }
+  // Removing the cavities removes the one that three decimals break: the
+  // MSMS file is written and passes its check.
+  REQUIRE(run(s, "mesh " + mol + " --probe 0 -o c.vert --quiet --cavities remove").exit_code == 0);
+  CHECK(run(s, "check " + mol + " --probe 0 c.vert --quiet --cavities remove").exit_code == 0);
+  // Bad values are refused by the command line.
+  CHECK(run(s, "mesh " + mol + " -o x.ply --cavities none").exit_code == 2);
+  CHECK(run(s, "mesh " + mol + " -o x.ply --min-cavity-volume -1").exit_code == 2);
+}
+
 TEST_CASE("a mesh that a lossy format breaks is not written: the error names the file and the fix") {
   // Crambin at probe 0 has a cavity of about 8e-4 Å² (1,036 triangles): at
   // MSMS's three decimals it collapses into zero-area, self-intersecting and
