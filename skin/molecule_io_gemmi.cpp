@@ -19,11 +19,13 @@
 // tokenizer that finds the line of each value of the _atom_site loop; gemmi
 // then sees the _atom_site items alone (see keep_atom_site_only()).
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <string_view>
 #include <system_error>
@@ -55,7 +57,39 @@ using skinmesh::trim;
 struct SourceRecord {
   int line = 0;
   bool element_from_column = true;
+  /// PDB: columns 77-78 held text that is no element symbol (a segment or
+  /// serial field that alignment programs write there); the element is then
+  /// guessed from the atom name, as with no element column.
+  bool column_not_element = false;
+  /// PDB: the atom name's four columns 13-16 as the file has them (blank
+  /// padded), which place the element symbol by the PDB convention; blank for mmCIF.
+  std::array<char, 4> padded_name{' ', ' ', ' ', ' '};
 };
+
+/// The element of an atom named `name` by the PDB convention (wwPDB format
+/// 3.3, "Atom names"): in the four name columns a one-letter symbol stands in
+/// column 14 and a two-letter one in columns 13-14; a digit or blank in column
+/// 13 means one letter. Where columns 13-14 spell no element (`CH3 ` of ACE,
+/// `OLIN`), the letter in column 13. For a name without its columns (mmCIF;
+/// `padded` all blank), the first letter after any digits, or the first two
+/// letters if the name is that long only. El::X if none of these is an element.
+gemmi::El element_from_name(const std::array<char, 4>& padded, const std::string& name) {
+  const auto one = [](char c) { return gemmi::find_element(std::string(1, c).c_str()); };
+  const auto two = [](char a, char b) { return gemmi::find_element(std::string{a, b}.c_str()); };
+  if (padded != std::array<char, 4>{' ', ' ', ' ', ' '}) {
+    if (padded[0] == ' ' || std::isdigit(static_cast<unsigned char>(padded[0]))) return one(padded[1]);
+    const gemmi::El e = two(padded[0], padded[1]);
+    return e != gemmi::El::X ? e : one(padded[0]);
+  }
+  std::size_t k = 0;
+  while (k < name.size() && std::isdigit(static_cast<unsigned char>(name[k]))) ++k;
+  if (k >= name.size()) return gemmi::El::X;
+  if (name.size() - k == 2) {
+    const gemmi::El e = two(name[k], name[k + 1]);
+    if (e != gemmi::El::X) return e;
+  }
+  return one(name[k]);
+}
 
 /// Finds the source record of an atom returned by gemmi. gemmi regroups atoms by
 /// chain and residue, so they are matched by exact coordinates (gemmi's fast_float
@@ -196,10 +230,19 @@ PdbScan scan_pdb(const std::string& path, std::string_view text) {
       const double z = parse_number(path, line_no, record.substr(46, 8), "z coordinate");
       const std::string name(trim(record.substr(12, 4)));
       const char altloc = line[16] == ' ' ? '\0' : line[16];
-      const bool element_column =
-          line.size() > 76 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
-                               (line.size() > 77 && std::isalpha(static_cast<unsigned char>(line[77]))));
-      scan.index.add(SourceIndex::key(x, y, z, name, altloc), {line_no, element_column});
+      SourceRecord src{line_no, false};
+      for (std::size_t c = 12; c < 16 && c < line.size(); ++c) src.padded_name[c - 12] = line[c];
+      if (line.size() > 76 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
+                               (line.size() > 77 && std::isalpha(static_cast<unsigned char>(line[77]))))) {
+        // A column of letters that spell no element: blanked, so that gemmi
+        // guesses from the name instead of giving up on the atom.
+        const std::string symbol{line[76], line.size() > 77 ? line[77] : ' '};
+        src.element_from_column = gemmi::find_element(symbol.c_str()) != gemmi::El::X;
+        src.column_not_element = !src.element_from_column;
+        if (src.column_not_element)
+          for (std::size_t c = 76; c < std::min<std::size_t>(line.size(), 78); ++c) line[c] = ' ';
+      }
+      scan.index.add(SourceIndex::key(x, y, z, name, altloc), src);
     }
     scan.gemmi_text += line;
     scan.gemmi_text += '\n';  // gemmi counts the newline in a record's length
@@ -293,6 +336,64 @@ bool leading_int_overflows(std::string_view v) {
   return std::from_chars(v.data() + i, v.data() + end, magnitude).ec == std::errc::result_out_of_range;
 }
 
+/// Adds to the _atom_site loop of `block` the items gemmi 0.5.7 requires but a
+/// valid minimal mmCIF may leave out (PyMOL writes no auth_seq_id, other tools
+/// no label_alt_id, occupancy or B factor): without one of them gemmi finds no
+/// atom table at all. Each is filled as the mmCIF dictionary reads its absence:
+/// id the row number, type_symbol '?' (the element is then guessed from the
+/// atom name), label_alt_id '.', label_asym_id the auth_asym_id (else '.'),
+/// occupancy 1, B_iso_or_equiv 0, auth_seq_id the label_seq_id (else '?').
+/// Returns the names of the items added. A loop without Cartn_x/y/z is left
+/// alone (the atoms have no positions).
+std::vector<std::string> complete_atom_site(gemmi::cif::Block& block) {
+  std::vector<std::string> added;
+  for (gemmi::cif::Item& item : block.items) {
+    if (item.type != gemmi::cif::ItemType::Loop || item.loop.tags.empty() ||
+        !gemmi::istarts_with(item.loop.tags.front(), "_atom_site."))
+      continue;
+    gemmi::cif::Loop& loop = item.loop;
+    if (!loop.has_tag("_atom_site.Cartn_x") || !loop.has_tag("_atom_site.Cartn_y") ||
+        !loop.has_tag("_atom_site.Cartn_z"))
+      return added;
+    const std::size_t rows = loop.length(), width = loop.width();
+    // Each missing item: its name and its value in row r.
+    std::vector<std::pair<std::string, std::function<std::string(std::size_t)>>> missing;
+    const auto copy_of = [&loop, width](const char* tag, const char* otherwise) {
+      const int c = loop.find_tag(tag);
+      return [&loop, width, c, otherwise](std::size_t r) {
+        return c >= 0 ? loop.values[r * width + static_cast<std::size_t>(c)] : std::string(otherwise);
+      };
+    };
+    const auto constant = [](const char* v) { return [v](std::size_t) { return std::string(v); }; };
+    const auto need = [&](const char* name, std::function<std::string(std::size_t)> value) {
+      if (!loop.has_tag(std::string("_atom_site.") + name)) missing.emplace_back(name, std::move(value));
+    };
+    need("id", [](std::size_t r) { return std::to_string(r + 1); });
+    need("type_symbol", constant("?"));
+    need("label_alt_id", constant("."));
+    need("label_asym_id", copy_of("_atom_site.auth_asym_id", "."));
+    need("occupancy", constant("1"));
+    need("B_iso_or_equiv", constant("0"));
+    need("auth_seq_id", copy_of("_atom_site.label_seq_id", "?"));
+    if (missing.empty()) return added;
+    std::vector<std::string> values;
+    values.reserve(rows * (width + missing.size()));
+    std::vector<std::string> extra(missing.size());
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t k = 0; k < missing.size(); ++k) extra[k] = missing[k].second(r);  // before the row moves
+      for (std::size_t c = 0; c < width; ++c) values.push_back(std::move(loop.values[r * width + c]));
+      for (std::string& v : extra) values.push_back(std::move(v));
+    }
+    for (const auto& m : missing) {
+      loop.tags.push_back("_atom_site." + m.first);
+      added.push_back(m.first);
+    }
+    loop.values = std::move(values);
+    return added;
+  }
+  return added;
+}
+
 /// Prepares `block` for gemmi::make_structure(), which reads all of it: erases
 /// every item but the _atom_site ones (the only category read_molecule() uses;
 /// gemmi 0.5.7 parses the integers of the others without overflow checks,
@@ -301,19 +402,21 @@ bool leading_int_overflows(std::string_view v) {
 /// label_seq_id, auth_seq_id, pdbx_formal_charge, pdbx_tls_group_id) whose
 /// leading integer is beyond ±INT_MAX — as leading_int() reads such serials and
 /// residue numbers in PQR.
-void keep_atom_site_only(gemmi::cif::Block& block) {
+std::vector<std::string> keep_atom_site_only(gemmi::cif::Block& block) {
   for (gemmi::cif::Item& item : block.items)
     if (!item.has_prefix("_atom_site.")) item.erase();
+  const std::vector<std::string> added = complete_atom_site(block);
   // The table gemmi reads atoms from: the item of _atom_site.id (a tag appears
   // once per block: gemmi's parser rejects duplicates).
   gemmi::cif::Table table =
       block.find("_atom_site.", {"id", "?label_seq_id", "?auth_seq_id", "?pdbx_formal_charge", "?pdbx_tls_group_id"});
-  if (!table.ok()) return;
+  if (!table.ok()) return added;
   for (std::size_t r = 0; r < table.length(); ++r) {
     gemmi::cif::Table::Row row = table[static_cast<int>(r)];
     for (std::size_t c = 0; c < row.size(); ++c)
       if (row.has(c) && leading_int_overflows(row[c])) row[c] = "?";
   }
+  return added;
 }
 
 /// Checks Cartn_x/y/z of every _atom_site row of the first model (CIF numbers,
@@ -321,9 +424,10 @@ void keep_atom_site_only(gemmi::cif::Block& block) {
 /// block is the one gemmi::make_structure() reads. Throws InputError.
 SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::cif::Block& block) {
   SourceIndex index;
-  enum { kX, kY, kZ, kAuthAtom, kLabelAtom, kAlt, kModel };
-  gemmi::cif::Table table = block.find("_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?auth_atom_id",
-                                                       "?label_atom_id", "?label_alt_id", "?pdbx_PDB_model_num"});
+  enum { kX, kY, kZ, kAuthAtom, kLabelAtom, kAlt, kModel, kType };
+  gemmi::cif::Table table =
+      block.find("_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?auth_atom_id", "?label_atom_id", "?label_alt_id",
+                                 "?pdbx_PDB_model_num", "?type_symbol"});
   if (!table.ok() || table.length() == 0) return index;
   std::vector<int> value_lines;
   if (table.loop_item != nullptr) {
@@ -364,7 +468,7 @@ SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::ci
                                  ? gemmi::cif::as_string(row[static_cast<std::size_t>(name_column)])
                                  : std::string();
     const char altloc = row.has(kAlt) ? gemmi::cif::as_char(row[kAlt], '\0') : '\0';
-    index.add(SourceIndex::key(x, y, z, name, altloc), {line_of(r, kX), true});
+    index.add(SourceIndex::key(x, y, z, name, altloc), {line_of(r, kX), row.has(kType)});
   }
   return index;
 }
@@ -372,10 +476,11 @@ SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::ci
 // gemmi Structure to Molecule
 
 /// The atoms of the first model of `st`, filtered and given Bondi radii.
-Molecule from_structure(const std::string& path, const gemmi::Structure& st, SourceIndex& index,
-                        const ReadOptions& opt) {
+Molecule from_structure(const std::string& path, const gemmi::Structure& st, SourceIndex& index, const ReadOptions& opt,
+                        const std::vector<std::string>& reader_notes = {}) {
   std::vector<Atom> atoms;
   NoteList notes(path);
+  for (const std::string& n : reader_notes) notes.add(0, n);
   if (st.models.empty()) return finish(path, std::move(atoms), notes);
   const gemmi::Model& model = st.models.front();
 
@@ -385,7 +490,8 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
   using AtomSlot = std::tuple<std::string, int, char, std::string>;
   std::map<Position, char> position_first;
   std::map<AtomSlot, char> atom_first;
-  int guessed_elements = 0;
+  int guessed_elements = 0, not_elements = 0;
+  std::string first_not_element;
   char fallback_buf[32];
   std::snprintf(fallback_buf, sizeof fallback_buf, "%.2f", kFallbackRadius);
   const std::string fallback_text = fallback_buf;
@@ -436,19 +542,23 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
           notes.add(src.line, "water " + res.name + " " + std::to_string(resnum) + " skipped (use --keep-water)");
           continue;
         }
-        if (a.element == gemmi::El::X) {
+        gemmi::Element element = a.element;
+        if (element == gemmi::El::X && !src.element_from_column) element = element_from_name(src.padded_name, a.name);
+        if (element == gemmi::El::X) {
           throw InputError(path, src.line,
                            "unknown element for " + who() +
-                               (src.element_from_column ? " (element column not recognised)"
-                                                        : " (no element column; none recognised in the atom name)"));
+                               (src.element_from_column
+                                    ? " (element column not recognised; write the element symbol in it)"
+                                    : " (no element column, and none recognised in the atom name; write the element "
+                                      "symbol in columns 77-78)"));
         }
-        if (a.element.is_hydrogen() && !opt.keep_hydrogens) {
+        if (element.is_hydrogen() && !opt.keep_hydrogens) {
           notes.add(src.line, "hydrogen " + who() + " skipped (hydrogens not kept)");
           continue;
         }
         Atom atom;
         atom.centre = Vec3(a.pos.x, a.pos.y, a.pos.z);
-        atom.element = canonical_element_symbol(a.element.name());
+        atom.element = canonical_element_symbol(element.name());
         const VanDerWaalsRadius r = van_der_waals_radius(atom.element);
         atom.radius = r.radius;
         if (!r.from_bondi)
@@ -461,13 +571,20 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
         atom.insertion_code = res.seqid.icode == '\0' || res.seqid.icode == '?' ? ' ' : res.seqid.icode;
         atom.serial = a.serial;
         atom.line = src.line;
-        if (!src.element_from_column) ++guessed_elements;
+        if (src.column_not_element) {
+          if (not_elements++ == 0) first_not_element = "line " + std::to_string(src.line) + ", atom " + a.name;
+        } else if (!src.element_from_column) {
+          ++guessed_elements;
+        }
         atoms.push_back(std::move(atom));
       }
     }
   }
   if (guessed_elements > 0)
     notes.add(0, std::to_string(guessed_elements) + " atoms have no element column; elements guessed from atom names");
+  if (not_elements > 0)
+    notes.add(0, std::to_string(not_elements) + " atoms have text that is no element symbol in columns 77-78 (first: " +
+                     first_not_element + "); elements guessed from atom names");
   return finish(path, std::move(atoms), notes);
 }
 
@@ -496,10 +613,14 @@ Molecule read_pdb(const std::string& path, const std::string& text, const ReadOp
 Molecule read_mmcif(const std::string& path, const std::string& text, const ReadOptions& opt) {
   gemmi::Structure st;
   SourceIndex index;
+  std::vector<std::string> reader_notes;
   try {
     gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
     if (doc.blocks.empty()) throw InputError(path, 0, "no atoms found (no data block)");
-    keep_atom_site_only(doc.blocks.front());
+    std::string added;
+    for (const std::string& tag : keep_atom_site_only(doc.blocks.front())) added += (added.empty() ? "" : ", ") + tag;
+    if (!added.empty())
+      reader_notes.push_back("_atom_site has no " + added + " (read as absent values: a minimal mmCIF)");
     index = scan_mmcif(path, text, doc.blocks.front());
     st = gemmi::make_structure(doc);
   } catch (const InputError&) {
@@ -507,7 +628,7 @@ Molecule read_mmcif(const std::string& path, const std::string& text, const Read
   } catch (const std::exception& e) {
     throw InputError(path, 0, std::string("mmCIF: ") + e.what());
   }
-  return from_structure(path, st, index, opt);
+  return from_structure(path, st, index, opt, reader_notes);
 }
 
 }  // namespace skinmesh::skin::molecule_io_detail

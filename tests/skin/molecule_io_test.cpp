@@ -563,6 +563,68 @@ TEST_CASE("read_molecule_from_string: the reader of read_molecule() on text in m
 
 // Inputs found by the libFuzzer targets of tests/fuzz (make fuzz), each of which
 // once crashed a sanitizer build or let a wrong value through.
+TEST_CASE("real-file shapes other tools read: element text, guessed elements, PyMOL mmCIF, hybrid-36") {
+  // tests/data/readers: one small file per class of file that used to be
+  // refused (papers/skin/molecule_io.md, "Files other tools read"). Each
+  // holds crambin's first two residues (14 atoms: N C C O C O C ×2 ...).
+  const std::string dir = std::string(SKINMESH_TEST_DATA) + "/readers/";
+  const Molecule crambin = read_molecule(data_file("crambin_1crn.pdb"));
+  std::vector<std::string> first14;
+  for (std::size_t i = 0; i < 14; ++i) first14.push_back(crambin.atoms[i].element);
+  auto elements = [](const Molecule& m) {
+    std::vector<std::string> e;
+    for (const auto& a : m.atoms) e.push_back(a.element);
+    return e;
+  };
+  auto one_note_containing = [](const Molecule& m, const std::string& text) {
+    return std::count_if(m.notes.begin(), m.notes.end(),
+                         [&](const std::string& n) { return n.find(text) != std::string::npos; }) == 1;
+  };
+  SUBCASE("columns 77-78 hold segment or serial text: elements from the names, one note") {
+    for (const char* name : {"element_columns_hold_text.pdb", "element_columns_hold_serials.pdb"}) {
+      CAPTURE(name);
+      const Molecule m = read_molecule(dir + name);
+      CHECK(elements(m) == first14);
+      CHECK(m.notes.size() == 1);
+      CHECK(one_note_containing(m, "elements guessed from atom names"));
+      for (std::size_t i = 0; i < m.atoms.size(); ++i) CHECK(m.atoms[i].radius == crambin.atoms[i].radius);
+    }
+    CHECK(one_note_containing(read_molecule(dir + "element_columns_hold_text.pdb"),
+                              "text that is no element symbol in columns 77-78 (first: line 2"));
+  }
+  SUBCASE("no element columns: the PDB convention, and the first letter where two spell no element") {
+    const Molecule m = read_molecule(dir + "element_from_atom_names.pdb");
+    std::vector<std::string> want{"C", "C", "O", "O"};  // ACE: CH3 (column 13), C, O, OLIN (column 13)
+    want.insert(want.end(), first14.begin(), first14.end());
+    want.push_back("Zn");  // a two-letter name from column 13 that is an element
+    CHECK(elements(m) == want);
+    CHECK(m.notes.size() == 1);
+    CHECK(one_note_containing(m, "19 atoms have no element column"));
+  }
+  SUBCASE("hybrid-36 serials and residue numbers") {
+    const Molecule m = read_molecule(dir + "hybrid36_serials.pdb");
+    REQUIRE(m.atoms.size() == 14);
+    CHECK(elements(m) == first14);
+    CHECK(m.notes.empty());
+    CHECK(m.atoms[4].serial == 99999);
+    CHECK(m.atoms[5].serial == 100000);  // "A0000"
+    CHECK(m.atoms[13].serial == 100008);
+    CHECK(m.atoms[0].residue_number == 9999);
+    CHECK(m.atoms[13].residue_number == 10000);  // "A000"
+  }
+  SUBCASE("a minimal mmCIF as PyMOL writes it") {
+    const Molecule m = read_molecule(dir + "pymol_minimal.cif");
+    REQUIRE(m.atoms.size() == 14);
+    CHECK(elements(m) == first14);
+    for (std::size_t i = 0; i < m.atoms.size(); ++i) {
+      CHECK(m.atoms[i].centre == crambin.atoms[i].centre);
+      CHECK(m.atoms[i].residue_number == crambin.atoms[i].residue_number);
+      CHECK(m.atoms[i].chain == "A");
+    }
+    CHECK(one_note_containing(m, "_atom_site has no auth_seq_id"));
+  }
+}
+
 TEST_CASE("fuzzing regressions: PDB") {
   SUBCASE("a LINK record of 74-77 columns is not read past its end") {
     // fuzz_pdb: heap-buffer-overflow in gemmi 0.5.7 pdb_impl::process_conn,
