@@ -13,7 +13,8 @@ namespace skinmesh::app {
 
 const char* const kFormats =
     "\nInput formats (by extension, optionally .gz): .pdb .ent (PDB), .cif .mmcif (mmCIF),\n"
-    ".pqr (PQR, radius from the file), .xyzr (x y z r per line). Radii: Bondi by element;\n"
+    ".pqr (PQR, radius from the file), .xyzr (x y z r per line), .xyzrn (MSMS: x y z r n name,\n"
+    "the name kept for --msms-atom-names). Radii: Bondi by element;\n"
     "atom weight w = 2 (r + probe)^2 (shrink factor 1/2).\n"
     "Output meshes (by extension): .ply (binary, with normals and atom index), .off, .obj,\n"
     ".stl (binary, for 3D printing), .vtk (legacy VTK with normals, atom, rho and min angle), and\n"
@@ -37,17 +38,18 @@ void add_molecule_options(CLI::App& cmd, MoleculeArgs& m, bool many) {
   cmd.footer(kFormats);
   if (many)
     cmd.add_option("IN", m.inputs,
-                   "molecule file(s) (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz); several: a batch run "
+                   "molecule file(s) (.pdb .ent .cif .mmcif .pqr .xyzr .xyzrn, optionally .gz); several: a batch run "
                    "(-O DIR)");
   else
-    cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr, optionally .gz)")->required();
+    cmd.add_option("IN", m.input, "molecule file (.pdb .ent .cif .mmcif .pqr .xyzr .xyzrn, optionally .gz)")
+        ->required();
   cmd.add_option("--probe", m.probe, "probe radius in Å; atom weight w = 2 (r + probe)²")
       ->check(number_at_least_zero(false))
       ->capture_default_str();
   cmd.add_flag("--keep-water", m.keep_water, "keep water molecules (default: dropped, with a note)");
   cmd.add_flag("--no-hydrogens", m.no_hydrogens, "drop hydrogen atoms (default: kept if present)");
   cmd.add_option("--format", m.format, "input format (default: by extension)")
-      ->check(CLI::IsMember({"pdb", "cif", "mmcif", "pqr", "xyzr"}));
+      ->check(CLI::IsMember({"pdb", "cif", "mmcif", "pqr", "xyzr", "xyzrn"}));
   cmd.add_flag("--quiet,-q", m.quiet, "no notes or progress on stderr");
 }
 
@@ -55,11 +57,10 @@ skin::Molecule load_molecule(const MoleculeArgs& m) {
   skin::ReadOptions ro;
   ro.keep_water = m.keep_water;
   ro.keep_hydrogens = !m.no_hydrogens;
-  const std::map<std::string, skin::ReadOptions::Format> formats = {{"pdb", skin::ReadOptions::Format::Pdb},
-                                                                    {"cif", skin::ReadOptions::Format::Mmcif},
-                                                                    {"mmcif", skin::ReadOptions::Format::Mmcif},
-                                                                    {"pqr", skin::ReadOptions::Format::Pqr},
-                                                                    {"xyzr", skin::ReadOptions::Format::Xyzr}};
+  const std::map<std::string, skin::ReadOptions::Format> formats = {
+      {"pdb", skin::ReadOptions::Format::Pdb},     {"cif", skin::ReadOptions::Format::Mmcif},
+      {"mmcif", skin::ReadOptions::Format::Mmcif}, {"pqr", skin::ReadOptions::Format::Pqr},
+      {"xyzr", skin::ReadOptions::Format::Xyzr},   {"xyzrn", skin::ReadOptions::Format::Xyzrn}};
   if (!m.format.empty()) ro.format = formats.at(m.format);
   skin::Molecule mol = skin::read_molecule(m.input, ro);
   if (!m.quiet) {

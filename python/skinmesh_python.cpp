@@ -310,7 +310,7 @@ PYBIND11_MODULE(skinmesh, m) {
   m.def("mesh", &mesh, py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("algorithm") = "sweep",
         py::arg("check") = true, py::arg("threads") = 0, py::arg("analytic") = false, py::arg("cavities") = "keep",
         py::arg("min_cavity_volume") = 0.0,
-        "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr, optionally .gz) or an "
+        "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr .xyzrn, optionally .gz) or an "
         "array (n, 4) of x, y, z, radius in Å. Atom weights are 2 (r + probe)². algorithm: 'sweep' (Cheng & Shi "
         "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
         "whether it passed. threads=0: every core; the mesh is the same for every count. stats['surface'] holds the "

@@ -31,6 +31,10 @@ struct Atom {
   char insertion_code = ' ';
   int serial = 0;
   int line = 0;
+  /// The name field of an .xyzrn record as the file has it (MSMS copies it
+  /// to the vertices of its .vert file; MaSIF writes chain_resnum_icode_
+  /// resname_atomname_colour there); empty for other formats.
+  std::string msms_name;
 };
 
 // Molecule Definition

@@ -216,7 +216,8 @@ ReadOptions::Format format_from_extension(const std::string& path) {
   if (name.ends_with(".cif") || name.ends_with(".mmcif")) return ReadOptions::Format::Mmcif;
   if (name.ends_with(".pqr")) return ReadOptions::Format::Pqr;
   if (name.ends_with(".xyzr")) return ReadOptions::Format::Xyzr;
-  throw InputError(path, 0, "unknown format (expected .pdb, .cif, .pqr or .xyzr)");
+  if (name.ends_with(".xyzrn")) return ReadOptions::Format::Xyzrn;
+  throw InputError(path, 0, "unknown format (expected .pdb, .cif, .pqr, .xyzr or .xyzrn)");
 }
 
 Molecule read_molecule(const std::string& path, const ReadOptions& opt) {
@@ -235,11 +236,13 @@ Molecule read_molecule_from_string(const std::string& text, const std::string& n
     case ReadOptions::Format::Pqr:
       return read_pqr(name, text, opt);
     case ReadOptions::Format::Xyzr:
-      return read_xyzr(name, text);
+      return read_xyzr(name, text, false);
+    case ReadOptions::Format::Xyzrn:
+      return read_xyzr(name, text, true);
     case ReadOptions::Format::Auto:
       break;
   }
-  throw InputError(name, 0, "unknown format (expected .pdb, .cif, .pqr or .xyzr)");
+  throw InputError(name, 0, "unknown format (expected .pdb, .cif, .pqr, .xyzr or .xyzrn)");
 }
 
 }  // namespace skinmesh::skin

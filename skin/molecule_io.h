@@ -26,8 +26,9 @@ struct ReadOptions {
   /// Keep hydrogen (and deuterium) atoms when the file has them. Default: keep.
   bool keep_hydrogens = true;
   /// File formats. Auto chooses by extension: .pdb .ent -> Pdb; .cif .mmcif ->
-  /// Mmcif; .pqr -> Pqr; .xyzr -> Xyzr; each optionally followed by .gz (gzip).
-  enum class Format { Auto, Pdb, Mmcif, Pqr, Xyzr };
+  /// Mmcif; .pqr -> Pqr; .xyzr -> Xyzr; .xyzrn -> Xyzrn; each optionally
+  /// followed by .gz (gzip).
+  enum class Format { Auto, Pdb, Mmcif, Pqr, Xyzr, Xyzrn };
   Format format = Format::Auto;
 };
 
@@ -76,8 +77,8 @@ Molecule read_molecule(const std::string& path, const ReadOptions& opt = {});
 Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt = {});
 
 /// The format read_molecule() would choose for `path` by its extension (case
-/// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr or Xyzr. Throws InputError(path, 0, "unknown
-/// format (expected .pdb, .cif, .pqr or .xyzr)") for anything else.
+/// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr, Xyzr or Xyzrn. Throws InputError(path, 0, "unknown
+/// format (expected .pdb, .cif, .pqr, .xyzr or .xyzrn)") for anything else.
 ReadOptions::Format format_from_extension(const std::string& path);
 
 }  // namespace skinmesh::skin

@@ -6,7 +6,7 @@
 //   molecule_io_gemmi.cpp  PDB and mmCIF through gemmi (the only file that
 //                          includes gemmi: its types never leave it)
 //   molecule_io_pqr.cpp    PQR
-//   molecule_io_xyzr.cpp   XYZR (MSMS)
+//   molecule_io_xyzr.cpp   XYZR and XYZRN (MSMS)
 // Only skin/molecule_io*.cpp include this header.
 #pragma once
 
@@ -83,7 +83,10 @@ Molecule read_mmcif(const std::string& path, const std::string& text, const Read
 /// PQR: radii from the file (molecule_io_pqr.cpp).
 Molecule read_pqr(const std::string& path, const std::string& text, const ReadOptions& opt);
 
-/// XYZR (MSMS): `x y z r` per line (molecule_io_xyzr.cpp).
-Molecule read_xyzr(const std::string& path, const std::string& text);
+/// XYZR (MSMS): `x y z r` per line; with `names` (.xyzrn) `x y z r [n [name]]`,
+/// the name kept as Atom::msms_name and, if it reads as MaSIF's
+/// chain_resnum_icode_resname_atomname[_colour], split into the atom's fields
+/// (molecule_io_xyzr.cpp).
+Molecule read_xyzr(const std::string& path, const std::string& text, bool names);
 
 }  // namespace skinmesh::skin::molecule_io_detail

@@ -250,6 +250,7 @@ std::vector<VertexAttribute> file_attributes(const SkinVertexData& data, geometr
 }
 
 std::string msms_atom_name(const Atom& atom) {
+  if (!atom.msms_name.empty()) return atom.msms_name;  // an .xyzrn name, passed through as MSMS does
   auto part = [](const std::string& text, const char* blank) {
     std::string out;
     for (char c : text) out += std::isspace(static_cast<unsigned char>(c)) ? '-' : c;

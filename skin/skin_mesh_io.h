@@ -62,6 +62,8 @@ struct SkinMeshWriteOptions {
 /// surface-learning pipelines split at '_': chain_resnum_icode_resname_name
 /// ("A_12_x_ALA_CA"); a blank chain or insertion code is written "x", a
 /// blank residue "UNK", a blank atom name "X", and blanks inside a part "-".
+/// An atom read from .xyzrn with a name gets that name as the file has it
+/// (Atom::msms_name), as MSMS copies it.
 std::string msms_atom_name(const Atom& atom);
 
 /// How the file `path` written with `opt` stores positions:

@@ -332,6 +332,51 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
   CHECK(nlohmann::json::parse(strict.out).at("num_L_violations").is_number());
 }
 
+TEST_CASE(".xyzrn input (MSMS's, with names): the mesh of the same atoms, the names passed through to .vert") {
+  // An .xyzrn as MaSIF writes it for MSMS: x y z r 1 chain_resnum_icode_resname_atom_colour.
+  Scratch s;
+  const std::string pdb = std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb";
+  const skinmesh::skin::Molecule mol = skinmesh::skin::read_molecule(pdb);
+  std::vector<std::string> names;
+  {
+    std::ofstream out(s.dir / "l.xyzrn");
+    out.precision(17);
+    for (const auto& a : mol.atoms) {
+      names.push_back(skinmesh::skin::msms_atom_name(a) + "_Green");
+      out << a.centre.x() << " " << a.centre.y() << " " << a.centre.z() << " " << a.radius << " 1 " << names.back()
+          << "\n";
+    }
+  }
+  const skinmesh::skin::Molecule back = skinmesh::skin::read_molecule((s.dir / "l.xyzrn").string());
+  REQUIRE(back.atoms.size() == mol.atoms.size());
+  for (std::size_t i = 0; i < mol.atoms.size(); ++i) {
+    CHECK(back.atoms[i].centre == mol.atoms[i].centre);
+    CHECK(back.atoms[i].msms_name == names[i]);
+    CHECK(back.atoms[i].name == mol.atoms[i].name);  // MaSIF's parts read back into the atom
+    CHECK(back.atoms[i].residue == mol.atoms[i].residue);
+    CHECK(back.atoms[i].residue_number == mol.atoms[i].residue_number);
+  }
+  REQUIRE(run(s, "mesh " + quoted(pdb) + " -o p.ply --quiet").exit_code == 0);
+  REQUIRE(run(s, "mesh l.xyzrn -o x.ply --quiet").exit_code == 0);
+  CHECK(slurp(s.dir / "p.ply") == slurp(s.dir / "x.ply"));  // same atoms, same mesh, byte for byte
+  REQUIRE(run(s, "mesh l.xyzrn -o x.vert --quiet --msms-atom-names").exit_code == 0);
+  std::istringstream in(slurp(s.dir / "x.vert"));
+  std::string line;
+  for (int k = 0; k < 3; ++k) std::getline(in, line);
+  std::size_t records = 0;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string x; fields >> x;) f.push_back(x);
+    REQUIRE(f.size() == 10);
+    const std::size_t atom = std::stoul(f[7]) - 1;
+    REQUIRE(atom < names.size());
+    CHECK(f[9] == names[atom]);  // the file's name, colour included, as MSMS writes it
+    ++records;
+  }
+  CHECK(records > 0);
+}
+
 TEST_CASE("--msms-atom-names: each MSMS vertex record ends with its atom's chain_resnum_icode_resname_name") {
   Scratch s;
   const std::string path = std::string(SKINMESH_DATA) + "/ligand_1hpv_amprenavir.pdb";

@@ -7,7 +7,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using Format = skinmesh::skin::ReadOptions::Format;
-  for (const Format f : {Format::Pdb, Format::Mmcif, Format::Pqr, Format::Xyzr})
+  for (const Format f : {Format::Pdb, Format::Mmcif, Format::Pqr, Format::Xyzr, Format::Xyzrn})
     skinmesh::fuzz::molecule_input(data, size, f, /*check=*/true);
   return 0;
 }

@@ -100,6 +100,8 @@ inline const char* molecule_name(skin::ReadOptions::Format format) {
       return "fuzz.pqr";
     case skin::ReadOptions::Format::Xyzr:
       return "fuzz.xyzr";
+    case skin::ReadOptions::Format::Xyzrn:
+      return "fuzz.xyzrn";
     case skin::ReadOptions::Format::Auto:
       break;
   }

@@ -386,7 +386,7 @@ TEST_CASE("read_molecule: bad inputs name the file and the line") {
   SUBCASE("unknown extension") {
     const std::string path = scratch().write("atoms.txt", "1 2 3 4\n");
     const InputError e = error_of(path);
-    CHECK(std::string(e.what()).find("atoms.txt: unknown format (expected .pdb, .cif, .pqr or .xyzr)") !=
+    CHECK(std::string(e.what()).find("atoms.txt: unknown format (expected .pdb, .cif, .pqr, .xyzr or .xyzrn)") !=
           std::string::npos);
     // ... unless the format is given
     ReadOptions opt;
@@ -563,6 +563,38 @@ TEST_CASE("read_molecule_from_string: the reader of read_molecule() on text in m
 
 // Inputs found by the libFuzzer targets of tests/fuzz (make fuzz), each of which
 // once crashed a sanitizer build or let a wrong value through.
+TEST_CASE(".xyzrn: x y z r [n [name]], the name kept and MaSIF's parts read from it") {
+  const Molecule m = skinmesh::skin::read_molecule_from_string(
+      "17.047 14.099 3.625 1.55 1 A_1_x_THR_N_Green\n"
+      "# a comment\n"
+      "15.685 12.755 5.133 1.70 1 B_-12_A_ALA_C\n"
+      "1 2 3 1.5\n"
+      "4 5 6 1.5 1\n"
+      "7 8 9 1.5 1 not_masif\n",
+      "t.xyzrn");
+  REQUIRE(m.atoms.size() == 5);
+  CHECK(m.atoms[0].msms_name == "A_1_x_THR_N_Green");
+  CHECK(m.atoms[0].chain == "A");
+  CHECK(m.atoms[0].residue_number == 1);
+  CHECK(m.atoms[0].insertion_code == ' ');
+  CHECK(m.atoms[0].residue == "THR");
+  CHECK(m.atoms[0].name == "N");
+  CHECK(m.atoms[0].radius == 1.55);
+  CHECK(m.atoms[0].line == 1);
+  CHECK(m.atoms[1].residue_number == -12);
+  CHECK(m.atoms[1].insertion_code == 'A');
+  CHECK(m.atoms[1].name == "C");
+  CHECK(m.atoms[2].msms_name.empty());
+  CHECK(m.atoms[3].msms_name.empty());
+  CHECK(m.atoms[4].msms_name == "not_masif");
+  CHECK(m.atoms[4].name.empty());  // not MaSIF's form: kept whole, not split
+  // The same lines as .xyzr: the names ignored.
+  const Molecule r = skinmesh::skin::read_molecule_from_string("1 2 3 1.5 1 A_1_x_THR_N\n", "t.xyzr");
+  REQUIRE(r.atoms.size() == 1);
+  CHECK(r.atoms[0].msms_name.empty());
+  CHECK_THROWS_AS(skinmesh::skin::read_molecule_from_string("1 2 3\n", "t.xyzrn"), InputError);
+}
+
 TEST_CASE("real-file shapes other tools read: element text, guessed elements, PyMOL mmCIF, hybrid-36") {
   // tests/data/readers: one small file per class of file that used to be
   // refused (papers/skin/molecule_io.md, "Files other tools read"). Each
