@@ -75,14 +75,17 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // Per level of rho, the front grid's cells are four disc radii at the
   // level's largest rho: the contact query (1.5 r) then probes 1-2 cells per
   // axis, and the front is a curve, so most probed cells would be empty at a
-  // finer size. The vertex grid's are one disc radius: the fan-collision query
-  // (0.5 r) reads a quarter of the points per cell ([measured]
-  // papers/bench/profile.md, "After": the grids' cell sizes).
+  // finer size. The vertex grid's are two disc radii: the fan-collision query
+  // (0.5 r) then probes one or two cells per axis, and the grid, which holds
+  // every vertex to the end of the sweep, has an eighth of the cells of a grid
+  // of one radius: 4.1 MB less at maltoporin's peak, the sweep's instruction
+  // count 1 % higher ([measured] papers/bench/profile.md, "The vertex grid's
+  // cells").
   // The fan-collision query at v reads the vertices within collision_reach ·
   // rho(v) of v (FrontState::collision_reach): each vertex goes into the
   // levels of the queries that can reach it (new_vertex).
   collision_reach = (1 + opt.collision_radius) * opt.disc_factor * (1 + 1e-9);
-  vertex_grid = std::make_unique<geometry::LeveledIndexGrid>(opt.disc_factor, kGridOctaves, /*erasable=*/false);
+  vertex_grid = std::make_unique<geometry::LeveledIndexGrid>(2 * opt.disc_factor, kGridOctaves, /*erasable=*/false);
   front_grid = std::make_unique<geometry::LeveledPointGrid>(4 * opt.disc_factor, kGridOctaves);
   // A generous bound on the vertex count: 8 times what a separate sphere per
   // atom would need (4 pi / (c_r² sqrt(3)/2) vertices per sphere), times a
