@@ -16,8 +16,9 @@ const char* const kFormats =
     ".pqr (PQR, radius from the file), .xyzr (x y z r per line), .xyzrn (MSMS: x y z r n name,\n"
     "the name kept for --msms-atom-names). Radii: Bondi by element;\n"
     "atom weight w = 2 (r + probe)^2 (shrink factor 1/2).\n"
-    "Output meshes (by extension): .ply (binary, with normals and atom index), .off, .obj,\n"
-    ".stl (binary, for 3D printing), .vtk (legacy VTK with normals, atom, rho and min angle), and\n"
+    "Output meshes (by extension): .ply (binary, with normals and atom index; --ascii: text), .off,\n"
+    ".obj, .stl (binary, for 3D printing; --ascii: text with exact positions), .vtk (legacy VTK with\n"
+    "normals, atom, rho and min angle), and\n"
     ".vert (MSMS: NAME.vert and NAME.face, with normals and the 1-based atom of each vertex).\n"
     "Exit codes: 0 ok, 1 bad input or failed check, 2 bad command line, 3 the algorithm\n"
     "failed or the mesh failed its checks, 4 internal error.";
