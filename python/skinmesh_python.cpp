@@ -49,9 +49,11 @@ struct PyMesh {
   std::vector<geometry::WeightedPoint> points;
   /// The probe radius (Å) of mesh(), for the MSMS header.
   double probe = 0;
-  /// What mesh()'s cavities / min_cavity_volume left out, if they selected:
-  /// write() then expects the kept shells.
+  /// What mesh()'s cavities / min_cavity_volume left out, if they selected,
+  /// and the skin's topology (from the run): write() then expects the kept
+  /// shells without building the dual complex again.
   std::optional<skin::ShellCounts> shells;
+  skin::SkinTopology topology;
 };
 
 /// The shell selection of mesh() and check(): cavities "keep", "remove" or
@@ -163,6 +165,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     out.ok = res.ok();
     out.probe = probe;
     out.shells = res.shells;
+    out.topology = res.expected_topology;
     if (res.checked && res.ok()) out.points = points;
     out.mesh = std::move(res.mesh);
     out.vertex_data = std::move(res.vertex_data);
@@ -280,8 +283,7 @@ PYBIND11_MODULE(skinmesh, m) {
               double moved = 0;
               verify::SkinCheckOptions expect;
               if (s.shells) {  // the kept shells of a mesh whose every shell passed
-                expect.expected_topology =
-                    skin::kept_topology(skin::dual_complex_topology(skin.mixed_complex()), *s.shells);
+                expect.expected_topology = skin::kept_topology(s.topology, *s.shells);
                 expect.expected_component_euler = s.shells->kept_euler;
               }
               const verify::SkinCheckReport rep =

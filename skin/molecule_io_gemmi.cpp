@@ -95,7 +95,7 @@ gemmi::El element_from_name(const std::array<char, 4>& padded, const std::string
 /// chain and residue, so they are matched by exact coordinates (gemmi's fast_float
 /// and std::from_chars both round correctly, so they agree on every field that
 /// passed parse_double), atom name and altloc; equal keys are served in file order.
-/// The records are one array sorted once by key and file order: about 80 bytes
+/// The records are one array sorted once by key and file order: about 88 bytes
 /// per atom and no allocation per atom, which on large files set the reader's
 /// time and memory (papers/skin/molecule_io.md, "Reading large files").
 class SourceIndex {

@@ -57,7 +57,7 @@ ShellCounts select_shells(geometry::IndexedMesh& mesh, SkinVertexData* data, std
                           const ShellSelection& selection) {
   ShellCounts counts;
   const std::vector<int> component = geometry::vertex_components(mesh);
-  const std::vector<geometry::ComponentMeasure> measures = geometry::component_measures(mesh);
+  const std::vector<geometry::ComponentMeasure> measures = geometry::component_measures(mesh, component);
   std::vector<char> keep(measures.size() + 1, 0);  // by component number, 1-based
   for (std::size_t c = 0; c < measures.size(); ++c) {
     const geometry::ComponentMeasure& m = measures[c];
@@ -89,8 +89,8 @@ ShellCounts select_shells(geometry::IndexedMesh& mesh, SkinVertexData* data, std
   return counts;
 }
 
-SkinTopology kept_topology(const SkinTopology& skin, const ShellCounts& counts) {
-  SkinTopology t = skin;
+SkinTopology kept_topology(const SkinTopology& all, const ShellCounts& counts) {
+  SkinTopology t = all;
   t.betti0 = static_cast<int>(counts.bodies);
   t.betti2 = static_cast<int>(counts.cavities);
   t.euler_k0 =

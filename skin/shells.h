@@ -69,10 +69,10 @@ struct ShellCounts {
 ShellCounts select_shells(geometry::IndexedMesh& mesh, SkinVertexData* data, std::vector<Index>* vertex_cells,
                           const ShellSelection& selection);
 
-/// The topology of the kept shells of a skin of topology `skin`, when the
+/// The topology of the kept shells of a skin of topology `all`, when the
 /// mesh of all of them was checked and `counts` is what select_shells() did to
 /// it: betti0 = the kept bodies, betti2 = the kept cavities, chi(K0) = half the
 /// kept shells' Euler characteristic.
-SkinTopology kept_topology(const SkinTopology& skin, const ShellCounts& counts);
+SkinTopology kept_topology(const SkinTopology& all, const ShellCounts& counts);
 
 }  // namespace skinmesh::skin

@@ -35,7 +35,10 @@ std::vector<int> vertex_components(const IndexedMesh& mesh) {
 }
 
 std::vector<ComponentMeasure> component_measures(const IndexedMesh& mesh) {
-  const std::vector<int> label = vertex_components(mesh);
+  return component_measures(mesh, vertex_components(mesh));
+}
+
+std::vector<ComponentMeasure> component_measures(const IndexedMesh& mesh, const std::vector<int>& label) {
   std::vector<ComponentMeasure> out;
   std::vector<Index> origin;  // component -> its first vertex
   for (Index v = 0; v < label.size(); ++v) {

@@ -34,4 +34,9 @@ std::vector<int> vertex_components(const IndexedMesh& mesh);
 /// Pre: every triangle index < mesh.positions.size().
 std::vector<ComponentMeasure> component_measures(const IndexedMesh& mesh);
 
+/// component_measures(mesh) for a caller that has `label` =
+/// vertex_components(mesh) already. Pre: as vertex_components(), and `label`
+/// is that function's result for `mesh`.
+std::vector<ComponentMeasure> component_measures(const IndexedMesh& mesh, const std::vector<int>& label);
+
 }  // namespace skinmesh::geometry
