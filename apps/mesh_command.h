@@ -45,6 +45,8 @@ struct MeshArgs {
   bool ascii = false;
   /// --msms-atom-names: the atom's name as the 10th field of MSMS vertices.
   bool msms_atom_names = false;
+  /// --area-file: the per-atom areas' file (skin/atom_areas.h); empty: none.
+  std::string area_file;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height
@@ -52,6 +54,18 @@ struct MeshArgs {
 /// command line, and the program's memory release between the meshing and
 /// the check. Throws CLI::ValidationError for a bad --direction.
 mesher::MeshOptions mesh_options(const MeshArgs& a);
+
+/// The per-atom areas of a run (Å², one entry per atom of the molecule).
+struct AtomAreas {
+  std::vector<double> skin;  ///< of the exact skin (skin::atom_areas())
+  std::vector<double> mesh;  ///< of the mesh (skin::mesh_atom_areas())
+  double seconds = 0;
+};
+
+/// The exact skin's and the mesh's area per atom of `mol` meshed at `probe`
+/// into `res`, on `threads` threads. Throws GeometryError as
+/// skin::atom_areas() does.
+AtomAreas atom_areas(const skin::Molecule& mol, double probe, const mesher::MeshResult& res, int threads);
 
 /// How the mesh files of a run of `mol` are written: precision, OFF normals,
 /// MSMS decimals, atom names (from `mol`) and the probe radius for its header.

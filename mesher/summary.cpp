@@ -181,6 +181,18 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
       }
     }
   }
+  if (context.skin_atom_areas && context.mesh_atom_areas) {
+    // Sums in atom order; the atoms with area are those of a non-empty patch piece.
+    double skin_sum = 0, mesh_sum = 0;
+    std::size_t skin_atoms = 0, mesh_atoms = 0;
+    for (double x : *context.skin_atom_areas) skin_sum += x, skin_atoms += x > 0;
+    for (double x : *context.mesh_atom_areas) mesh_sum += x, mesh_atoms += x > 0;
+    j["surface"]["atom_areas"] = {{"file", context.area_file},
+                                  {"skin_sum_A2", skin_sum},
+                                  {"mesh_sum_A2", mesh_sum},
+                                  {"skin_atoms_with_area", skin_atoms},
+                                  {"mesh_atoms_with_area", mesh_atoms}};
+  }
   j["checked"] = res.checked;
   if (res.checked) {
     j["min_angle_deg"] = res.check.mesh.min_angle_deg;
@@ -210,6 +222,7 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (context.read_seconds >= 0) seconds["read"] = context.read_seconds;
   for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
   if (analytic_seconds >= 0) seconds["analytic"] = analytic_seconds;
+  if (context.atom_areas_seconds >= 0) seconds["atom_areas"] = context.atom_areas_seconds;
   // The decomposed sweep's parts (inside "sweep"): per slab, bottom to top,
   // then the bands, the glue and the slabs lost to dropped cuts.
   if (!res.decomposition_costs.slabs.empty()) {

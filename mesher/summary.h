@@ -34,6 +34,13 @@ struct SummaryContext {
   /// Peak resident memory of each stage (bytes, sampled), in the order they
   /// ended ("read", the pipeline's stages, "write"); empty: absent.
   std::vector<std::pair<std::string, std::size_t>> stage_peak_memory_bytes;
+  /// The per-atom areas of the exact skin and of the mesh (Å², one per atom),
+  /// if computed: "surface"."atom_areas" gets their sums, the atoms with area
+  /// and the file they were written to; null: absent.
+  const std::vector<double>* skin_atom_areas = nullptr;
+  const std::vector<double>* mesh_atom_areas = nullptr;
+  std::string area_file;
+  double atom_areas_seconds = -1;  ///< "seconds"."atom_areas"; negative: absent
 };
 
 /// The summary of a run: input, output, atoms, probe radius, vertices,

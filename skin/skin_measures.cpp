@@ -14,6 +14,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/errors.h"
@@ -362,30 +363,51 @@ Frame make_frame(const MixedCell& m) {
   return f;
 }
 
-}  // namespace
+/// What every piece of cell c's patch shares: the cell, its frame, a ball
+/// holding it and its planes; `empty` if the patch piece is empty.
+struct PatchSetup {
+  MixedCell m;
+  Frame f;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0;
+  std::vector<CellPlane> planes;
+  bool empty = true;
+};
 
-PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
+PatchSetup patch_setup(const MixedComplex& mc, Index c) {
   // The cell and its planes made and not kept (bit for bit those of cell()
   // and planes()): the integration reads every cell once, and keeping them
   // made the geometry of the whole complex at once (papers/mesher/
   // decomposition.md, "The made cells between the stages").
-  const MixedCell m = mc.cell_value(c);
+  PatchSetup s;
+  s.m = mc.cell_value(c);
+  if (s.m.bounding) return s;
+  s.f = make_frame(s.m);
+  if (s.f.sigma < 0 && s.f.c <= 0) return s;  // a sphere of no radius
+  std::tie(s.centre, s.radius) = bounding_ball(mc, c);
+  if (!may_hold_patch(mc, s.f, s.centre, s.radius)) return s;
+  mc.planes_into(c, s.planes);
+  s.empty = false;
+  return s;
+}
+
+/// The piece of the patch of s in the half-spaces n·x <= offset of `half_spaces`
+/// (the cell's planes, and any further ones), integrated.
+PatchMeasure integrate_piece(const MixedComplex& mc, Index c, const PatchSetup& s,
+                             const std::vector<CellPlane>& half_spaces) {
   PatchMeasure out;
-  if (m.bounding) return out;
-  const Frame f = make_frame(m);
-  if (f.sigma < 0 && f.c <= 0) return out;  // a sphere of no radius
-  const auto [centre, radius] = bounding_ball(mc, c);
-  if (!may_hold_patch(mc, f, centre, radius)) return out;
+  const Frame& f = s.f;
+  const MixedCell& m = s.m;
+  const Vec3& centre = s.centre;
   // The cell's size sets the tolerances; the volume integrand also grows with
   // the distance from the origin.
-  const double scale = std::max(radius, 1e-6 * mc.length_scale());
+  const double scale = std::max(s.radius, 1e-6 * mc.length_scale());
   const double tol = 1e-9 * mc.length_scale();
   const Tolerance quad{1e-12 * scale * scale, 1e-12 * scale * scale * (scale + centre.norm())};
 
   std::vector<FramePlane> planes;
-  std::vector<CellPlane> raw, cell_planes;
-  mc.planes_into(c, cell_planes);
-  for (const CellPlane& p : cell_planes) {
+  std::vector<CellPlane> raw;
+  for (const CellPlane& p : half_spaces) {
     const double gamma = p.offset - p.normal.dot(f.z);  // the focus' distance inside the plane
     if (f.sigma < 0) {                                  // a sphere of radius sqrt(c) about the focus
       const double R = std::sqrt(f.c);
@@ -478,6 +500,44 @@ PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
   return out;
 }
 
+}  // namespace
+
+PatchMeasure patch_measure(const MixedComplex& mc, Index c) {
+  const PatchSetup s = patch_setup(mc, c);
+  return s.empty ? PatchMeasure{} : integrate_piece(mc, c, s, s.planes);
+}
+
+std::array<double, 4> patch_atom_areas(const MixedComplex& mc, Index c) {
+  std::array<double, 4> areas{0, 0, 0, 0};
+  const PatchSetup s = patch_setup(mc, c);
+  if (s.empty) return areas;
+  const CellSimplex& x = mc.simplex(c);
+  if (x.dim == 0) {  // an atom's own sphere patch
+    areas[0] = integrate_piece(mc, c, s, s.planes).area;
+    return areas;
+  }
+  const auto& rt = mc.triangulation();
+  std::vector<CellPlane> half_spaces;
+  for (int i = 0; i <= x.dim; ++i) {
+    // The points of the cell no farther from vertex i, in power distance,
+    // than from the simplex's other vertices (SkinSurface::atom_of's rule):
+    // power(y, i) <= power(y, j) is 2 y·(z_j - z_i) <= |z_j|² - |z_i|² - w_j + w_i.
+    half_spaces = s.planes;
+    const WeightedPoint& pi = rt.point(x.vertices[i]);
+    for (int j = 0; j <= x.dim; ++j) {
+      if (j == i) continue;
+      const WeightedPoint& pj = rt.point(x.vertices[j]);
+      const Vec3 d = pj.z - pi.z;
+      const double len = d.norm();
+      const Vec3 n = d / len;
+      half_spaces.push_back(
+          {n, n.dot(0.5 * (pi.z + pj.z)) + (pi.w - pj.w) / (2.0 * len), kInvalidIndex, kInvalidIndex});
+    }
+    areas[i] = integrate_piece(mc, c, s, half_spaces).area;
+  }
+  return areas;
+}
+
 namespace {
 
 /// skin_measures() over windows of consecutive cells: each window's patches
@@ -507,9 +567,36 @@ SkinMeasures measure_in_windows(const SkinSurface& skin, int threads) {
 
 SkinMeasures skin_measures(const SkinSurface& skin, int threads) { return measure_in_windows(skin, threads); }
 
+std::vector<double> atom_areas(const SkinSurface& skin, int threads) {
+  // As measure_in_windows(): each window's cells on the threads, then added
+  // to their atoms in cell order, so the sums do not depend on `threads`.
+  const MixedComplex& mc = skin.mixed_complex();
+  const auto& rt = mc.triangulation();
+  std::vector<double> areas(static_cast<std::size_t>(rt.num_input_points()), 0.0);
+  const auto n = static_cast<std::size_t>(mc.num_cells());
+  constexpr std::size_t kWindow = std::size_t{1} << 16;  // [chosen] 2 MB of results
+  std::vector<std::array<double, 4>> cells(std::min(n, kWindow));
+  for (std::size_t w = 0; w < n; w += kWindow) {
+    const std::size_t k = std::min(kWindow, n - w);
+    parallel_for(k, thread_count(threads), 256,
+                 [&](std::size_t i) { cells[i] = patch_atom_areas(mc, static_cast<Index>(w + i)); });
+    for (std::size_t i = 0; i < k; ++i) {
+      const CellSimplex& x = mc.simplex(static_cast<Index>(w + i));
+      for (int j = 0; j <= x.dim; ++j)
+        if (!rt.is_bounding(x.vertices[j])) areas[x.vertices[j]] += cells[i][j];
+    }
+  }
+  return areas;
+}
+
 SkinMeasures skin_measures(const std::vector<geometry::WeightedPoint>& points, int threads) {
   const SkinSurface skin(translated(points, local_frame_centre(points)), threads);
   return measure_in_windows(skin, threads);
+}
+
+std::vector<double> atom_areas(const std::vector<geometry::WeightedPoint>& points, int threads) {
+  const SkinSurface skin(translated(points, local_frame_centre(points)), threads);
+  return atom_areas(skin, threads);
 }
 
 }  // namespace skinmesh::skin

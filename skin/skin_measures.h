@@ -3,6 +3,7 @@
 // Derivation and accuracy: papers/skin/skin_measures.md.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/types.h"
@@ -44,6 +45,16 @@ struct SkinMeasures {
 /// cell's planes do not bound the piece (a broken complex).
 PatchMeasure patch_measure(const MixedComplex& mc, Index c);
 
+/// The areas (Å²) of the parts of cell c's patch piece nearest, in power
+/// distance, to each vertex of the cell's simplex: entry i for the simplex's
+/// vertex i, entries past its dimension 0. This is the attribution of
+/// SkinSurface::atom_of() (a sphere patch to its atom; a hyperboloid or
+/// concave sphere patch cut by the power bisectors of the simplex's atoms),
+/// integrated as patch_measure() with the bisectors as further planes; the
+/// entries sum to patch_measure(mc, c).area up to the quadrature's accuracy
+/// (papers/skin/atom_areas.md). Errors as patch_measure().
+std::array<double, 4> patch_atom_areas(const MixedComplex& mc, Index c);
+
 /// Area and enclosed volume of the skin, the sum of patch_measure() over all
 /// cells in cell order (the result does not depend on `threads`; threads <= 0
 /// uses every core). Accuracy: about 1e-10 relative (papers/skin/skin_measures.md,
@@ -59,5 +70,19 @@ SkinMeasures skin_measures(const SkinSurface& skin, int threads = 1);
 /// built on `threads` threads. Throws InputError for an empty or non-finite
 /// input.
 SkinMeasures skin_measures(const std::vector<geometry::WeightedPoint>& points, int threads = 1);
+
+/// The skin's area per input point (Å²; one entry per point of the skin's
+/// regular triangulation, in input order; 0 for redundant points): the sum
+/// of patch_atom_areas() over all cells in cell order, so the result does not
+/// depend on `threads` (<= 0: every core). The entries sum to
+/// skin_measures().area within about 1e-10 relative; the cost is about three
+/// times skin_measures()' (papers/skin/atom_areas.md). Errors as
+/// patch_measure().
+std::vector<double> atom_areas(const SkinSurface& skin, int threads = 1);
+
+/// The same for weighted points (centres in Å, weights in Å²), in the local
+/// frame of local_frame_centre(). Throws InputError for an empty or
+/// non-finite input, as skin_measures() does.
+std::vector<double> atom_areas(const std::vector<geometry::WeightedPoint>& points, int threads = 1);
 
 }  // namespace skinmesh::skin

@@ -164,3 +164,21 @@ def test_errors_are_python_exceptions_with_one_line_messages(tmp_path):
         skinmesh.mesh(bad)
     assert "\n" not in str(e.value)
     assert "bad.pdb" in str(e.value)
+
+
+def test_atom_areas_exact_and_of_the_mesh():
+    # Per-atom areas: the exact skin's sum to its area, the mesh's to the
+    # mesh's, and the two agree atom by atom within the mesh's resolution.
+    crambin = os.path.join(DATA, "crambin_1crn.pdb")
+    exact = skinmesh.atom_areas(crambin, threads=2)
+    m = skinmesh.mesh(crambin, threads=2, check=False)
+    mesh_areas = m.atom_areas()
+    assert exact.shape == mesh_areas.shape == (327,)
+    assert abs(exact.sum() / skinmesh.measures(crambin)["area_A2"] - 1) < 1e-9
+    assert abs(mesh_areas.sum() / m.stats["surface"]["area_A2"] - 1) < 1e-12
+    assert (exact >= 0).all() and (exact == 0).any()
+    assert np.abs(mesh_areas - exact).sum() / exact.sum() < 0.03
+    # A mesh read back knows no atom count: its areas run to the largest atom index.
+    atoms = skinmesh.mesh(np.array([[0.0, 0, 0, 1.5], [2.0, 0, 0, 1.2]]), probe=0, threads=1)
+    assert atoms.atom_areas().shape == (2,)
+    assert atoms.atom_areas(atoms=5)[2:].tolist() == [0, 0, 0]

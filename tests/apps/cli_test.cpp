@@ -422,6 +422,56 @@ TEST_CASE("--msms-atom-names: each MSMS vertex record ends with its atom's chain
   CHECK(a.atom == b.atom);
 }
 
+TEST_CASE(
+    "--area-file: one line per atom after a header, skin and mesh areas summing to the run's, names with the .vert's") {
+  Scratch s;
+  const std::string path = std::string(SKINMESH_DATA) + "/crambin_1crn.pdb";
+  REQUIRE(run(s, "mesh " + quoted(path) + " -o c.vert --quiet --msms-atom-names --area-file c.area --stats c.json")
+              .exit_code == 0);
+  const nlohmann::json stats = nlohmann::json::parse(slurp(s.dir / "c.json"));
+  std::istringstream in(slurp(s.dir / "c.area"));
+  std::string line;
+  REQUIRE(std::getline(in, line));
+  CHECK(line.rfind("#", 0) == 0);  // one header line, which readers skip
+  std::vector<std::string> names;
+  double skin_sum = 0, mesh_sum = 0;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string x; fields >> x;) f.push_back(x);
+    REQUIRE(f.size() == 4);
+    CHECK(std::stoul(f[0]) == names.size() + 1);
+    skin_sum += std::stod(f[1]);
+    mesh_sum += std::stod(f[2]);
+    names.push_back(f[3]);
+  }
+  CHECK(names.size() == 327);  // every atom, in input order, zero areas included
+  // Six decimals per atom: the sums to 327 half-units of the last place.
+  const nlohmann::json& areas = stats.at("surface").at("atom_areas");
+  CHECK(std::abs(skin_sum - areas.at("skin_sum_A2").get<double>()) < 327 * 5e-7);
+  CHECK(std::abs(mesh_sum - areas.at("mesh_sum_A2").get<double>()) < 327 * 5e-7);
+  CHECK(
+      std::abs(areas.at("skin_sum_A2").get<double>() / stats.at("surface").at("analytic").at("area_A2").get<double>() -
+               1) < 1e-9);
+  CHECK(std::abs(areas.at("mesh_sum_A2").get<double>() / stats.at("surface").at("area_A2").get<double>() - 1) < 1e-12);
+  // The names are the .vert's 10th fields of the same atoms.
+  std::istringstream vert(slurp(s.dir / "c.vert"));
+  for (int k = 0; k < 3; ++k) std::getline(vert, line);
+  std::size_t records = 0;
+  while (std::getline(vert, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string x; fields >> x;) f.push_back(x);
+    REQUIRE(f.size() == 10);
+    CHECK(f[9] == names.at(std::stoul(f[7]) - 1));
+    ++records;
+  }
+  CHECK(records > 0);
+  // Only for a single run; a batch run refuses it.
+  CHECK(run(s, "mesh " + quoted(path) + " " + quoted(path) + " -O out --area-file b.area --quiet").exit_code == 2);
+  CHECK_FALSE(std::filesystem::exists(s.dir / "b.area"));
+}
+
 TEST_CASE("--ascii writes text PLY and STL; ASCII STL keeps the exact positions binary STL rounds") {
   Scratch s;
   const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_2zmm.pdb");

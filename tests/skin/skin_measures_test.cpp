@@ -3,10 +3,13 @@
 // independent integration of the definition for two balls (a surface of
 // revolution), against a volume counted along lines from the skin function,
 // for invariance under translation and thread count, and, summed window by
-// window, against one loop over every cell.
+// window, against one loop over every cell; the areas per atom (atom_areas)
+// against the profile cut at the power bisector, against the whole skin's
+// area, and for symmetry, redundancy, translation and thread count.
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -28,7 +31,10 @@ namespace {
 /// a convex quadratic in λ. The profile r(t) (g = 0) is found by bisection on
 /// n + 1 points; the volume is the trapezoid sum of π r² and the area the
 /// surface of the polyline's frusta.
-std::pair<double, double> two_ball_profile_measures(double d, double w1, double w2, int n) {
+/// With `t_split`, the area is that of the part t <= t_split only (the
+/// polyline cut there, r interpolated linearly).
+std::pair<double, double> two_ball_profile_measures(double d, double w1, double w2, int n,
+                                                    double t_split = std::numeric_limits<double>::infinity()) {
   const auto skin_f = [&](double t, double r) {
     const double A = 0.5 * d * d, B = -2 * t * d + 0.5 * (w1 - w2 + d * d), C = t * t + r * r - 0.5 * w1;
     const double l = std::clamp(-B / (2 * A), 0.0, 1.0);
@@ -51,7 +57,12 @@ std::pair<double, double> two_ball_profile_measures(double d, double w1, double 
   for (int i = 0; i < n; ++i) {
     const double dt = ts[i + 1] - ts[i], dr = rs[i + 1] - rs[i];
     volume += 0.5 * kPi * (rs[i] * rs[i] + rs[i + 1] * rs[i + 1]) * dt;
-    area += kPi * (rs[i] + rs[i + 1]) * std::hypot(dt, dr);
+    if (ts[i + 1] <= t_split) {
+      area += kPi * (rs[i] + rs[i + 1]) * std::hypot(dt, dr);
+    } else if (ts[i] < t_split) {
+      const double u = (t_split - ts[i]) / dt, r_split = rs[i] + u * dr;
+      area += kPi * (rs[i] + r_split) * std::hypot(u * dt, u * dr);
+    }
   }
   return {area, volume};
 }
@@ -96,6 +107,20 @@ double line_volume(const skin::SkinSurface& skin, Vec3 lo, Vec3 hi, int n) {
   return volume;
 }
 
+/// Two weighted points at distance d (Å) with weights w1, w2 (Å²), along a
+/// generic direction so that the edge's hyperboloid is not axis-aligned.
+struct TwoBalls {
+  double d, w1, w2;
+  const char* what;
+  std::vector<WeightedPoint> points() const {
+    const Vec3 axis(0.48, -0.6, 0.64), z1(0.1, 0.2, -0.3);
+    return {{z1, w1}, {z1 + d * axis, w2}};
+  }
+};
+const TwoBalls kTwoBalls[] = {{2.0248, 2 * 1.5 * 1.5, 2 * 1.2 * 1.2, "overlapping spheres"},
+                              {3.0, 2 * 1.2 * 1.2, 2 * 1.0 * 1.0, "spheres apart, joined by a thin neck"},
+                              {2.0, 2.0, 2.0, "the skin-math configuration two_balls: equal balls"}};
+
 std::vector<WeightedPoint> moved(std::vector<WeightedPoint> p, const Vec3& by) {
   for (auto& q : p) q.z += by;
   return p;
@@ -116,17 +141,9 @@ TEST_CASE("one ball: the area and volume of a sphere, wherever it is") {
 }
 
 TEST_CASE("two balls: the patch quadrature agrees with the profile of the definition") {
-  struct Case {
-    double d, w1, w2;
-    const char* what;
-  };
-  for (const Case& c : {Case{2.0248, 2 * 1.5 * 1.5, 2 * 1.2 * 1.2, "overlapping spheres"},
-                        Case{3.0, 2 * 1.2 * 1.2, 2 * 1.0 * 1.0, "spheres apart, joined by a thin neck"},
-                        Case{2.0, 2.0, 2.0, "the skin-math configuration two_balls"}}) {
+  for (const TwoBalls& c : kTwoBalls) {
     CAPTURE(c.what);
-    // A generic direction, so that the edge's hyperboloid is not axis-aligned.
-    const Vec3 axis = Vec3(0.48, -0.6, 0.64);
-    const skin::SkinSurface skin({{Vec3(0.1, 0.2, -0.3), c.w1}, {Vec3(0.1, 0.2, -0.3) + c.d * axis, c.w2}});
+    const skin::SkinSurface skin(c.points());
     const skin::SkinMeasures m = skin::skin_measures(skin);
     const auto [area, volume] = two_ball_profile_measures(c.d, c.w1, c.w2, 40000);
     CHECK(m.patch_cells == 3);  // two sphere patches and the hyperboloid
@@ -200,4 +217,70 @@ TEST_CASE("summed window by window, the measures are the loop over every cell, a
   CHECK(m.patch_cells == patches);
   CHECK(m.area == area);  // the same sums in the same order: the same bits
   CHECK(m.volume == volume);
+}
+
+TEST_CASE("atom areas: one ball's sphere; two balls' profile cut at the power bisector") {
+  const double R = 1.7;
+  const std::vector<double> one = skin::atom_areas(std::vector<WeightedPoint>{{Vec3(5, -3, 2), 2 * R * R}});
+  REQUIRE(one.size() == 1);
+  CHECK(one[0] == doctest::Approx(4 * kPi * R * R).epsilon(1e-12));
+  for (const TwoBalls& c : kTwoBalls) {
+    CAPTURE(c.what);
+    const std::vector<WeightedPoint> pts = c.points();
+    const std::vector<double> areas = skin::atom_areas(pts);
+    REQUIRE(areas.size() == 2);
+    // power(x, 1) = power(x, 2) at t = (d² + w1 - w2) / (2d) along the axis.
+    const double t_split = (c.d * c.d + c.w1 - c.w2) / (2 * c.d);
+    const double first = two_ball_profile_measures(c.d, c.w1, c.w2, 40000, t_split).first;
+    const double all = two_ball_profile_measures(c.d, c.w1, c.w2, 40000).first;
+    CHECK(areas[0] == doctest::Approx(first).epsilon(1e-7));
+    CHECK(areas[1] == doctest::Approx(all - first).epsilon(1e-7));
+    CHECK(areas[0] + areas[1] == doctest::Approx(skin::skin_measures(pts).area).epsilon(1e-10));
+    if (c.w1 == c.w2) CHECK(areas[0] == doctest::Approx(areas[1]).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("atom areas sum to the skin's area; symmetric atoms get equal areas, buried and redundant ones none") {
+  std::mt19937 rng(7);
+  for (const auto& pts : {test::random_points(40, 8.0, 1.0, 5.0, rng), test::tetrahedron_void(),
+                          test::three_ball_ring(), test::random_points(300, 20.0, 1.0, 6.0, rng)}) {
+    const skin::SkinSurface skin(pts);
+    const std::vector<double> areas = skin::atom_areas(skin, 1);
+    REQUIRE(areas.size() == pts.size());
+    double sum = 0;
+    for (double a : areas) {
+      CHECK(a >= 0);
+      sum += a;
+    }
+    CHECK(sum == doctest::Approx(skin::skin_measures(skin).area).epsilon(1e-9));
+    CHECK(skin::atom_areas(skin, 2) == areas);  // bit for bit, whatever the threads
+    const std::vector<double> far = skin::atom_areas(moved(pts, Vec3(1000.25, -500.5, 250.125)), 1);
+    for (std::size_t i = 0; i < areas.size(); ++i) CHECK(far[i] == doctest::Approx(areas[i]).scale(sum).epsilon(1e-9));
+  }
+  // The eight corners of a cube: every atom the same share.
+  const std::vector<double> cube = skin::atom_areas(test::cube_corners(2.2));
+  for (double a : cube) CHECK(a == doctest::Approx(cube[0]).epsilon(1e-9));
+  // A small ball inside a big one is redundant (no vertex of the regular
+  // triangulation): no skin, no area; so is a ball buried among others.
+  const std::vector<double> nested =
+      skin::atom_areas(std::vector<WeightedPoint>{{Vec3(0, 0, 0), 8.0}, {Vec3(0.2, 0.1, 0), 0.5}});
+  CHECK(nested[1] == 0);
+  CHECK(nested[0] == doctest::Approx(4 * kPi * 4.0).epsilon(1e-12));
+}
+
+TEST_CASE("a patch's atom areas sum to its area, cell by cell") {
+  std::mt19937 rng(3);
+  const skin::SkinSurface skin(test::random_points(60, 10.0, 1.0, 5.0, rng));
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  int split = 0;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    const skin::PatchMeasure whole = skin::patch_measure(mc, c);
+    const std::array<double, 4> parts = skin::patch_atom_areas(mc, c);
+    const int dim = mc.simplex(c).dim;
+    for (int i = dim + 1; i < 4; ++i) CHECK(parts[i] == 0);
+    const double sum = parts[0] + parts[1] + parts[2] + parts[3];
+    CHECK(sum == doctest::Approx(whole.area).scale(1.0).epsilon(1e-9));
+    if (dim > 0 && whole.area > 0) ++split;
+  }
+  CHECK(split > 50);  // hyperboloid and concave patches were cut
 }
