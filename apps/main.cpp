@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   configure_allocator();
   CLI::App app{kDescription, "skinmesh"};
   app.footer(kFormats);
+  app.set_version_flag("--version", std::string("skinmesh ") + SKINMESH_VERSION);
   app.require_subcommand(1);
   const std::vector<Command> commands = {add_info_command(app), add_mesh_command(app), add_check_command(app),
                                          add_trace_command(app)};
@@ -79,6 +80,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::string cmd;

@@ -14,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -44,7 +45,8 @@ struct PyMesh {
   geometry::IndexedMesh mesh;
   skin::SkinVertexData vertex_data;
   py::dict stats;
-  bool ok = true;
+  /// The check's verdict; empty for a mesh never checked (mesh(check=False), read_mesh()).
+  std::optional<bool> ok;
   /// The weighted points of the skin a checked mesh passed against (empty
   /// otherwise): write() checks the positions a lossy format stores against it.
   std::vector<geometry::WeightedPoint> points;
@@ -74,12 +76,23 @@ skin::ShellSelection shell_selection(const std::string& cavities, double min_cav
   return s;
 }
 
-/// The atoms of `source`: a path (str or os.PathLike) read with
+/// True if `p` is a path: str, bytes or os.PathLike.
+bool is_path(const py::object& p) {
+  return py::isinstance<py::str>(p) || py::isinstance<py::bytes>(p) || py::hasattr(p, "__fspath__");
+}
+
+/// The file name of a path (str, bytes or os.PathLike), as the file system
+/// encodes it (os.fsdecode), so that bytes paths work as str paths do.
+std::string path_of(const py::object& p) {
+  const py::module_ os = py::module_::import("os");
+  return py::str(os.attr("fsdecode")(os.attr("fspath")(p)));
+}
+
+/// The atoms of `source`: a path (str, bytes or os.PathLike) read with
 /// read_molecule, or an array (n, 4) of x, y, z (Å) and radius (Å).
 skin::Molecule molecule_of(const py::object& source) {
-  const py::module_ os = py::module_::import("os");
-  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
-    const std::string path = py::str(os.attr("fspath")(source));
+  if (is_path(source)) {
+    const std::string path = path_of(source);
     py::gil_scoped_release release;
     return skin::read_molecule(path);
   }
@@ -118,6 +131,17 @@ py::array_t<T> array_of(std::size_t rows, std::size_t cols, const Get& get) {
   return out;
 }
 
+/// A numpy view of `rows` × `cols` values of T at `data` (rows `row_bytes`
+/// apart; 1-d if cols == 1), kept alive by `owner`: writable, so that
+/// in-place edits change the mesh they view.
+template <class T>
+py::array view_of(const py::object& owner, T* data, std::size_t rows, std::size_t cols, std::size_t row_bytes) {
+  static T empty{};  // numpy needs a pointer even for no element
+  std::vector<py::ssize_t> shape{py::ssize_t(rows)}, strides{py::ssize_t(row_bytes)};
+  if (cols != 1) shape.push_back(py::ssize_t(cols)), strides.push_back(py::ssize_t(sizeof(T)));
+  return py::array(py::dtype::of<T>(), shape, strides, data ? data : &empty, owner);
+}
+
 /// The exact skin's area and volume (skin/skin_measures.h) as a dict.
 py::dict analytic_measures(const skin::Molecule& mol, double probe, int threads) {
   skin::SkinMeasures m;
@@ -153,8 +177,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
   // the skin, and stats["static_fallback"] says why.
   options.static_fallback = true;
   mesher::SummaryContext context;
-  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__"))
-    context.input = py::str(py::module_::import("os").attr("fspath")(source));
+  if (is_path(source)) context.input = path_of(source);
   context.atoms = mol.atoms.size();
   PyMesh out;
   std::string summary;
@@ -165,7 +188,7 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
     if (analytic) context.exact_measures_of = &points;
     // The same schema as `skinmesh mesh --stats` (mesher/summary.h).
     summary = mesher::run_summary(res, options, context).dump();
-    out.ok = res.ok();
+    if (res.checked) out.ok = res.ok();
     out.probe = probe;
     out.shells = res.shells;
     out.topology = res.expected_topology;
@@ -188,7 +211,7 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
   if (py::isinstance<PyMesh>(mesh_or_path)) {
     m = mesh_or_path.cast<const PyMesh&>().mesh;
   } else {
-    const std::string path = py::str(py::module_::import("os").attr("fspath")(mesh_or_path));
+    const std::string path = path_of(mesh_or_path);
     py::gil_scoped_release release;
     m = skin::read_skin_mesh(path);
     // Formats that round positions, as `skinmesh check` reads them: distances
@@ -213,6 +236,7 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
 }  // namespace
 
 PYBIND11_MODULE(skinmesh, m) {
+  m.attr("__version__") = SKINMESH_VERSION;
   m.doc() =
       "skinmesh: guaranteed-quality triangle meshes of molecular skin surfaces (Cheng & Shi, IEEE Visualization "
       "2004). mesh() meshes a molecule file or an array of atoms; check() verifies a mesh against the analytic skin.";
@@ -231,42 +255,58 @@ PYBIND11_MODULE(skinmesh, m) {
     }
   });
 
-  py::class_<PyMesh>(m, "Mesh",
-                     "A triangle mesh of the skin: vertices (n, 3) float64 in Å, triangles (m, 3) int32 "
-                     "counter-clockwise seen from outside, unit outward normals (n, 3), atom (n,) int32 (0-based "
-                     "index of the atom whose skin patch holds the vertex, -1 if unknown), rho (n,) local length "
-                     "scale in Å; stats: a dict of what the run measured; ok: False if the mesh failed its check.")
-      .def_property_readonly("vertices",
-                             [](const PyMesh& s) {
-                               return array_of<double>(s.mesh.positions.size(), 3, [&](std::size_t i, std::size_t k) {
-                                 return s.mesh.positions[i][k];
-                               });
-                             })
-      .def_property_readonly("triangles",
-                             [](const PyMesh& s) {
-                               return array_of<std::int32_t>(s.mesh.triangles.size(), 3,
-                                                             [&](std::size_t i, std::size_t k) {
-                                                               return static_cast<std::int32_t>(s.mesh.triangles[i][k]);
-                                                             });
-                             })
-      .def_property_readonly("normals",
-                             [](const PyMesh& s) {
-                               return array_of<double>(s.mesh.normals.size(), 3, [&](std::size_t i, std::size_t k) {
-                                 return s.mesh.normals[i][k];
-                               });
-                             })
-      .def_property_readonly("atom",
-                             [](const PyMesh& s) {
-                               return array_of<std::int32_t>(
-                                   s.vertex_data.atom.size(), 1,
-                                   [&](std::size_t i, std::size_t) { return s.vertex_data.atom[i]; });
-                             })
-      .def_property_readonly("rho",
-                             [](const PyMesh& s) {
-                               return array_of<double>(s.vertex_data.rho.size(), 1, [&](std::size_t i, std::size_t) {
-                                 return s.vertex_data.rho[i];
-                               });
-                             })
+  py::class_<PyMesh>(
+      m, "Mesh",
+      "A triangle mesh of the skin: vertices (n, 3) float64 in Å, triangles (m, 3) int32 "
+      "counter-clockwise seen from outside, unit outward normals (n, 3), atom (n,) int32 (0-based "
+      "index of the atom whose skin patch holds the vertex, -1 if unknown), rho (n,) local length "
+      "scale in Å (None if a file held none); the arrays are views of the mesh (edits change it); stats: a "
+      "dict of what the run measured; ok: True or False after a check, None if never checked.")
+      .def_property_readonly(
+          "vertices",
+          [](py::object self) {
+            PyMesh& s = self.cast<PyMesh&>();
+            return view_of<double>(self, s.mesh.positions.empty() ? nullptr : s.mesh.positions[0].data(),
+                                   s.mesh.positions.size(), 3, sizeof(Vec3));
+          },
+          "(n, 3) float64, Å: a view of the mesh's positions (edits change the mesh)")
+      .def_property_readonly(
+          "triangles",
+          [](py::object self) {
+            // Index is uint32; indices below 2^31 read the same as int32, and
+            // write() refuses a triangle whose index is out of range.
+            static_assert(sizeof(Index) == sizeof(std::int32_t) && sizeof(std::array<Index, 3>) == 3 * sizeof(Index));
+            PyMesh& s = self.cast<PyMesh&>();
+            return view_of<std::int32_t>(
+                self, s.mesh.triangles.empty() ? nullptr : reinterpret_cast<std::int32_t*>(s.mesh.triangles[0].data()),
+                s.mesh.triangles.size(), 3, sizeof(std::array<Index, 3>));
+          },
+          "(m, 3) int32: a view of the triangles, counter-clockwise seen from outside")
+      .def_property_readonly(
+          "normals",
+          [](py::object self) -> py::object {
+            PyMesh& s = self.cast<PyMesh&>();
+            if (s.mesh.normals.size() != s.mesh.positions.size()) return py::none();
+            return view_of<double>(self, s.mesh.normals.empty() ? nullptr : s.mesh.normals[0].data(),
+                                   s.mesh.normals.size(), 3, sizeof(Vec3));
+          },
+          "(n, 3) float64 unit outward normals (a view), or None for a file that holds none")
+      .def_property_readonly(
+          "atom",
+          [](py::object self) {
+            PyMesh& s = self.cast<PyMesh&>();
+            return view_of<std::int32_t>(self, s.vertex_data.atom.data(), s.vertex_data.atom.size(), 1,
+                                         sizeof(std::int32_t));
+          },
+          "(n,) int32: a view of each vertex's atom (0-based), -1 where unknown")
+      .def_property_readonly(
+          "rho",
+          [](py::object self) -> py::object {
+            PyMesh& s = self.cast<PyMesh&>();
+            if (s.vertex_data.rho.size() != s.mesh.positions.size()) return py::none();
+            return view_of<double>(self, s.vertex_data.rho.data(), s.vertex_data.rho.size(), 1, sizeof(double));
+          },
+          "(n,) float64: a view of the local length scale rho (Å), or None for a file that holds none")
       .def(
           "atom_areas",
           [](const PyMesh& s, std::optional<std::size_t> atoms) {
@@ -291,11 +331,14 @@ PYBIND11_MODULE(skinmesh, m) {
           "(Mesh.atom). Its length is the molecule's atom count for a mesh made by mesh(), else `atoms`, else one "
           "past the largest atom index. Compare skinmesh.atom_areas(), the exact skin's.")
       .def_readonly("stats", &PyMesh::stats)
-      .def_readonly("ok", &PyMesh::ok)
+      .def_property_readonly(
+          "ok", [](const PyMesh& s) -> py::object { return s.ok ? py::cast(*s.ok) : py::none(); },
+          "True if the mesh passed its check, False if it failed, None if it was never checked (mesh(check=False), "
+          "read_mesh(): skinmesh.check() verifies it)")
       .def(
           "write",
           [](const PyMesh& s, const py::object& path, int msms_decimals, bool force, bool ascii) {
-            const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
+            const std::string p = path_of(path);
             py::gil_scoped_release release;
             skin::SkinMeshWriteOptions w;
             w.msms_decimals = msms_decimals;
@@ -333,7 +376,11 @@ PYBIND11_MODULE(skinmesh, m) {
           "what broke and nothing is written, unless force=True.")
       .def("__repr__", [](const PyMesh& s) {
         return "<skinmesh.Mesh: " + std::to_string(s.mesh.positions.size()) + " vertices, " +
-               std::to_string(s.mesh.triangles.size()) + " triangles" + (s.ok ? "" : ", FAILED its check") + ">";
+               std::to_string(s.mesh.triangles.size()) + " triangles" +
+               (!s.ok   ? ", not checked"
+                : *s.ok ? ""
+                        : ", FAILED its check") +
+               ">";
       });
 
   m.def("mesh", &mesh, py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("algorithm") = "sweep",
@@ -342,7 +389,8 @@ PYBIND11_MODULE(skinmesh, m) {
         "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr .xyzrn, optionally .gz) or an "
         "array (n, 4) of x, y, z, radius in Å. Atom weights are 2 (r + probe)². algorithm: 'sweep' (Cheng & Shi "
         "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
-        "whether it passed. threads=0: every core; the mesh is the same for every count. stats['surface'] holds the "
+        "whether it passed (None with check=False). threads=0: every core; the mesh is the same for every count. "
+        "stats['surface'] holds the "
         "mesh's area (Å²) and enclosed volume (Å³), per component and in all; analytic=True adds "
         "stats['surface']['analytic'], the same of the exact skin (see measures()). Where the sweep fails, the "
         "whole skin is meshed by the static dynamic-skin baseline instead: stats['algorithm'] is then 'dynamic' "
@@ -388,11 +436,14 @@ PYBIND11_MODULE(skinmesh, m) {
   m.def(
       "read_mesh",
       [](const py::object& path) {
-        const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
+        const std::string p = path_of(path);
         PyMesh out;
         {
           py::gil_scoped_release release;
           out.mesh = skin::read_skin_mesh(p, &out.vertex_data);
+          // As the docstring says: atom -1 where the file names none.
+          if (out.vertex_data.atom.size() != out.mesh.positions.size())
+            out.vertex_data.atom.assign(out.mesh.positions.size(), -1);
         }
         out.stats["vertices"] = out.mesh.positions.size();
         out.stats["triangles"] = out.mesh.triangles.size();

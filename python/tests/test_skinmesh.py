@@ -182,3 +182,54 @@ def test_atom_areas_exact_and_of_the_mesh():
     atoms = skinmesh.mesh(np.array([[0.0, 0, 0, 1.5], [2.0, 0, 0, 1.2]]), probe=0, threads=1)
     assert atoms.atom_areas().shape == (2,)
     assert atoms.atom_areas(atoms=5)[2:].tolist() == [0, 0, 0]
+
+
+def test_arrays_are_views_edits_persist_and_are_written(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1)
+    before = m.vertices[0].copy()
+    m.vertices[0] += [0.5, 0, 0]  # in place, on the mesh itself
+    assert m.vertices[0] == pytest.approx(before + [0.5, 0, 0])
+    assert np.shares_memory(m.vertices, m.vertices)  # one buffer, not a fresh copy per access
+    m.write(tmp_path / "edited.ply")
+    back = skinmesh.read_mesh(tmp_path / "edited.ply")
+    assert back.vertices[0] == pytest.approx(before + [0.5, 0, 0])
+    # The verifier sees the edit: the moved vertex is off the skin.
+    assert any("from the skin" in p for p in skinmesh.check(LIGAND, back)["problems"])
+    # A view outlives the Python name of its mesh.
+    t = skinmesh.mesh(LIGAND, threads=1).triangles
+    assert t.shape[1] == 3 and t.min() >= 0
+
+
+def test_unchecked_and_read_meshes_say_so(tmp_path):
+    m = skinmesh.mesh(LIGAND, threads=1, check=False)
+    assert m.ok is None and "not checked" in repr(m)
+    checked = skinmesh.mesh(LIGAND, threads=1)
+    assert checked.ok is True
+    checked.write(tmp_path / "l.off")  # OFF holds positions and triangles only
+    back = skinmesh.read_mesh(tmp_path / "l.off")
+    assert back.ok is None
+    assert back.atom.shape == (back.vertices.shape[0],) and (back.atom == -1).all()
+    assert back.rho is None and back.normals is None
+    full = skinmesh.read_mesh(checked_ply(checked, tmp_path))
+    assert (full.atom >= 0).all() and full.rho is None and full.normals.shape == full.vertices.shape
+
+
+def checked_ply(mesh, folder):
+    path = folder / "l.ply"
+    mesh.write(path)
+    return path
+
+
+def test_version_and_bytes_paths(tmp_path):
+    exe = os.environ.get("SKINMESH_BINARY", os.path.join(os.path.dirname(skinmesh.__file__), "..", "skinmesh"))
+    out = subprocess.run([exe, "--version"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.strip() == "skinmesh " + skinmesh.__version__
+    assert skinmesh.__version__.count(".") == 2
+    m = skinmesh.mesh(os.fsencode(LIGAND), threads=1)
+    assert m.ok and m.stats["input"] == LIGAND
+    target = os.fsencode(str(tmp_path / "b.ply"))
+    m.write(target)
+    back = skinmesh.read_mesh(target)
+    assert back.vertices.shape == m.vertices.shape
+    assert skinmesh.check(os.fsencode(LIGAND), target)["problems"] == []
