@@ -3,6 +3,9 @@
 // JSON report; exit 0 if every check passes, 1 otherwise.
 #include <iostream>
 #include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "apps/cli.h"
 #include "apps/output.h"
@@ -21,7 +24,8 @@ struct CheckArgs {
   std::string report;
   verify::SkinCheckOptions opt;
   bool no_self_intersections = false, no_rdt = false;
-  bool max_vertex_distance_given = false;
+  /// --max-vertex-distance: "auto" (the file's rounding, else 1e-9 Å) or a distance in Å.
+  std::string max_vertex_distance = "auto";
   bool strict = false;
 };
 
@@ -38,11 +42,18 @@ int run_check(CheckArgs& a) {
   // it checks the positions a lossy file will hold (mesher/pipeline.h,
   // MeshOptions::stored_positions).
   const double rounding = skin::position_rounding(a.mesh, mesh);
-  if (!a.max_vertex_distance_given && rounding > a.opt.max_vertex_distance) {
-    a.opt.max_vertex_distance = rounding;
-    if (!a.mol.quiet)
-      std::cerr << "note: " << a.mesh << " stores rounded positions: vertex distances to the skin are checked to "
-                << rounding << " Å (--max-vertex-distance)\n";
+  std::string tolerance_from = "given (--max-vertex-distance)";
+  if (a.max_vertex_distance == "auto") {
+    tolerance_from = "auto: exact positions";
+    if (rounding > a.opt.max_vertex_distance) {
+      a.opt.max_vertex_distance = rounding;
+      tolerance_from = "auto: the rounding of the file's positions";
+      if (!a.mol.quiet)
+        std::cerr << "note: " << a.mesh << " stores rounded positions: vertex distances to the skin are checked to "
+                  << rounding << " Å (--max-vertex-distance auto)\n";
+    }
+  } else {
+    a.opt.max_vertex_distance = std::stod(a.max_vertex_distance);  // validated by the option
   }
   const bool rounded = rounding > 0;
   if (rounded && !a.strict && !a.mol.quiet)
@@ -58,7 +69,16 @@ int run_check(CheckArgs& a) {
   a.opt.check_restricted_delaunay = !a.no_rdt && (!rounded || a.strict);
   a.opt.check_size_conditions = !rounded || a.strict;
   const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt);
-  const std::string text = rep.to_json();
+  // Where the tolerance came from, after the tolerance itself.
+  nlohmann::ordered_json report = nlohmann::ordered_json::parse(rep.to_json()), out;
+  for (auto it = report.begin(); it != report.end(); ++it) {
+    out[it.key()] = it.value();
+    if (it.key() == "vertex_distance_tolerance") {
+      out["vertex_distance_tolerance_from"] = tolerance_from;
+      out["position_rounding_A"] = rounding;
+    }
+  }
+  const std::string text = out.dump(2) + "\n";
   std::cout << text;
   if (!a.report.empty()) app::write_text_file(a.report, text);
   if (!a.mol.quiet)
@@ -90,14 +110,15 @@ Command add_check_command(CLI::App& app) {
                 "check [L], [U] and the restricted Delaunay property also on a file that rounds positions (MSMS, "
                 "STL, float32 PLY/OBJ/OFF/VTK), where they are left out by default: they hold for the exact "
                 "positions, and a rounding can tip them without visible damage");
-  cmd->add_option("--max-vertex-distance", check.opt.max_vertex_distance,
-                  "largest admissible distance of a vertex to the skin in Å (default: 1e-9, or the rounding of the "
-                  "format: 1e-3 for MSMS, the float32 rounding for STL)")
-      ->check(number_at_least_zero(true));
-  return {cmd, [args, cmd] {
-            args->max_vertex_distance_given = cmd->count("--max-vertex-distance") > 0;
-            return run_check(*args);
-          }};
+  cmd->add_option("--max-vertex-distance", check.max_vertex_distance,
+                  "largest admissible distance of a vertex to the skin in Å, or auto: 1e-9 for exact positions, "
+                  "else the rounding of the file's own precision (1e-3 for MSMS; the float32 rounding for STL and "
+                  "for PLY, OBJ, OFF or VTK whose coordinates are all float32, as other tools re-save them); the "
+                  "report says which (vertex_distance_tolerance_from, position_rounding_A)")
+      ->check(CLI::Validator([](std::string& v) { return v == "auto" ? std::string() : number_at_least_zero(true)(v); },
+                             "auto|DIST"))
+      ->capture_default_str();
+  return {cmd, [args] { return run_check(*args); }};
 }
 
 }  // namespace skinmesh::app

@@ -330,6 +330,23 @@ TEST_CASE("a bundled molecule written as STL, VTK and MSMS reads back as the PLY
   CHECK(report.at("num_rdt_violations").is_null());
   const Run strict = run(s, "check " + mol + " a.face --strict");
   CHECK(nlohmann::json::parse(strict.out).at("num_L_violations").is_number());
+  // --max-vertex-distance auto (the default) takes the file's own rounding and
+  // says so; a distance given is used as given; anything else is refused.
+  CHECK(report.at("vertex_distance_tolerance_from") == "auto: the rounding of the file's positions");
+  CHECK(report.at("position_rounding_A") == 1e-3);
+  REQUIRE(run(s, "mesh " + mol + " -o f.ply --float --quiet").exit_code == 0);
+  const nlohmann::json f = nlohmann::json::parse(run(s, "check " + mol + " f.ply --max-vertex-distance auto").out);
+  CHECK(f.at("problems").empty());
+  CHECK(f.at("vertex_distance_tolerance_from") == "auto: the rounding of the file's positions");
+  CHECK(f.at("position_rounding_A").get<double>() > 0);
+  CHECK(f.at("position_rounding_A").get<double>() < 1e-4);
+  const Run tight = run(s, "check " + mol + " f.ply --max-vertex-distance 1e-12");
+  CHECK(tight.exit_code == 1);  // float32 positions lie up to a float's rounding off the skin
+  CHECK(nlohmann::json::parse(tight.out).at("vertex_distance_tolerance_from") == "given (--max-vertex-distance)");
+  const nlohmann::json exact = nlohmann::json::parse(run(s, "check " + mol + " a.ply").out);
+  CHECK(exact.at("vertex_distance_tolerance_from") == "auto: exact positions");
+  CHECK(exact.at("position_rounding_A") == 0);
+  CHECK(run(s, "check " + mol + " a.ply --max-vertex-distance soon").exit_code == 2);
 }
 
 TEST_CASE(".xyzrn input (MSMS's, with names): the mesh of the same atoms, the names passed through to .vert") {
