@@ -31,6 +31,7 @@ using json = nlohmann::ordered_json;
 /// One input of a batch run and what became of it.
 struct BatchItem {
   std::string input, output;
+  int model = 0;  ///< --model all: the model read; 0: as --model says
   std::size_t atoms = 0, triangles = 0;
   double min_angle = 0, area = 0, volume = 0, seconds = 0;
   bool checked = false;
@@ -82,6 +83,7 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
     MoleculeArgs m = a.mol;
     m.input = item.input;
     m.quiet = true;
+    if (item.model != 0) m.model = std::to_string(item.model);
     const skin::Molecule mol = load_molecule(m);
     item.atoms = mol.atoms.size();
     const mesher::MeshResult res = mesher::mesh_skin(mol, base);
@@ -135,19 +137,40 @@ std::string csv_field(const std::string& s) {
 int run_batch(const MeshArgs& a) {
   if (a.out_dir.empty()) throw CLI::ValidationError("-O", "several inputs (or --list) need an output folder -O DIR");
   const std::vector<std::string> inputs = batch_inputs(a);
-  std::vector<BatchItem> items(inputs.size());
-  // Outputs DIR/NAME.FORMAT; inputs that share a NAME (crambin.pdb and
-  // crambin.pqr) keep their whole file name (crambin.pdb.ply, crambin.pqr.ply).
+  // One item per input, or with --model all one per model of each input.
+  std::vector<BatchItem> items;
+  const auto item_of = [](const std::string& input, int model) {
+    BatchItem item;
+    item.input = input;
+    item.model = model;
+    return item;
+  };
+  skin::ReadOptions formats;
+  for (const std::string& in : inputs) {
+    if (a.mol.model != "all") {
+      items.push_back(item_of(in, 0));
+      continue;
+    }
+    try {
+      if (!a.mol.format.empty()) formats.format = skin::format_from_extension("x." + a.mol.format);
+      for (int model : skin::model_numbers(in, formats)) items.push_back(item_of(in, model));
+    } catch (const InputError&) {
+      items.push_back(item_of(in, 0));  // unreadable: it fails as an item, with the reader's message
+    }
+  }
+  // Outputs DIR/NAME.FORMAT (DIR/NAME_modelN.FORMAT); inputs that share a NAME
+  // (crambin.pdb and crambin.pqr) keep their whole file name (crambin.pdb.ply,
+  // crambin.pqr.ply).
   std::map<std::string, int> stems;
   for (const std::string& in : inputs) ++stems[batch_stem(in)];
   std::map<std::string, std::string> taken;  // output -> input
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    items[i].input = inputs[i];
-    const std::string stem = batch_stem(inputs[i]);
-    const std::string name = stems[stem] > 1 ? std::filesystem::path(inputs[i]).filename().string() : stem;
-    items[i].output = (std::filesystem::path(a.out_dir) / (name + "." + a.batch_format)).string();
-    if (auto [it, fresh] = taken.emplace(items[i].output, inputs[i]); !fresh)
-      throw InputError(inputs[i], 0, "would write " + items[i].output + " as " + it->second + " does (rename one)");
+  for (BatchItem& item : items) {
+    const std::string stem = batch_stem(item.input);
+    std::string name = stems[stem] > 1 ? std::filesystem::path(item.input).filename().string() : stem;
+    if (item.model != 0) name += "_model" + std::to_string(item.model);
+    item.output = (std::filesystem::path(a.out_dir) / (name + "." + a.batch_format)).string();
+    if (auto [it, fresh] = taken.emplace(item.output, item.input); !fresh)
+      throw InputError(item.input, 0, "would write " + item.output + " as " + it->second + " does (rename one)");
   }
   std::error_code made;
   std::filesystem::create_directories(a.out_dir, made);
@@ -168,7 +191,8 @@ int run_batch(const MeshArgs& a) {
       if (a.mol.quiet) continue;
       const BatchItem& it = items[i];
       std::lock_guard<std::mutex> lock(print);
-      std::fprintf(stderr, "[%zu/%zu] %s: %s", k, items.size(), it.input.c_str(), it.status.c_str());
+      std::fprintf(stderr, "[%zu/%zu] %s%s: %s", k, items.size(), it.input.c_str(),
+                   it.model ? (" model " + std::to_string(it.model)).c_str() : "", it.status.c_str());
       if (it.exit_code == 0)
         std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
       if (!it.message.empty()) std::fprintf(stderr, ": %s", one_line(it.message).c_str());
@@ -182,7 +206,8 @@ int run_batch(const MeshArgs& a) {
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
   // The summary: a table on stdout, CSV and JSON in the output folder.
-  std::string table, csv = "input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
+  std::string table,
+      csv = "input,model,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
   json rows = json::array();
   char line[512];
   std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle",
@@ -191,7 +216,8 @@ int run_batch(const MeshArgs& a) {
   int exit_code = 0;
   double sum = 0;
   for (const BatchItem& it : items) {
-    const std::string name = std::filesystem::path(it.input).filename().string();
+    const std::string name = std::filesystem::path(it.input).filename().string() +
+                             (it.model ? " model " + std::to_string(it.model) : std::string());
     std::snprintf(line, sizeof line, "%-36s %8zu %10zu %9.3f %8.2f  %s\n", name.c_str(), it.atoms, it.triangles,
                   it.min_angle, it.seconds, it.status.c_str());
     table += line;
@@ -199,13 +225,15 @@ int run_batch(const MeshArgs& a) {
     std::snprintf(num, sizeof num, ",%zu,%zu,%.6f,%.6f,%.6f,%.3f,", it.atoms, it.triangles, it.min_angle, it.area,
                   it.volume, it.seconds);
     const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
-    csv += csv_field(it.input) + "," + csv_field(written ? it.output : "") + num + csv_field(it.status) + "," +
-           csv_field(one_line(it.message)) + "\n";
+    csv += csv_field(it.input) + "," + (it.model ? std::to_string(it.model) : std::string()) + "," +
+           csv_field(written ? it.output : "") + num + csv_field(it.status) + "," + csv_field(one_line(it.message)) +
+           "\n";
     json row = {{"input", it.input},         {"atoms", it.atoms},
                 {"triangles", it.triangles}, {"min_angle_deg", it.min_angle},
                 {"area_A2", it.area},        {"volume_A3", it.volume},
                 {"seconds", it.seconds},     {"status", it.status},
                 {"exit_code", it.exit_code}};
+    if (it.model) row["model"] = it.model;
     if (written) row["output"] = it.output;
     if (!it.message.empty()) row["message"] = it.message;
     rows.push_back(std::move(row));

@@ -52,6 +52,23 @@ void add_molecule_options(CLI::App& cmd, MoleculeArgs& m, bool many) {
   cmd.add_flag("--no-hydrogens", m.no_hydrogens, "drop hydrogen atoms (default: kept if present)");
   cmd.add_option("--format", m.format, "input format (default: by extension)")
       ->check(CLI::IsMember({"pdb", "cif", "mmcif", "pqr", "xyzr", "xyzrn"}));
+  cmd.add_option("--model", m.model,
+                 std::string("the model of a PDB or mmCIF file to read: N, the one numbered N (MODEL N, "
+                             "pdbx_PDB_model_num N)") +
+                     (many ? "; all: each model, one mesh per model (a batch run: -O DIR)" : "") +
+                     " (default: the first)")
+      ->check(CLI::Validator(
+          [many](std::string& v) -> std::string {
+            if (many && v == "all") return {};
+            int n = 0;
+            if (CLI::detail::lexical_cast(v, n) && n >= 1) return {};
+            return std::string("expects a model number >= 1") + (many ? " or all" : "") + ", got '" + v + "'";
+          },
+          many ? "N|all" : "N"));
+  cmd.add_option("--assembly", m.assembly,
+                 "read the biological assembly ID of a PDB (REMARK 350 BIOMOLECULE) or mmCIF "
+                 "(_pdbx_struct_assembly) file: the model's chains copied by the assembly's operators, the copies "
+                 "named A, A2, A3... (default: the file's coordinates)");
   cmd.add_flag("--quiet,-q", m.quiet, "no notes or progress on stderr");
 }
 
@@ -64,6 +81,8 @@ skin::Molecule load_molecule(const MoleculeArgs& m) {
       {"mmcif", skin::ReadOptions::Format::Mmcif}, {"pqr", skin::ReadOptions::Format::Pqr},
       {"xyzr", skin::ReadOptions::Format::Xyzr},   {"xyzrn", skin::ReadOptions::Format::Xyzrn}};
   if (!m.format.empty()) ro.format = formats.at(m.format);
+  if (!m.model.empty()) ro.model = std::stoi(m.model);  // validated by the option; "all" is expanded by the batch
+  ro.assembly = m.assembly;
   skin::Molecule mol = skin::read_molecule(m.input, ro);
   if (!m.quiet) {
     const std::size_t shown = std::min<std::size_t>(mol.notes.size(), 10);

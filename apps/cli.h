@@ -49,12 +49,18 @@ struct MoleculeArgs {
   bool no_hydrogens = false;
   std::string format;
   bool quiet = false;
+  /// --model: "" (the first model), a model number, or (mesh only) "all".
+  std::string model;
+  /// --assembly: the biological assembly to read ("": the file's coordinates).
+  std::string assembly;
 };
 
-/// IN (several if `many`), --probe, --keep-water, --no-hydrogens, --format, --quiet.
+/// IN (several if `many`), --probe, --keep-water, --no-hydrogens, --format,
+/// --model (N; with `many` also "all"), --assembly, --quiet.
 void add_molecule_options(CLI::App& cmd, MoleculeArgs& m, bool many = false);
 
-/// Reads the molecule and prints (at most ten of) its notes unless quiet.
+/// Reads the molecule (m.input; the model m.model, which must not be "all",
+/// and the assembly m.assembly) and prints (at most ten of) its notes unless quiet.
 /// Throws InputError (skin::read_molecule).
 skin::Molecule load_molecule(const MoleculeArgs& m);
 

@@ -226,8 +226,20 @@ Molecule read_molecule(const std::string& path, const ReadOptions& opt) {
   return read_molecule_from_string(molecule_io_detail::read_text(path), path, resolved);
 }
 
+std::vector<int> model_numbers(const std::string& path, const ReadOptions& opt) {
+  const ReadOptions::Format format = opt.format == ReadOptions::Format::Auto ? format_from_extension(path) : opt.format;
+  if (format == ReadOptions::Format::Pdb)
+    return molecule_io_detail::pdb_model_numbers(molecule_io_detail::read_text(path));
+  if (format == ReadOptions::Format::Mmcif)
+    return molecule_io_detail::mmcif_model_numbers(path, molecule_io_detail::read_text(path));
+  return {1};
+}
+
 Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt) {
   const ReadOptions::Format format = opt.format == ReadOptions::Format::Auto ? format_from_extension(name) : opt.format;
+  if (format != ReadOptions::Format::Pdb && format != ReadOptions::Format::Mmcif &&
+      (opt.model > 1 || !opt.assembly.empty()))
+    throw InputError(name, 0, "models and assemblies are read from PDB and mmCIF files only (this file holds model 1)");
   switch (format) {
     case ReadOptions::Format::Pdb:
       return read_pdb(name, text, opt);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "skin/molecule.h"
 
@@ -30,6 +31,15 @@ struct ReadOptions {
   /// followed by .gz (gzip).
   enum class Format { Auto, Pdb, Mmcif, Pqr, Xyzr, Xyzrn };
   Format format = Format::Auto;
+  /// Which model of a PDB or mmCIF file: 0, the first (default); N >= 1, the
+  /// model numbered N (PDB "MODEL N", mmCIF pdbx_PDB_model_num N; a file
+  /// without models holds model 1 only). model_numbers() lists them.
+  int model = 0;
+  /// If not empty, the biological assembly of this id (PDB REMARK 350
+  /// "BIOMOLECULE: id", mmCIF _pdbx_struct_assembly.id), read with gemmi and
+  /// expanded: the model's atoms copied by every operator of the assembly onto
+  /// the chains (PDB) or label_asym_id subchains (mmCIF) it names. PDB and mmCIF only.
+  std::string assembly;
 };
 
 // Molecule Reading Public Functions
@@ -37,7 +47,8 @@ struct ReadOptions {
 /// Reads the atoms of `path`, in file order.
 ///
 /// - PDB (fixed columns; x, y, z from columns 31-54) and mmCIF (_atom_site) are
-///   read with gemmi: first model only; first alternate location only (an atom is
+///   read with gemmi: the model ReadOptions::model (the first by
+///   default), expanded to ReadOptions::assembly if one is named; first alternate location only (an atom is
 ///   kept if its altloc is blank or the first letter seen for that atom; a residue
 ///   whose atoms all carry one other letter, a micro-heterogeneity alternative, is
 ///   dropped whole); waters dropped unless `opt.keep_water`; hydrogens dropped if
@@ -75,6 +86,12 @@ Molecule read_molecule(const std::string& path, const ReadOptions& opt = {});
 /// chooses the format by its extension when opt.format is Auto. The in-memory
 /// entry point of read_molecule(), which reads the file and calls it.
 Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt = {});
+
+/// The model numbers of `path`, in file order (ReadOptions::model): PDB MODEL
+/// records, mmCIF pdbx_PDB_model_num values; {1} for a file without models
+/// and for PQR, XYZR and XYZRN. Throws InputError as read_molecule() does for
+/// an unreadable file or unknown format.
+std::vector<int> model_numbers(const std::string& path, const ReadOptions& opt = {});
 
 /// The format read_molecule() would choose for `path` by its extension (case
 /// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr, Xyzr or Xyzrn. Throws InputError(path, 0, "unknown

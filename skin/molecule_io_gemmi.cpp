@@ -22,6 +22,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -33,12 +34,14 @@
 #include <utility>
 #include <vector>
 
+#include <gemmi/assembly.hpp>
 #include <gemmi/cif.hpp>
 #include <gemmi/mmcif.hpp>
 #include <gemmi/pdb.hpp>
 
 #include "core/errors.h"
 #include "core/text_split.h"
+#include "geometry/kernel/weighted_point.h"
 #include "skin/element_radii.h"
 #include "skin/molecule_io_internal.h"
 
@@ -173,13 +176,22 @@ bool record_is(std::string_view line, std::string_view rec) {
 /// and starts its next line there.
 constexpr std::size_t kGemmiLineLength = 120;
 
-/// The PDB pre-scan: the records of the first model, and the text gemmi reads.
+/// The refusal of model `model`, listing the file's.
+std::string no_model_message(int model, const std::vector<int>& models) {
+  std::string list;
+  for (std::size_t i = 0; i < models.size() && i < 20; ++i) list += (i ? ", " : "") + std::to_string(models[i]);
+  if (models.size() > 20) list += ", ...";
+  return "no atoms in model " + std::to_string(model) + " (the file's models: " + list + "; see --model)";
+}
+
+/// The PDB pre-scan: the records of the model asked for, and the text gemmi reads.
 struct PdbScan {
   SourceIndex index;
   std::string gemmi_text;
 };
 
-/// Checks the coordinate columns of every ATOM/HETATM record of the first model
+/// Checks the coordinate columns of every ATOM/HETATM record of the model
+/// opt.model (the first if 0; the records of other models become empty lines)
 /// and indexes the records by (x, y, z, name, altloc). Writes the text handed to
 /// gemmi, line by line (split_lines(): one gemmi line per line of `text`, so
 /// gemmi reads exactly the records checked here, and its line numbers are the
@@ -193,17 +205,20 @@ struct PdbScan {
 ///   blanked: gemmi rejects the whole file when they hold anything but a
 ///   charge, and old-style files keep identifiers there (1GRM: columns 73-80
 ///   read "1GRM 125");
-/// - every other record emptied but MODEL, ENDMDL, TER and END, which gemmi
+/// - every other record emptied but MODEL, ENDMDL, TER, END and, when
+///   opt.assembly names one, REMARK 350 (the assemblies), which gemmi
 ///   needs to group the atoms, and data_ (an mmCIF file, which gemmi names as
 ///   such): the reader uses nothing else, and gemmi 0.5.7 parses the rest
 ///   without care — fixed columns past the end of a short LINK record (columns
 ///   74-78 of an exact-length copy), DBREF2 numbers of 10 digits into an int
 ///   (a signed overflow) — and the headers of big files are long.
 /// Throws InputError.
-PdbScan scan_pdb(const std::string& path, std::string_view text) {
+PdbScan scan_pdb(const std::string& path, std::string_view text, const ReadOptions& opt) {
   PdbScan scan;
   scan.gemmi_text.reserve(text.size() + 1);
   bool seen_atom = false;
+  bool has_models = false;  // a MODEL record met
+  int current_model = 0;    // the serial of the last MODEL record
   const std::vector<std::string_view> lines = split_lines(text);
   std::string line;  // one buffer for every line: no allocation per record
   for (std::size_t k = 0; k < lines.size(); ++k) {
@@ -211,10 +226,22 @@ PdbScan scan_pdb(const std::string& path, std::string_view text) {
     line.assign(lines[k].substr(0, kGemmiLineLength));
     std::replace_if(
         line.begin(), line.end(), [](char c) { return c == '\0' || c == '\r'; }, ' ');
+    if (record_is(line, "MODE") && line.rfind("MODEL", 0) == 0) {
+      has_models = true;
+      current_model = leading_int(std::string_view(line).substr(std::min<std::size_t>(line.size(), 5)));
+    }
+    // Another model than the one asked for: an empty line (line numbers stay the file's).
+    if (opt.model != 0 && (has_models ? current_model != opt.model : opt.model != 1)) {
+      scan.gemmi_text += '\n';
+      continue;
+    }
     const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                           // gemmi starts model 2
                       (record_is(line, "END") && (line.size() == 3 || is_blank(line[3])));  // gemmi stops
     const bool atom = record_is(line, "ATOM") || record_is(line, "HETA");
-    if (!atom && !record_is(line, "MODE") && !record_is(line, "END") && !record_is(line, "TER") &&
+    // REMARK 350 (the biological assemblies) is kept when one is asked for.
+    const bool assembly_remark =
+        !opt.assembly.empty() && record_is(line, "REMA") && line.size() > 10 && line.compare(6, 4, " 350") == 0;
+    if (!atom && !assembly_remark && !record_is(line, "MODE") && !record_is(line, "END") && !record_is(line, "TER") &&
         !record_is(line, "DATA")) {
       line.clear();
     } else if (atom) {
@@ -248,6 +275,7 @@ PdbScan scan_pdb(const std::string& path, std::string_view text) {
     scan.gemmi_text += '\n';  // gemmi counts the newline in a record's length
     if (last) break;
   }
+  if (opt.model != 0 && !seen_atom) throw InputError(path, 0, no_model_message(opt.model, pdb_model_numbers(text)));
   return scan;
 }
 
@@ -402,9 +430,12 @@ std::vector<std::string> complete_atom_site(gemmi::cif::Block& block) {
 /// label_seq_id, auth_seq_id, pdbx_formal_charge, pdbx_tls_group_id) whose
 /// leading integer is beyond ±INT_MAX — as leading_int() reads such serials and
 /// residue numbers in PQR.
-std::vector<std::string> keep_atom_site_only(gemmi::cif::Block& block) {
+std::vector<std::string> keep_atom_site_only(gemmi::cif::Block& block, bool keep_assemblies) {
   for (gemmi::cif::Item& item : block.items)
-    if (!item.has_prefix("_atom_site.")) item.erase();
+    if (!item.has_prefix("_atom_site.") && !(keep_assemblies && (item.has_prefix("_pdbx_struct_assembly.") ||
+                                                                 item.has_prefix("_pdbx_struct_assembly_gen.") ||
+                                                                 item.has_prefix("_pdbx_struct_oper_list."))))
+      item.erase();
   const std::vector<std::string> added = complete_atom_site(block);
   // The table gemmi reads atoms from: the item of _atom_site.id (a tag appears
   // once per block: gemmi's parser rejects duplicates).
@@ -419,10 +450,10 @@ std::vector<std::string> keep_atom_site_only(gemmi::cif::Block& block) {
   return added;
 }
 
-/// Checks Cartn_x/y/z of every _atom_site row of the first model (CIF numbers,
+/// Checks Cartn_x/y/z of every _atom_site row of model `model` (0: the first; CIF numbers,
 /// an esd suffix "(n)" allowed) and indexes the rows like scan_pdb(). The first
 /// block is the one gemmi::make_structure() reads. Throws InputError.
-SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::cif::Block& block) {
+SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::cif::Block& block, int model) {
   SourceIndex index;
   enum { kX, kY, kZ, kAuthAtom, kLabelAtom, kAlt, kModel, kType };
   gemmi::cif::Table table =
@@ -453,14 +484,20 @@ SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::ci
     return parse_number(path, line_of(row, column), v, what);
   };
   const int name_column = table.first_of(kAuthAtom, kLabelAtom);
-  std::string first_model;
+  // The model kept: the first row's, or the one asked for (a file without
+  // model numbers holds model 1).
+  std::string kept_model = model != 0 ? std::to_string(model) : std::string();
+  std::size_t kept_rows = 0;
   for (std::size_t r = 0; r < table.length(); ++r) {
     gemmi::cif::Table::Row row = table[static_cast<int>(r)];
     if (row.has(kModel)) {
-      const std::string model = gemmi::cif::as_string(row[kModel]);
-      if (r == 0) first_model = model;
-      if (model != first_model) continue;
+      const std::string row_model = gemmi::cif::as_string(row[kModel]);
+      if (r == 0 && model == 0) kept_model = row_model;
+      if (row_model != kept_model) continue;
+    } else if (model > 1) {
+      continue;
     }
+    ++kept_rows;
     const double x = number(r, kX, "x coordinate");
     const double y = number(r, kY, "y coordinate");
     const double z = number(r, kZ, "z coordinate");
@@ -470,19 +507,94 @@ SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::ci
     const char altloc = row.has(kAlt) ? gemmi::cif::as_char(row[kAlt], '\0') : '\0';
     index.add(SourceIndex::key(x, y, z, name, altloc), {line_of(r, kX), row.has(kType)});
   }
+  if (model != 0 && kept_rows == 0)
+    throw InputError(path, 0, no_model_message(model, mmcif_model_numbers(path, std::string(text))));
   return index;
 }
 
 // gemmi Structure to Molecule
 
-/// The atoms of the first model of `st`, filtered and given Bondi radii.
+/// Where an atom of the model came from: what assemblies name.
+struct AtomOrigin {
+  std::string chain;     ///< the chain's name (PDB assemblies name chains)
+  std::string subchain;  ///< label_asym_id (mmCIF assemblies name these)
+};
+
+/// The atoms of the biological assembly `id` of `st`: every generator's
+/// operators applied, in order, to the atoms of the chains or subchains it
+/// names (`origin`, one per atom). A chain copied more than once gets its
+/// copy's number after its name from the second copy on ("A", "A2", "A3"),
+/// as gemmi names them. Throws InputError for an unknown id, an assembly that
+/// holds no atom read, or a copy outside ±geometry::kMaxCoordinate.
+std::vector<Atom> expand_assembly(const std::string& path, const gemmi::Structure& st, const std::string& id,
+                                  const std::vector<Atom>& atoms, const std::vector<AtomOrigin>& origin,
+                                  std::vector<std::string>& notes) {
+  const gemmi::Assembly* assembly = nullptr;
+  std::string names;
+  for (const gemmi::Assembly& a : st.assemblies) {
+    names += (names.empty() ? "" : ", ") + a.name;
+    if (a.name == id) assembly = &a;
+  }
+  if (assembly == nullptr)
+    throw InputError(path, 0,
+                     names.empty() ? "no assembly " + id +
+                                         ": the file lists none (PDB REMARK 350 BIOMOLECULE, mmCIF "
+                                         "_pdbx_struct_assembly); mesh the file's coordinates without --assembly"
+                                   : "no assembly " + id + " (the file lists: " + names + ")");
+  std::vector<Atom> out;
+  std::map<std::string, int> copies;  // per chain, the copies made
+  std::size_t operators = 0;
+  for (const gemmi::Assembly::Gen& gen : assembly->generators) {
+    const bool all = !gen.chains.empty() && gen.chains.front() == "(all)";
+    for (const gemmi::Assembly::Operator& op : gen.operators) {
+      ++operators;
+      std::map<std::string, std::string> named;  // chain -> its name in this copy
+      for (std::size_t i = 0; i < atoms.size(); ++i) {
+        const AtomOrigin& o = origin[i];
+        const bool in = all || std::find(gen.chains.begin(), gen.chains.end(), o.chain) != gen.chains.end() ||
+                        std::find(gen.subchains.begin(), gen.subchains.end(), o.subchain) != gen.subchains.end();
+        if (!in) continue;
+        auto [it, fresh] = named.emplace(o.chain, std::string());
+        if (fresh) {
+          const int k = ++copies[o.chain];
+          it->second = k == 1 ? o.chain : o.chain + std::to_string(k);
+        }
+        Atom a = atoms[i];
+        const gemmi::Vec3 p = op.transform.apply(gemmi::Vec3(a.centre.x(), a.centre.y(), a.centre.z()));
+        a.centre = Vec3(p.x, p.y, p.z);
+        for (int c = 0; c < 3; ++c)
+          if (!(std::abs(a.centre[c]) <= geometry::kMaxCoordinate))
+            throw InputError(path, a.line,
+                             "assembly " + id + ": operator " + op.name + " moves " + a.name +
+                                 " outside the supported range of coordinates");
+        a.chain = it->second;
+        out.push_back(std::move(a));
+      }
+    }
+  }
+  if (out.empty())
+    throw InputError(path, 0, "assembly " + id + " holds none of the atoms read (its chains are not in the model)");
+  notes.push_back("assembly " + id + ": " + std::to_string(operators) +
+                  (operators == 1 ? " operator, " : " operators, ") + std::to_string(out.size()) +
+                  " atoms from the model's " + std::to_string(atoms.size()));
+  return out;
+}
+
+/// The atoms of model opt.model of `st` (the first if 0), filtered and given
+/// Bondi radii; the assembly opt.assembly if one is named.
 Molecule from_structure(const std::string& path, const gemmi::Structure& st, SourceIndex& index, const ReadOptions& opt,
                         const std::vector<std::string>& reader_notes = {}) {
   std::vector<Atom> atoms;
   NoteList notes(path);
   for (const std::string& n : reader_notes) notes.add(0, n);
   if (st.models.empty()) return finish(path, std::move(atoms), notes);
-  const gemmi::Model& model = st.models.front();
+  // The pre-scans handed gemmi the model asked for (PDB), or indexed its rows
+  // (mmCIF, where gemmi makes every model): that model, else the first.
+  const gemmi::Model* chosen = &st.models.front();
+  for (const gemmi::Model& m : st.models)
+    if (opt.model != 0 && m.name == std::to_string(opt.model)) chosen = &m;
+  const gemmi::Model& model = *chosen;
+  std::vector<AtomOrigin> origin;  // per atom kept: its chain and subchain, for the assembly
 
   // First alternate location: per residue position (chain, number, insertion
   // code) and per atom of it, the first altloc letter met.
@@ -577,6 +689,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
           ++guessed_elements;
         }
         atoms.push_back(std::move(atom));
+        if (!opt.assembly.empty()) origin.push_back({chain.name, res.subchain});
       }
     }
   }
@@ -585,7 +698,22 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
   if (not_elements > 0)
     notes.add(0, std::to_string(not_elements) + " atoms have text that is no element symbol in columns 77-78 (first: " +
                      first_not_element + "); elements guessed from atom names");
-  return finish(path, std::move(atoms), notes);
+  if (opt.assembly.empty()) return finish(path, std::move(atoms), notes);
+  // finish() orders the atoms by line; the origins go with them.
+  if (std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.line > 0; })) {
+    std::vector<std::size_t> order(atoms.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return atoms[a].line < atoms[b].line; });
+    std::vector<Atom> sorted_atoms;
+    std::vector<AtomOrigin> sorted_origin;
+    for (std::size_t i : order) sorted_atoms.push_back(std::move(atoms[i])), sorted_origin.push_back(origin[i]);
+    atoms.swap(sorted_atoms);
+    origin.swap(sorted_origin);
+  }
+  Molecule mol = finish(path, std::move(atoms), notes);
+  mol.atoms = expand_assembly(path, st, opt.assembly, mol.atoms, origin, mol.notes);
+  return mol;
 }
 
 /// gemmi reports "Problem in line N: ..." for some PDB errors; recover N.
@@ -599,7 +727,7 @@ int gemmi_line(const std::string& what) {
 }  // namespace
 
 Molecule read_pdb(const std::string& path, const std::string& text, const ReadOptions& opt) {
-  PdbScan scan = scan_pdb(path, text);
+  PdbScan scan = scan_pdb(path, text, opt);
   gemmi::Structure st;
   try {
     st = gemmi::read_pdb_string(scan.gemmi_text, path);
@@ -618,10 +746,11 @@ Molecule read_mmcif(const std::string& path, const std::string& text, const Read
     gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
     if (doc.blocks.empty()) throw InputError(path, 0, "no atoms found (no data block)");
     std::string added;
-    for (const std::string& tag : keep_atom_site_only(doc.blocks.front())) added += (added.empty() ? "" : ", ") + tag;
+    for (const std::string& tag : keep_atom_site_only(doc.blocks.front(), !opt.assembly.empty()))
+      added += (added.empty() ? "" : ", ") + tag;
     if (!added.empty())
       reader_notes.push_back("_atom_site has no " + added + " (read as absent values: a minimal mmCIF)");
-    index = scan_mmcif(path, text, doc.blocks.front());
+    index = scan_mmcif(path, text, doc.blocks.front(), opt.model);
     st = gemmi::make_structure(doc);
   } catch (const InputError&) {
     throw;
@@ -629,6 +758,36 @@ Molecule read_mmcif(const std::string& path, const std::string& text, const Read
     throw InputError(path, 0, std::string("mmCIF: ") + e.what());
   }
   return from_structure(path, st, index, opt, reader_notes);
+}
+
+std::vector<int> pdb_model_numbers(std::string_view text) {
+  std::vector<int> models;
+  for (const std::string_view line : split_lines(text))
+    if (line.size() >= 5 && line.substr(0, 5) == "MODEL")
+      models.push_back(leading_int(line.substr(5, std::min<std::size_t>(line.size(), 14) - 5)));
+  if (models.empty()) models.push_back(1);
+  return models;
+}
+
+std::vector<int> mmcif_model_numbers(const std::string& path, const std::string& text) {
+  std::vector<int> models;
+  try {
+    gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
+    if (!doc.blocks.empty()) {
+      std::string last;
+      for (const auto row : doc.blocks.front().find("_atom_site.", {"pdbx_PDB_model_num"})) {
+        const std::string m = gemmi::cif::as_string(row[0]);
+        if (m == last) continue;
+        last = m;
+        const int n = leading_int(m);
+        if (std::find(models.begin(), models.end(), n) == models.end()) models.push_back(n);
+      }
+    }
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, std::string("mmCIF: ") + e.what());
+  }
+  if (models.empty()) models.push_back(1);
+  return models;
 }
 
 }  // namespace skinmesh::skin::molecule_io_detail

@@ -80,6 +80,13 @@ Molecule read_pdb(const std::string& path, const std::string& text, const ReadOp
 /// mmCIF through gemmi, after the _atom_site pre-scan (molecule_io_gemmi.cpp).
 Molecule read_mmcif(const std::string& path, const std::string& text, const ReadOptions& opt);
 
+/// The model numbers of a PDB text (its MODEL records' serials, in order; {1}
+/// without any) and of an mmCIF text (its distinct pdbx_PDB_model_num values,
+/// in order; {1} without that item) (molecule_io_gemmi.cpp). Throw InputError
+/// for an mmCIF text gemmi cannot parse.
+std::vector<int> pdb_model_numbers(std::string_view text);
+std::vector<int> mmcif_model_numbers(const std::string& path, const std::string& text);
+
 /// PQR: radii from the file (molecule_io_pqr.cpp).
 Molecule read_pqr(const std::string& path, const std::string& text, const ReadOptions& opt);
 

@@ -489,6 +489,49 @@ TEST_CASE(
   CHECK_FALSE(std::filesystem::exists(s.dir / "b.area"));
 }
 
+TEST_CASE("--model all: one checked mesh per model in a batch; --model N and --assembly ID read what they name") {
+  Scratch s;
+  const std::string readers = std::string(SKINMESH_TEST_DATA) + "/readers/";
+  const std::string nmr = quoted(readers + "nmr_three_models.pdb");
+  const Run all = run(s, "mesh " + nmr + " --model all -O out --quiet");
+  CHECK(all.exit_code == 0);
+  CHECK(all.out.find("3 inputs, 0 failed") != std::string::npos);
+  const std::string csv = slurp(s.dir / "out/summary.csv");
+  CHECK(csv.find(",1,out/nmr_three_models_model1.ply,") != std::string::npos);
+  CHECK(csv.find(",3,out/nmr_three_models_model3.ply,") != std::string::npos);
+  // Each is the mesh of a single run of its model, byte for byte; model 2 is
+  // model 1 moved 0.5 Å along x, and so is its mesh.
+  REQUIRE(run(s, "mesh " + nmr + " --model 2 -o two.ply --quiet").exit_code == 0);
+  CHECK(slurp(s.dir / "out/nmr_three_models_model2.ply") == slurp(s.dir / "two.ply"));
+  const auto m1 = skinmesh::skin::read_skin_mesh((s.dir / "out/nmr_three_models_model1.ply").string());
+  const auto m2 = skinmesh::skin::read_skin_mesh((s.dir / "two.ply").string());
+  REQUIRE(m1.positions.size() == m2.positions.size());
+  double worst = 0;
+  for (std::size_t v = 0; v < m1.positions.size(); ++v)
+    worst = std::max(worst, (m2.positions[v] - m1.positions[v] - skinmesh::Vec3(0.5, 0, 0)).norm());
+  CHECK(worst < 1e-9);
+  for (const char* model : {"1", "2", "3"})
+    CHECK(run(s, "check " + nmr + " --model " + model + " out/nmr_three_models_model" + model + ".ply").exit_code == 0);
+  CHECK(run(s, "check " + nmr + " --model 3 out/nmr_three_models_model1.ply").exit_code == 1);  // another model
+  // Refusals: no -O, a model the file lacks, "all" where one molecule is read.
+  CHECK(run(s, "mesh " + nmr + " --model all -o x.ply").exit_code == 2);
+  const Run missing = run(s, "mesh " + nmr + " --model 4 -o x.ply");
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.err.find("no atoms in model 4 (the file's models: 1, 2, 3") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "x.ply"));
+  CHECK(run(s, "check " + nmr + " --model all out/nmr_three_models_model1.ply").exit_code == 2);
+  // The assembly: two separate copies of the chain, two bodies, checked.
+  const std::string dimer = quoted(readers + "assembly_dimer.cif");
+  REQUIRE(run(s, "mesh " + dimer + " --assembly 1 -o d.ply --quiet --stats d.json").exit_code == 0);
+  const nlohmann::json stats = nlohmann::json::parse(slurp(s.dir / "d.json"));
+  CHECK(stats.at("atoms") == 70);
+  CHECK(stats.at("surface").at("components").size() == 2);
+  CHECK(run(s, "check " + dimer + " --assembly 1 d.ply").exit_code == 0);
+  const Run unknown = run(s, "mesh " + dimer + " --assembly 7 -o e.ply");
+  CHECK(unknown.exit_code == 1);
+  CHECK(unknown.err.find("no assembly 7 (the file lists: 1, 2)") != std::string::npos);
+}
+
 TEST_CASE("--ascii writes text PLY and STL; ASCII STL keeps the exact positions binary STL rounds") {
   Scratch s;
   const std::string mol = quoted(std::string(SKINMESH_DATA) + "/ligand_2zmm.pdb");
@@ -747,7 +790,8 @@ TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not 
   // summary.csv: a header and one row per input, in the order given.
   const std::string csv = slurp(s.dir / "out/summary.csv");
   CHECK(lines(csv) == 4);
-  CHECK(csv.rfind("input,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n", 0) == 0);
+  CHECK(csv.rfind("input,model,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n", 0) ==
+        0);
   const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "out/summary.json"));
   REQUIRE(j.at("inputs").size() == 3);
   CHECK(j.at("failed") == 1);

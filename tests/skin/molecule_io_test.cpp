@@ -657,6 +657,102 @@ TEST_CASE("real-file shapes other tools read: element text, guessed elements, Py
   }
 }
 
+TEST_CASE("models: model_numbers lists them, ReadOptions::model reads one, a missing one is refused") {
+  // tests/data/readers/nmr_three_models.pdb: crambin's residues 1-5 as model 1,
+  // moved 0.5 Å along x as model 2, rotated 20° about z as model 3.
+  const std::string path = std::string(SKINMESH_TEST_DATA) + "/readers/nmr_three_models.pdb";
+  CHECK(skinmesh::skin::model_numbers(path) == std::vector<int>{1, 2, 3});
+  CHECK(skinmesh::skin::model_numbers(data_file("crambin_1crn.pdb")) == std::vector<int>{1});
+  CHECK(skinmesh::skin::model_numbers(data_file("crambin_1crn.pqr")) == std::vector<int>{1});
+  ReadOptions opt;
+  const Molecule first = read_molecule(path);
+  REQUIRE(first.atoms.size() == 35);
+  opt.model = 1;
+  const Molecule one = read_molecule(path, opt);
+  opt.model = 2;
+  const Molecule two = read_molecule(path, opt);
+  opt.model = 3;
+  const Molecule three = read_molecule(path, opt);
+  REQUIRE(one.atoms.size() == 35);
+  REQUIRE(two.atoms.size() == 35);
+  REQUIRE(three.atoms.size() == 35);
+  const double c = std::cos(20 * std::acos(-1.0) / 180), s = std::sin(20 * std::acos(-1.0) / 180);
+  for (std::size_t i = 0; i < 35; ++i) {
+    const auto& p = one.atoms[i].centre;
+    CHECK(first.atoms[i].centre == p);
+    CHECK(two.atoms[i].centre.x() == doctest::Approx(p.x() + 0.5).epsilon(1e-12));
+    CHECK(two.atoms[i].centre.y() == p.y());
+    CHECK(std::abs(three.atoms[i].centre.x() - (c * p.x() - s * p.y())) <= 5.0001e-4);  // three decimals
+    CHECK(std::abs(three.atoms[i].centre.y() - (s * p.x() + c * p.y())) <= 5.0001e-4);
+    CHECK(two.atoms[i].line == one.atoms[i].line + 38);  // the records of model 2, by their lines
+    CHECK(two.atoms[i].name == one.atoms[i].name);
+  }
+  opt.model = 4;
+  try {
+    read_molecule(path, opt);
+    FAIL("model 4 was read");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("no atoms in model 4 (the file's models: 1, 2, 3") != std::string::npos);
+  }
+  // A file without MODEL records holds model 1 only; PQR and XYZR have no other.
+  opt.model = 1;
+  CHECK(read_molecule(data_file("ligand_2zmm.pdb"), opt).atoms.size() ==
+        read_molecule(data_file("ligand_2zmm.pdb")).atoms.size());
+  opt.model = 2;
+  CHECK_THROWS_AS(read_molecule(data_file("ligand_2zmm.pdb"), opt), InputError);
+  CHECK_THROWS_AS(read_molecule(data_file("crambin_1crn.pqr"), opt), InputError);
+}
+
+TEST_CASE("assemblies: PDB REMARK 350 and mmCIF _pdbx_struct_assembly expand the model, the copies named A2") {
+  // tests/data/readers/assembly_dimer.{pdb,cif}: crambin's residues 1-5 as
+  // chain A; assembly 1 adds a copy rotated 180° about z and moved 30 Å along x,
+  // assembly 2 is A alone.
+  const std::string dir = std::string(SKINMESH_TEST_DATA) + "/readers/";
+  for (const char* name : {"assembly_dimer.pdb", "assembly_dimer.cif"}) {
+    CAPTURE(name);
+    const Molecule plain = read_molecule(dir + name);
+    REQUIRE(plain.atoms.size() == 35);
+    // Ids assigned as strings: GCC 12 warns falsely (-Wrestrict) on literals here.
+    const std::string ids[] = {"1", "2", "3"};
+    ReadOptions opt;
+    opt.assembly = ids[0];
+    const Molecule dimer = read_molecule(dir + name, opt);
+    REQUIRE(dimer.atoms.size() == 70);
+    for (std::size_t i = 0; i < 35; ++i) {
+      const auto& a = plain.atoms[i];
+      CHECK(dimer.atoms[i].centre == a.centre);
+      CHECK(dimer.atoms[i].chain == "A");
+      const auto& b = dimer.atoms[35 + i];
+      CHECK(b.centre.x() == doctest::Approx(30 - a.centre.x()).epsilon(1e-12));
+      CHECK(b.centre.y() == doctest::Approx(-a.centre.y()).epsilon(1e-12));
+      CHECK(b.centre.z() == a.centre.z());
+      CHECK(b.chain == "A2");
+      CHECK(b.name == a.name);
+      CHECK(b.element == a.element);
+      CHECK(b.radius == a.radius);
+    }
+    CHECK(std::count_if(dimer.notes.begin(), dimer.notes.end(), [](const std::string& n) {
+            return n.find("assembly 1: 2 operators, 70 atoms") != std::string::npos;
+          }) == 1);
+    opt.assembly = ids[1];
+    CHECK(read_molecule(dir + name, opt).atoms.size() == 35);
+    opt.assembly = ids[2];
+    try {
+      read_molecule(dir + name, opt);
+      FAIL("assembly 3 was read");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find("no assembly 3 (the file lists: 1, 2)") != std::string::npos);
+    }
+  }
+  ReadOptions opt;
+  opt.assembly = "1";
+  CHECK_THROWS_WITH_AS(read_molecule(data_file("ligand_2zmm.pdb"), opt), doctest::Contains("the file lists none"),
+                       InputError);
+  CHECK_THROWS_AS(read_molecule(data_file("crambin_1crn.pqr"), opt), InputError);
+  // A bundled file whose assembly is the identity: the same atoms.
+  CHECK(read_molecule(data_file("crambin_1crn.pdb"), opt).atoms.size() == 327);
+}
+
 TEST_CASE("fuzzing regressions: PDB") {
   SUBCASE("a LINK record of 74-77 columns is not read past its end") {
     // fuzz_pdb: heap-buffer-overflow in gemmi 0.5.7 pdb_impl::process_conn,
