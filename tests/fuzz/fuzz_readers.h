@@ -109,13 +109,19 @@ inline const char* molecule_name(skin::ReadOptions::Format format) {
 }
 
 /// Reads `data` as a molecule file of `format`. The options vary with the input
-/// length (bit 0: keep_water, bit 1: drop hydrogens) so that every path of the
-/// readers is reached without a byte of the input spent on them.
+/// length (bit 0: keep_water, bit 1: drop hydrogens, bits 2-3: the first model,
+/// model 1, model 2, or the first model's assembly "1") so that every path of
+/// the readers is reached without a byte of the input spent on them.
 inline void molecule_input(const std::uint8_t* data, std::size_t size, skin::ReadOptions::Format format, bool check) {
   skin::ReadOptions opt;
   opt.format = format;
   opt.keep_water = (size & 1u) != 0;
   opt.keep_hydrogens = (size & 2u) == 0;
+  const std::size_t model_bits = (size >> 2) & 3u;
+  if (model_bits == 3)
+    opt.assembly = "1";
+  else
+    opt.model = static_cast<int>(model_bits);
   try {
     const skin::Molecule m = skin::read_molecule_from_string(std::string(reinterpret_cast<const char*>(data), size),
                                                              molecule_name(format), opt);
