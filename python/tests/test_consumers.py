@@ -7,17 +7,22 @@ What they check: each reader gets the same points (bit for bit where the
 format stores doubles, the float32 values for STL), the same triangles and
 the atom index; TetGen fills the plain OFF file, and the ASCII PLY and STL
 files (`ascii=True`, `--ascii`: TetGen reads no binary PLY or STL), with
-tetrahedra whose volume is the volume the mesh encloses."""
+tetrahedra whose volume is the volume the mesh encloses; Debian's PyMOL loads
+the OFF and MSMS files as surfaces at the mesh's extent."""
+import importlib.util
 import os
 import subprocess
+import sys
 
 import numpy as np
+import pytest
 
 import meshio
 import skinmesh
 
 DATA = os.environ.get("SKINMESH_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
 LIGAND = os.path.join(DATA, "ligand_2zmm.pdb")
+CRAMBIN = os.path.join(DATA, "crambin_1crn.pdb")
 
 
 def triangle_corners(points, triangles):
@@ -88,3 +93,35 @@ def test_tetgen_fills_the_off_and_ascii_ply_and_stl_files_with_the_enclosed_volu
         volume, tetrahedra = tetgen_volume(tmp_path / name)
         assert tetrahedra > len(m.triangles) / 4, name
         assert abs(volume - components[0]["volume_A3"]) <= 1e-9 * components[0]["volume_A3"], name
+
+
+def pymol_extent(path, folder):
+    """The extent PyMOL 2.5 gives the object it loads from `path`, read with
+    Debian's PyMOL in a subprocess (`python3 -m pymol -cq`, no window)."""
+    script, out = folder / "extent.pml", folder / "extent.txt"
+    script.write_text(
+        "load %s, s\n"
+        "python\n"
+        "open(%r, 'w').write(repr((cmd.get_type('s'), cmd.get_extent('s'))))\n"
+        "python end\n" % (path, str(out)))
+    subprocess.run([sys.executable, "-m", "pymol", "-cq", str(script)], check=True, timeout=120,
+                   capture_output=True)
+    return eval(out.read_text())
+
+
+@pytest.mark.skipif(importlib.util.find_spec("pymol") is None,
+                    reason="PyMOL is not installed (Debian pymol; .ci/install-deps installs it)")
+@pytest.mark.parametrize("probe", [1.4, 0.0])
+def test_pymol_loads_the_off_and_msms_files_at_the_mesh_extent(tmp_path, probe):
+    # PyMOL 2.5 reads plain OFF and MSMS .vert/.face as a CGO surface; its PLY
+    # loader reads text PLY only and gives it a wrong extent, and it refuses STL
+    # and VTK polydata (papers/geometry/io/mesh_io.md, "Consumers").
+    m = skinmesh.mesh(CRAMBIN, probe=probe, threads=2)
+    assert m.ok
+    lo, hi = m.vertices.min(axis=0), m.vertices.max(axis=0)
+    for name, options in [("c.off", {}), ("c.vert", {"msms_decimals": 6})]:
+        m.write(tmp_path / name, **options)
+        kind, extent = pymol_extent(tmp_path / name, tmp_path)
+        assert kind == "object:cgo", name
+        # float32 in PyMOL; six decimals in the MSMS file.
+        assert np.allclose(extent[0], lo, atol=1e-4) and np.allclose(extent[1], hi, atol=1e-4), (name, extent)
