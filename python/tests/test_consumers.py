@@ -8,9 +8,11 @@ format stores doubles, the float32 values for STL), the same triangles and
 the atom index; TetGen fills the plain OFF file, and the ASCII PLY and STL
 files (`ascii=True`, `--ascii`: TetGen reads no binary PLY or STL), with
 tetrahedra whose volume is the volume the mesh encloses; Debian's PyMOL loads
-the OFF and MSMS files as surfaces at the mesh's extent."""
+the OFF and MSMS files as surfaces at the mesh's extent; gmsh reads the ASCII
+PLY files, of doubles and of floats."""
 import importlib.util
 import os
+import shutil
 import subprocess
 import sys
 
@@ -125,3 +127,47 @@ def test_pymol_loads_the_off_and_msms_files_at_the_mesh_extent(tmp_path, probe):
         assert kind == "object:cgo", name
         # float32 in PyMOL; six decimals in the MSMS file.
         assert np.allclose(extent[0], lo, atol=1e-4) and np.allclose(extent[1], hi, atol=1e-4), (name, extent)
+
+
+def read_msh2(path):
+    """Nodes (by tag) and triangles (node tags) of a gmsh MSH 2.2 text file."""
+    lines = open(path).read().split("\n")
+    i = lines.index("$Nodes")
+    n = int(lines[i + 1])
+    nodes = {}
+    for line in lines[i + 2:i + 2 + n]:
+        tag, x, y, z = line.split()
+        nodes[int(tag)] = (float(x), float(y), float(z))
+    j = lines.index("$Elements")
+    triangles = []
+    for line in lines[j + 2:j + 2 + int(lines[j + 1])]:
+        f = [int(v) for v in line.split()]
+        if f[1] == 2:  # a 3-node triangle: tag, type, number of tags, tags..., nodes
+            triangles.append(f[3 + f[2]:])
+    return nodes, triangles
+
+
+SKINMESH = os.environ.get("SKINMESH_BINARY", os.path.join(os.path.dirname(skinmesh.__file__), "..", "skinmesh"))
+
+
+@pytest.mark.skipif(shutil.which("gmsh") is None, reason="gmsh is not installed (Debian gmsh; .ci/install-deps)")
+@pytest.mark.parametrize("probe", [1.4, 0.0])
+def test_gmsh_reads_the_ascii_ply_of_floats_and_of_doubles(tmp_path, probe):
+    # gmsh 4.8 reads text PLY; its binary PLY reader ("experimental") takes
+    # vertices of x, y, z floats only, so our binary PLY (normals, atom) is
+    # not for gmsh (papers/geometry/io/mesh_io.md, "Consumers").
+    for name, flags in [("d.ply", ["--ascii"]), ("f.ply", ["--ascii", "--float"])]:
+        subprocess.run([SKINMESH, "mesh", CRAMBIN, "--probe", str(probe), "-o", str(tmp_path / name), "-q"] + flags,
+                       check=True, timeout=300)
+        m = skinmesh.read_mesh(tmp_path / name)
+        subprocess.run(["gmsh", str(tmp_path / name), "-save", "-format", "msh2", "-o", str(tmp_path / "g.msh")],
+                       check=True, timeout=300, capture_output=True)
+        nodes, triangles = read_msh2(tmp_path / "g.msh")
+        assert len(nodes) == len(m.vertices) and len(triangles) == len(m.triangles), name
+        tags = sorted(nodes)
+        points = np.array([nodes[t] for t in tags])
+        index = {t: k for k, t in enumerate(tags)}
+        got = np.array([[index[t] for t in tri] for tri in triangles])
+        # The same corners, as the file holds them (gmsh prints 16 digits).
+        assert np.allclose(triangle_corners(points, got), triangle_corners(m.vertices, m.triangles), rtol=0,
+                           atol=1e-12), name
