@@ -97,7 +97,8 @@ Command add_check_command(CLI::App& app) {
       "exact self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay; exit 0 "
       "if every check passes, 1 otherwise");
   add_molecule_options(*cmd, check.mol);
-  cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)")->required();
+  cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off, .obj, .stl, .vtk, .vtp, .vtu, or .vert/.face for MSMS)")
+      ->required();
   cmd->add_option("-o,--output", check.report, "also write the report to this file");
   add_size_options(*cmd, check.opt.size);
   cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")

@@ -18,7 +18,7 @@ const char* const kFormats =
     "atom weight w = 2 (r + probe)^2 (shrink factor 1/2).\n"
     "Output meshes (by extension): .ply (binary, with normals and atom index; --ascii: text), .off,\n"
     ".obj, .stl (binary, for 3D printing; --ascii: text with exact positions), .vtk (legacy VTK with\n"
-    "normals, atom, rho and min angle), and\n"
+    "normals, atom, rho and min angle; .vtp and .vtu: XML VTK, every array read by default), and\n"
     ".vert (MSMS: NAME.vert and NAME.face, with normals and the 1-based atom of each vertex);\n"
     "--area-file F: each atom's area (exact skin and mesh) in the layout of MSMS's .area.\n"
     "Exit codes: 0 ok, 1 bad input or failed check, 2 bad command line, 3 the algorithm\n"

@@ -338,10 +338,10 @@ Command add_mesh_command(CLI::App& app) {
       "mesh",
       "mesh the skin surface (shrink factor 1/2) with the advancing front of Cheng & Shi (2004), verify the "
       "mesh against the analytic skin and write it (.ply binary with normals and atom index, .off, .obj, .stl, "
-      ".vtk, or MSMS .vert/.face)");
+      ".vtk, .vtp, .vtu, or MSMS .vert/.face)");
   add_molecule_options(*cmd, mesh.mol, /*many=*/true);
   cmd->add_option("-o,--output", mesh.out,
-                  "output mesh, format by extension: .ply .off .obj .stl .vtk, or .vert (MSMS: NAME.vert and "
+                  "output mesh, format by extension: .ply .off .obj .stl .vtk .vtp .vtu, or .vert (MSMS: NAME.vert and "
                   "NAME.face)");
   const char* batch = "Batch runs (several IN, or --list)";
   cmd->add_option("-O,--output-dir", mesh.out_dir,
@@ -355,7 +355,7 @@ Command add_mesh_command(CLI::App& app) {
       ->capture_default_str()
       ->group(batch);
   cmd->add_option("--out-format", mesh.batch_format, "format of a batch run's meshes")
-      ->check(CLI::IsMember({"ply", "off", "obj", "stl", "vtk", "vert"}))
+      ->check(CLI::IsMember({"ply", "off", "obj", "stl", "vtk", "vtp", "vtu", "vert"}))
       ->capture_default_str()
       ->group(batch);
   cmd->add_option("--stats", mesh.stats, "write a JSON summary to this file ('-' for stdout)");
@@ -413,9 +413,10 @@ Command add_mesh_command(CLI::App& app) {
                   "also write each atom's area to this file in MSMS's .area layout: a header line, then per atom "
                   "its 1-based number, the exact skin's area and the mesh's (Å²), and with --msms-atom-names its "
                   "name (papers/skin/atom_areas.md; costs about three times --stats' exact area)");
-  cmd->add_flag("--float", mesh.float32,
-                "float32 positions and normals in .ply, .off, .obj and .vtk (half the size; gmsh reads only float "
-                "PLY); the mesh is checked as the file stores it (default: exact doubles)");
+  cmd->add_flag(
+      "--float", mesh.float32,
+      "float32 positions and normals in .ply, .off, .obj, .vtk, .vtp and .vtu (half the size; gmsh reads only float "
+      "PLY); the mesh is checked as the file stores it (default: exact doubles)");
   cmd->add_flag("--ascii", mesh.ascii,
                 "write .ply and .stl as text (TetGen reads only text PLY and STL; ASCII STL keeps positions exact, "
                 "binary STL rounds them to float32)");

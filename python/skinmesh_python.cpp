@@ -369,7 +369,8 @@ PYBIND11_MODULE(skinmesh, m) {
             skin::write_skin_mesh(p, s.mesh, s.vertex_data, w);
           },
           py::arg("path"), py::arg("msms_decimals") = 3, py::arg("force") = false, py::arg("ascii") = false,
-          "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk, or .vert (MSMS .vert and .face, "
+          "Writes the mesh; the format by the extension: .ply .off .obj .stl .vtk .vtp .vtu, or .vert (MSMS .vert and "
+          ".face, "
           "positions with msms_decimals decimals, 3 to 12). ascii=True writes .ply and .stl as text (TetGen reads "
           "only text PLY and STL; ASCII STL keeps exact positions). A checked mesh written to a format that rounds "
           "positions (MSMS, binary STL) is checked again as the file stores them; if that fails, InputError names "
@@ -449,5 +450,5 @@ PYBIND11_MODULE(skinmesh, m) {
         out.stats["triangles"] = out.mesh.triangles.size();
         return out;
       },
-      py::arg("path"), "Reads a mesh file (.ply .off .obj .stl .vtk .vert/.face).");
+      py::arg("path"), "Reads a mesh file (.ply .off .obj .stl .vtk .vtp .vtu .vert/.face).");
 }

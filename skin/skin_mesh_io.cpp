@@ -238,14 +238,17 @@ std::pair<std::string, std::string> msms_paths(const std::string& path) {
 
 void require_mesh_format(const std::string& path) {
   if (!is_msms_path(path) && !geometry::mesh_format_of(path))
-    throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, or .vert/.face for MSMS)");
+    throw InputError(
+        path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, .vtp, .vtu, or .vert/.face for MSMS)");
 }
 
 std::vector<VertexAttribute> file_attributes(const SkinVertexData& data, geometry::MeshFormat format) {
   std::vector<VertexAttribute> out;
-  if (format != geometry::MeshFormat::Ply && format != geometry::MeshFormat::Vtk) return out;
+  const bool vtk =
+      format == geometry::MeshFormat::Vtk || format == geometry::MeshFormat::Vtp || format == geometry::MeshFormat::Vtu;
+  if (format != geometry::MeshFormat::Ply && !vtk) return out;
   if (!data.atom.empty()) out.push_back({"atom", true, std::vector<double>(data.atom.begin(), data.atom.end())});
-  if (format == geometry::MeshFormat::Vtk && !data.rho.empty()) out.push_back({"rho", false, data.rho});
+  if (vtk && !data.rho.empty()) out.push_back({"rho", false, data.rho});
   return out;
 }
 

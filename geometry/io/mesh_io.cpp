@@ -81,11 +81,13 @@ using mesh_io_detail::read_off;
 using mesh_io_detail::read_ply;
 using mesh_io_detail::read_stl;
 using mesh_io_detail::read_vtk;
+using mesh_io_detail::read_vtk_xml;
 using mesh_io_detail::write_obj;
 using mesh_io_detail::write_off;
 using mesh_io_detail::write_ply;
 using mesh_io_detail::write_stl;
 using mesh_io_detail::write_vtk;
+using mesh_io_detail::write_vtk_xml;
 
 }  // namespace
 
@@ -214,12 +216,14 @@ std::optional<MeshFormat> mesh_format_of(const std::string& path) {
   if (p.ends_with(".obj")) return MeshFormat::Obj;
   if (p.ends_with(".stl")) return MeshFormat::Stl;
   if (p.ends_with(".vtk")) return MeshFormat::Vtk;
+  if (p.ends_with(".vtp")) return MeshFormat::Vtp;
+  if (p.ends_with(".vtu")) return MeshFormat::Vtu;
   return std::nullopt;
 }
 
 MeshFormat mesh_format_from_extension(const std::string& path) {
   if (const std::optional<MeshFormat> format = mesh_format_of(path)) return *format;
-  throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl or .vtk)");
+  throw InputError(path, 0, "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, .vtp or .vtu)");
 }
 
 void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWriteOptions& opt,
@@ -246,6 +250,12 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
     case MeshFormat::Vtk:
       write_file_atomically(
           path, [&](ChunkedWriter& out) { write_vtk(mesh, attributes, opt, out); }, "mesh");
+      return;
+    case MeshFormat::Vtp:
+    case MeshFormat::Vtu:
+      write_file_atomically(
+          path, [&](ChunkedWriter& out) { write_vtk_xml(mesh, attributes, opt, format == MeshFormat::Vtu, out); },
+          "mesh");
       return;
   }
 }
@@ -347,6 +357,9 @@ IndexedMesh read_mesh_from_bytes(const std::string& data, MeshFormat format, con
       return read_stl(name, data);
     case MeshFormat::Vtk:
       return read_vtk(name, data, out);
+    case MeshFormat::Vtp:
+    case MeshFormat::Vtu:
+      return read_vtk_xml(name, data, out);
   }
   return {};
 }

@@ -24,7 +24,7 @@ namespace skinmesh::geometry {
 // Mesh Format Types
 
 /// The mesh file formats, chosen by file extension.
-enum class MeshFormat { Ply, Off, Obj, Stl, Vtk };
+enum class MeshFormat { Ply, Off, Obj, Stl, Vtk, Vtp, Vtu };
 
 /// How write_mesh() stores numbers.
 struct MeshWriteOptions {

@@ -8,6 +8,8 @@
 //   mesh_io_obj.cpp  Wavefront OBJ writer and reader
 //   mesh_io_stl.cpp  STL: binary or ascii writer; binary / ascii reader
 //   mesh_io_vtk.cpp  legacy VTK POLYDATA: ascii writer (with attributes) and reader
+//   mesh_io_vtk_xml.cpp  XML VTK PolyData (.vtp) and UnstructuredGrid (.vtu):
+//                    ascii writer (every attribute a named array) and reader
 // Numbers go through std::to_chars / std::from_chars: shortest text that reads
 // back to the same double, and correctly rounded parsing, so text round trips are
 // bit-exact. Only geometry/io/mesh_io*.cpp include this header.
@@ -92,5 +94,19 @@ void write_vtk(const IndexedMesh& m, const std::vector<VertexAttribute>& attribu
 /// VERTICES and LINES skipped; POINT_DATA NORMALS kept, one-component SCALARS
 /// into `attributes`, other attributes skipped).
 IndexedMesh read_vtk(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
+
+/// The XML VTK file of `m`: PolyData (.vtp), or with `unstructured`
+/// UnstructuredGrid (.vtu) of triangle cells; positions, normals ("normals",
+/// the active normals) and every attribute as ASCII DataArrays, numbers as
+/// append_number() writes them, per triangle `min_angle` (degrees).
+void write_vtk_xml(const IndexedMesh& m, const std::vector<VertexAttribute>& attributes, const MeshWriteOptions& opt,
+                   bool unstructured, ChunkedWriter& out);
+
+/// Reads an XML VTK PolyData or UnstructuredGrid file of one piece of
+/// triangles with ASCII data arrays: the points, the active normals (or the
+/// 3-component point array "normals"), every 1-component point array into
+/// `attributes`. Refuses binary and appended arrays, other cells,
+/// triangle strips and several pieces.
+IndexedMesh read_vtk_xml(const std::string& path, const std::string& data, std::vector<VertexAttribute>& attributes);
 
 }  // namespace skinmesh::geometry::mesh_io_detail

@@ -171,3 +171,37 @@ def test_gmsh_reads_the_ascii_ply_of_floats_and_of_doubles(tmp_path, probe):
         # The same corners, as the file holds them (gmsh prints 16 digits).
         assert np.allclose(triangle_corners(points, got), triangle_corners(m.vertices, m.triangles), rtol=0,
                            atol=1e-12), name
+
+
+@pytest.mark.parametrize("probe", [1.4, 0.0])
+def test_meshio_reads_the_vtu_and_vtk_reads_the_vtp_and_vtu_with_every_array(tmp_path, probe):
+    # meshio 7.0 reads .vtu (not .vtp); VTK's XML readers read both and load
+    # every point array by default, the normals as the active normals.
+    m = skinmesh.mesh(CRAMBIN, probe=probe, threads=2)
+    assert m.ok
+    for name in ["c.vtp", "c.vtu"]:
+        m.write(tmp_path / name)
+    got = meshio.read(tmp_path / "c.vtu")
+    assert np.array_equal(got.points, m.vertices)
+    assert [c.type for c in got.cells] == ["triangle"]
+    assert np.array_equal(got.cells[0].data, m.triangles)
+    assert np.array_equal(got.point_data["atom"], m.atom)
+    assert np.array_equal(got.point_data["rho"], m.rho)
+    assert np.array_equal(got.point_data["normals"], m.normals)
+    assert np.all(got.cell_data["min_angle"][0] >= m.stats["min_angle_deg"] - 1e-9)
+    if importlib.util.find_spec("vtk") is None:
+        pytest.skip("VTK's Python module is not installed (Debian python3-vtk9; .ci/install-deps installs it)")
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    for name, reader in [("c.vtp", vtk.vtkXMLPolyDataReader()), ("c.vtu", vtk.vtkXMLUnstructuredGridReader())]:
+        reader.SetFileName(str(tmp_path / name))
+        reader.Update()
+        out = reader.GetOutput()
+        data = out.GetPointData()
+        assert out.GetNumberOfCells() == len(m.triangles), name
+        assert np.array_equal(vtk_to_numpy(out.GetPoints().GetData()), m.vertices), name
+        names = {data.GetArrayName(i) for i in range(data.GetNumberOfArrays())}
+        assert names == {"normals", "atom", "rho"}, name
+        assert np.array_equal(vtk_to_numpy(data.GetNormals()), m.normals), name
+        assert np.array_equal(vtk_to_numpy(data.GetArray("atom")), m.atom), name
+        assert np.array_equal(vtk_to_numpy(data.GetArray("rho")), m.rho), name

@@ -132,7 +132,7 @@ inline void molecule_input(const std::uint8_t* data, std::size_t size, skin::Rea
 }
 
 /// The mesh file formats the targets read: the geometric ones and MSMS.
-enum class MeshInput { Ply, Off, Obj, Stl, Vtk, Msms };
+enum class MeshInput { Ply, Off, Obj, Stl, Vtk, Vtp, Vtu, Msms };
 
 /// Reads `data` as a mesh file of `format`.
 inline void mesh_input(const std::uint8_t* data, std::size_t size, MeshInput format, bool check) {
@@ -144,9 +144,9 @@ inline void mesh_input(const std::uint8_t* data, std::size_t size, MeshInput for
     if (format == MeshInput::Msms) {
       m = skin::read_msms_from_bytes(bytes, "fuzz", &vertex_data);
     } else {
-      const geometry::MeshFormat geometric[] = {geometry::MeshFormat::Ply, geometry::MeshFormat::Off,
-                                                geometry::MeshFormat::Obj, geometry::MeshFormat::Stl,
-                                                geometry::MeshFormat::Vtk};
+      const geometry::MeshFormat geometric[] = {
+          geometry::MeshFormat::Ply, geometry::MeshFormat::Off, geometry::MeshFormat::Obj, geometry::MeshFormat::Stl,
+          geometry::MeshFormat::Vtk, geometry::MeshFormat::Vtp, geometry::MeshFormat::Vtu};
       m = geometry::read_mesh_from_bytes(bytes, geometric[static_cast<int>(format)], "fuzz", &attributes);
     }
     if (check) check_mesh(m, attributes, vertex_data);

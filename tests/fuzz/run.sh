@@ -4,7 +4,7 @@
 # for SECONDS each, every one on a scratch copy of its seed corpus
 # (tests/fuzz/corpus/<format>/, never grown in place) with its dictionary
 # (tests/fuzz/dict/<format>.dict). TARGETs default to all: pdb cif pqr xyzr xyzrn ply
-# off obj stl vtk msms molecule_invariants mesh_invariants; an invariant target gets the
+# off obj stl vtk vtkxml msms molecule_invariants mesh_invariants; an invariant target gets the
 # seeds and dictionaries of every format of its reader.
 # Limits: -timeout=10 (seconds per input), -rss_limit_mb=2048 and
 # -malloc_limit_mb=2048. Any crash, sanitizer report, uncaught exception, hang
@@ -21,13 +21,13 @@ seconds=$2
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(pdb cif pqr xyzr xyzrn ply off obj stl vtk msms molecule_invariants mesh_invariants)
+[ ${#targets[@]} -gt 0 ] || targets=(pdb cif pqr xyzr xyzrn ply off obj stl vtk vtkxml msms molecule_invariants mesh_invariants)
 
 # The formats whose seeds and dictionary a target uses.
 formats_of() {
   case $1 in
     molecule_invariants) echo pdb cif pqr xyzr xyzrn ;;
-    mesh_invariants) echo ply off obj stl vtk msms ;;
+    mesh_invariants) echo ply off obj stl vtk vtkxml msms ;;
     *) echo "$1" ;;
   esac
 }

@@ -239,4 +239,99 @@ TEST_CASE("formats: broken VTK files name the file, the line and the problem") {
             .find("out of range") != std::string::npos);
 }
 
+TEST_CASE("formats: XML VTK (.vtp, .vtu) round trips are exact, float32 ones float; every array named") {
+  Scratch s("skinmesh_formats_test_");
+  const IndexedMesh m = sphere_mesh();
+  const std::vector<VertexAttribute> attributes = sphere_attributes(m);
+  for (const char* name : {"m.vtp", "m.vtu"}) {
+    CAPTURE(name);
+    write_mesh(s.path(name), m, {}, attributes);
+    std::vector<VertexAttribute> read;
+    const IndexedMesh r = read_mesh(s.path(name), &read);
+    CHECK(r.positions == m.positions);
+    CHECK(r.triangles == m.triangles);
+    CHECK(r.normals == m.normals);
+    REQUIRE(read.size() == 2);
+    for (int k = 0; k < 2; ++k) {
+      CHECK(read[k].name == attributes[k].name);
+      CHECK(read[k].integer == attributes[k].integer);
+      CHECK(read[k].values == attributes[k].values);
+    }
+    const std::string text = slurp(s.path(name));
+    const bool vtu = std::string(name) == "m.vtu";
+    CHECK(text.find(vtu ? "<Piece NumberOfPoints=\"66\" NumberOfCells=\"128\">" : "NumberOfPolys=\"128\"") !=
+          std::string::npos);
+    CHECK(text.find("<PointData Normals=\"normals\">") != std::string::npos);
+    CHECK(text.find("Name=\"atom\" format=\"ascii\"") != std::string::npos);
+    CHECK(text.find("type=\"Float64\" Name=\"min_angle\"") != std::string::npos);
+    CHECK((text.find("Name=\"types\"") != std::string::npos) == vtu);
+    // float32: the positions are floats, read back as the doubles of their text.
+    skinmesh::geometry::MeshWriteOptions f;
+    f.double_precision = false;
+    write_mesh(s.path(std::string("f") + name), m, f);
+    const IndexedMesh rf = read_mesh(s.path(std::string("f") + name));
+    REQUIRE(rf.positions.size() == m.positions.size());
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+      for (int k = 0; k < 3; ++k)
+        CHECK(static_cast<float>(rf.positions[v][k]) == static_cast<float>(m.positions[v][k]));
+    CHECK(slurp(s.path(std::string("f") + name)).find("type=\"Float32\" Name=\"Points\"") != std::string::npos);
+  }
+}
+
+TEST_CASE("formats: XML VTK as VTK writes it in ASCII (ranges, information keys, a compressor named) reads") {
+  Scratch s("skinmesh_formats_test_");
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r = read_mesh(std::string(SKINMESH_TEST_DATA) + "/readers/tetra_vtk_style.vtu", &read);
+  CHECK(r.positions.size() == 4);
+  CHECK(r.positions[3] == Vec3(0, 0, 1));
+  CHECK(r.triangles.size() == 4);
+  CHECK(r.triangles[1] == std::array<skinmesh::Index, 3>{0, 1, 3});
+  REQUIRE(read.size() == 1);
+  CHECK(read[0].name == "atom");
+  CHECK(read[0].integer);
+  CHECK(read[0].values == std::vector<double>{0, 1, 2, 3});
+  CHECK(r.normals.empty());
+}
+
+TEST_CASE("formats: XML VTK that is not ASCII triangles is refused, naming the file, the line and the fix") {
+  Scratch s("skinmesh_formats_test_");
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\">\n<PolyData>\n"
+      "<Piece NumberOfPoints=\"4\" NumberOfPolys=\"1\">\n";
+  const std::string points =
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 1 1 0 0 1 0"
+      "</DataArray></Points>\n";
+  const std::string tail = "</Piece>\n</PolyData>\n</VTKFile>\n";
+  const auto polys = [](const std::string& connectivity, const std::string& offsets) {
+    return "<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" + connectivity +
+           "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" + offsets +
+           "</DataArray></Polys>\n";
+  };
+  CHECK(read_mesh(s.write("ok.vtp", head + points + polys("0 1 2", "3") + tail)).triangles.size() == 1);
+  CHECK(error_of(s.write("quad.vtp", head + points + polys("0 1 2 3", "4") + tail)).find("only triangles") !=
+        std::string::npos);
+  CHECK(error_of(s.write("range.vtp", head + points + polys("0 1 9", "3") + tail)).find("out of range") !=
+        std::string::npos);
+  std::string binary = head + points + polys("0 1 2", "3") + tail;
+  binary.replace(binary.find("format=\"ascii\""), 14, "format=\"binary\"");
+  const std::string e = error_of(s.write("binary.vtp", binary));
+  CHECK(e.find("binary.vtp:5:") != std::string::npos);
+  CHECK(e.find("only ASCII data arrays are read") != std::string::npos);
+  CHECK(e.find("SetDataModeToAscii") != std::string::npos);
+  CHECK(error_of(s.write("image.vti", "x")).find("unknown mesh format") != std::string::npos);
+  CHECK(error_of(s.write("image.vtp", "<VTKFile type=\"ImageData\">")).find("not supported") != std::string::npos);
+  CHECK(error_of(s.write("text.vtp", "hello")).find("not an XML VTK file") != std::string::npos);
+  CHECK(error_of(s.write("two.vtp", head + points + polys("0 1 2", "3") + "</Piece><Piece>" + tail))
+            .find("several pieces") != std::string::npos);
+  std::string vtu = head + points +
+                    "<Cells><DataArray Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
+                    "<DataArray Name=\"offsets\" format=\"ascii\">3</DataArray>"
+                    "<DataArray Name=\"types\" format=\"ascii\">9</DataArray></Cells>\n" +
+                    tail;
+  vtu.replace(vtu.find("PolyData"), 8, "UnstructuredGrid");
+  vtu.replace(vtu.find("<PolyData>"), 10, "<UnstructuredGrid>");
+  vtu.replace(vtu.find("NumberOfPolys"), 13, "NumberOfCells");
+  CHECK(error_of(s.write("quad.vtu", vtu)).find("not a triangle") != std::string::npos);
+}
+
 }  // TEST_SUITE

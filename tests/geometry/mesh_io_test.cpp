@@ -379,7 +379,7 @@ TEST_CASE("mesh_io: malformed inputs name the file and the line") {
   CHECK(contains(read_error(scratch().write("inf.obj", "v 0 0 inf\n")), "inf.obj:1: non-numeric or non-finite"));
   CHECK(contains(read_error(scratch().path("missing.ply")), "missing.ply: cannot open file"));
   CHECK(contains(read_error(scratch().write("mesh.stp", "solid\n")),
-                 "unknown mesh format (expected .ply, .off, .obj, .stl or .vtk)"));
+                 "unknown mesh format (expected .ply, .off, .obj, .stl, .vtk, .vtp or .vtu)"));
 }
 
 TEST_CASE("mesh_io: an unwritable path leaves no file behind") {
