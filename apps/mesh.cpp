@@ -286,6 +286,8 @@ skin::SkinMeshWriteOptions write_options(const MeshArgs& a, const skin::Molecule
   if (a.msms_atom_names && mol != nullptr)
     for (const skin::Atom& atom : mol->atoms) w.msms_atom_names.push_back(skin::msms_atom_name(atom));
   w.msms_decimals = a.msms_decimals;
+  w.msms_header = !a.msms_no_header;
+  w.msms_split_components = a.msms_components;
   w.probe_radius = a.mol.probe;
   w.geometry.double_precision = !a.float32;
   w.geometry.off_normals = a.off_normals;
@@ -409,6 +411,11 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--msms-atom-names", mesh.msms_atom_names,
                 "add each vertex's atom name to its MSMS .vert record as a 10th field, "
                 "chain_resnum_icode_resname_atomname (MaSIF's reader needs it; Biopython's reads 9 fields only)");
+  cmd->add_flag("--msms-no-header", mesh.msms_no_header,
+                "MSMS .vert/.face without their three header lines (MSMS's -no_header); skinmesh check reads both");
+  cmd->add_flag("--msms-components", mesh.msms_components,
+                "one MSMS .vert/.face pair per surface component, as MSMS's -all_components: the first NAME.vert, "
+                "the k-th NAME_{k-1}.vert, each numbering its own vertices");
   cmd->add_option("--area-file", mesh.area_file,
                   "also write each atom's area to this file in MSMS's .area layout: a header line, then per atom "
                   "its 1-based number, the exact skin's area and the mesh's (Å²), and with --msms-atom-names its "

@@ -45,6 +45,8 @@ struct MeshArgs {
   bool ascii = false;
   /// --msms-atom-names: the atom's name as the 10th field of MSMS vertices.
   bool msms_atom_names = false;
+  /// --msms-no-header, --msms-components: MSMS files without header lines, one pair per component.
+  bool msms_no_header = false, msms_components = false;
   /// --area-file: the per-atom areas' file (skin/atom_areas.h); empty: none.
   std::string area_file;
 };

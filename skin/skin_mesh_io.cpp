@@ -60,6 +60,20 @@ int msms_type(const SkinVertexData& data, std::size_t v) {
   }
 }
 
+/// The records of an MSMS file written without its header (MSMS's
+/// -no_header: the first line does not begin with '#'): their number, every
+/// line up to the last one that is not blank.
+std::size_t headerless_count(const std::vector<std::string_view>& lines) {
+  std::size_t n = lines.size();
+  while (n > 0 && trim(lines[n - 1]).empty()) --n;
+  return n;
+}
+
+/// The first record line of an MSMS file: 3 after its header, 0 without one.
+std::size_t msms_first_record(const std::vector<std::string_view>& lines) {
+  return !lines.empty() && !trim(lines[0]).starts_with("#") ? 0 : 3;
+}
+
 /// Reads the three header lines of an MSMS file starting at `first` and
 /// returns the count on the third line; the records follow.
 std::size_t msms_header(const std::string& path, const std::vector<std::string_view>& lines, std::size_t first,
@@ -94,15 +108,18 @@ std::string msms_counts(std::size_t count, int n_atoms, double density, double p
 /// Writes the MSMS .vert file of `m` with its vertex data into `w`; `name`
 /// goes into the comment lines, `component` is vertex_components(m), `counts`
 /// msms_counts(); positions with `decimals` digits after the point; each
-/// vertex's atom name from `atom_names` (indexed by atom) if not empty.
+/// vertex's atom name from `atom_names` (indexed by atom) if not empty; without
+/// the three header lines unless `header` (MSMS's -no_header).
 void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
                      const std::vector<int>& component, const std::string& counts, int decimals,
-                     const std::vector<std::string>& atom_names, geometry::ChunkedWriter& w) {
+                     const std::vector<std::string>& atom_names, bool header, geometry::ChunkedWriter& w) {
   char buf[256];
   std::string& vert = w.buffer();
-  vert += "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
-  vert += "#vertex #sphere density probe_r\n";
-  vert += counts;
+  if (header) {
+    vert += "# MSMS-format skin surface vertices written by skinmesh for " + name + "\n";
+    vert += "#vertex #sphere density probe_r\n";
+    vert += counts;
+  }
   const int width = 6 + decimals;  // 9 at MSMS's three decimals
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     const Vec3& p = m.positions[v];
@@ -122,12 +139,15 @@ void write_msms_vert(const IndexedMesh& m, const SkinVertexData& data, const std
 
 /// Writes the MSMS .face file of `m` into `w` (as write_msms_vert()).
 void write_msms_face(const IndexedMesh& m, const SkinVertexData& data, const std::string& name,
-                     const std::vector<int>& component, const std::string& counts, geometry::ChunkedWriter& w) {
+                     const std::vector<int>& component, const std::string& counts, bool header,
+                     geometry::ChunkedWriter& w) {
   char buf[160];
   std::string& face = w.buffer();
-  face += "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
-  face += "#faces  #sphere density probe_r\n";
-  face += counts;
+  if (header) {
+    face += "# MSMS-format skin surface triangles written by skinmesh for " + name + "\n";
+    face += "#faces  #sphere density probe_r\n";
+    face += counts;
+  }
   for (const auto& t : m.triangles) {
     const int a = msms_type(data, t[0]), b = msms_type(data, t[1]), c = msms_type(data, t[2]);
     const int type = a == b && b == c ? a : (a == 0 || b == 0 || c == 0 ? 0 : 1);
@@ -144,14 +164,16 @@ IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, con
                       const std::string& face, std::vector<std::int32_t>& atom) {
   IndexedMesh mesh;
   atom.clear();
+  // With its three header lines, as MSMS writes by default, or without (-no_header).
   const std::vector<std::string_view> vl = split_lines(vert);
-  const std::size_t nv = msms_header(vert_path, vl, 0, "vertex");
+  const std::size_t v0 = msms_first_record(vl);
+  const std::size_t nv = v0 == 0 ? headerless_count(vl) : msms_header(vert_path, vl, 0, "vertex");
   mesh.positions.reserve(nv);
   mesh.normals.reserve(nv);
   bool atoms = true;
   for (std::size_t i = 0; i < nv; ++i) {
-    const int line = static_cast<int>(i + 4);
-    const std::vector<std::string_view> f = split_blanks(vl[i + 3]);
+    const int line = static_cast<int>(i + v0 + 1);
+    const std::vector<std::string_view> f = split_blanks(vl[i + v0]);
     if (f.size() < 6)
       throw InputError(vert_path, line, "vertex " + std::to_string(i + 1) + " needs at least 6 numbers");
     double x[6];
@@ -168,11 +190,12 @@ IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, con
   }
   if (!atoms) atom.clear();
   const std::vector<std::string_view> fl = split_lines(face);
-  const std::size_t nf = msms_header(face_path, fl, 0, "face");
+  const std::size_t f0 = msms_first_record(fl);
+  const std::size_t nf = f0 == 0 ? headerless_count(fl) : msms_header(face_path, fl, 0, "face");
   mesh.triangles.reserve(nf);
   for (std::size_t i = 0; i < nf; ++i) {
-    const int line = static_cast<int>(i + 4);
-    const std::vector<std::string_view> f = split_blanks(fl[i + 3]);
+    const int line = static_cast<int>(i + f0 + 1);
+    const std::vector<std::string_view> f = split_blanks(fl[i + f0]);
     if (f.size() < 3) throw InputError(face_path, line, "face " + std::to_string(i + 1) + " needs 3 vertex indices");
     std::array<Index, 3> t{};
     for (int k = 0; k < 3; ++k) {
@@ -294,19 +317,67 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
   double area = 0;
   for (const geometry::ComponentMeasure& c : geometry::component_measures(mesh)) area += c.area;
-  const std::string vert_counts =
-      msms_counts(mesh.positions.size(), n_atoms, area > 0 ? mesh.positions.size() / area : 0, opt.probe_radius);
-  const std::string face_counts =
-      msms_counts(mesh.triangles.size(), n_atoms, area > 0 ? mesh.positions.size() / area : 0, opt.probe_radius);
+  const double density = area > 0 ? mesh.positions.size() / area : 0;
   using geometry::ChunkedWriter;
+  using geometry::FileProducer;
   // The .face first, then the .vert: a reader polling for the .vert finds the pair complete.
-  geometry::write_files_atomically(
-      {{face_path, [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, face_counts, w); }},
-       {vert_path,
-        [&](ChunkedWriter& w) {
-          write_msms_vert(mesh, data, stem, component, vert_counts, opt.msms_decimals, opt.msms_atom_names, w);
-        }}},
-      "mesh");
+  if (!opt.msms_split_components) {
+    const std::string vert_counts = msms_counts(mesh.positions.size(), n_atoms, density, opt.probe_radius);
+    const std::string face_counts = msms_counts(mesh.triangles.size(), n_atoms, density, opt.probe_radius);
+    geometry::write_files_atomically(
+        {{face_path,
+          [&](ChunkedWriter& w) { write_msms_face(mesh, data, stem, component, face_counts, opt.msms_header, w); }},
+         {vert_path,
+          [&](ChunkedWriter& w) {
+            write_msms_vert(mesh, data, stem, component, vert_counts, opt.msms_decimals, opt.msms_atom_names,
+                            opt.msms_header, w);
+          }}},
+        "mesh");
+    return;
+  }
+  // One pair per component (MSMS's -all_components): the first NAME.vert/.face,
+  // component k >= 2 NAME_{k-1}.vert/.face, each with its own vertex numbers.
+  const int components = component.empty() ? 0 : *std::max_element(component.begin(), component.end());
+  struct Part {
+    IndexedMesh mesh;
+    SkinVertexData data;
+    std::vector<int> component;
+    std::string vert_path, face_path, stem;
+  };
+  std::vector<Part> parts(static_cast<std::size_t>(components));
+  std::vector<Index> local(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    Part& part = parts[static_cast<std::size_t>(component[v] - 1)];
+    local[v] = static_cast<Index>(part.mesh.positions.size());
+    part.mesh.positions.push_back(mesh.positions[v]);
+    if (!mesh.normals.empty()) part.mesh.normals.push_back(mesh.normals[v]);
+    if (!data.atom.empty()) part.data.atom.push_back(data.atom[v]);
+    if (!data.patch.empty()) part.data.patch.push_back(data.patch[v]);
+    part.component.push_back(component[v]);
+  }
+  for (const auto& t : mesh.triangles)
+    parts[static_cast<std::size_t>(component[t[0]] - 1)].mesh.triangles.push_back(
+        {local[t[0]], local[t[1]], local[t[2]]});
+  const std::string base = vert_path.substr(0, vert_path.size() - 5);
+  std::vector<std::pair<std::string, FileProducer>> files;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    Part& part = parts[k];
+    std::string suffix;  // built by appends: GCC 12 warns falsely (-Wrestrict) on "_" + std::to_string(k)
+    if (k > 0) suffix.append(1, '_').append(std::to_string(k));
+    part.vert_path = base + suffix + ".vert";
+    part.face_path = base + suffix + ".face";
+    part.stem = stem + suffix;
+    files.emplace_back(part.face_path, [&part, &opt, n_atoms, density](ChunkedWriter& w) {
+      write_msms_face(part.mesh, part.data, part.stem, part.component,
+                      msms_counts(part.mesh.triangles.size(), n_atoms, density, opt.probe_radius), opt.msms_header, w);
+    });
+    files.emplace_back(part.vert_path, [&part, &opt, n_atoms, density](ChunkedWriter& w) {
+      write_msms_vert(part.mesh, part.data, part.stem, part.component,
+                      msms_counts(part.mesh.positions.size(), n_atoms, density, opt.probe_radius), opt.msms_decimals,
+                      opt.msms_atom_names, opt.msms_header, w);
+    });
+  }
+  geometry::write_files_atomically(files, "mesh");
 }
 
 IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* data) {

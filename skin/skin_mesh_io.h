@@ -56,6 +56,14 @@ struct SkinMeshWriteOptions {
   /// .xyzrn input names the atoms (MaSIF's read_msms.py reads it; readers
   /// that keep only 9-field records, as Biopython's, do not, hence opt-in).
   std::vector<std::string> msms_atom_names;
+  /// false: MSMS files without their three header lines (MSMS's -no_header),
+  /// for readers that take the records alone; read_skin_mesh() reads both.
+  bool msms_header = true;
+  /// One NAME.vert/.face pair per surface component, as MSMS's
+  /// -all_components writes them: the first component NAME.vert/.face, the
+  /// k-th (k >= 2) NAME_{k-1}.vert/.face, each with its own vertex numbers
+  /// (components numbered as the single file numbers them).
+  bool msms_split_components = false;
 };
 
 /// The name MSMS writes for `atom` in its 10th vertex field, in the form
@@ -78,16 +86,18 @@ geometry::PositionStorage position_storage(const std::string& path, const SkinMe
 /// NAME.vert and NAME.face, in the layout MSMS writes (three header lines; per
 /// vertex position, normal, component, 1-based atom, patch type; per face
 /// 1-based vertices, type, component; positions with opt.msms_decimals
-/// decimals; the atom's name if opt.msms_atom_names is set; the header's density in vertices per Å² of mesh area and
-/// probe opt.probe_radius; skin/skin_mesh_io.cpp), written as one (geometry::write_files_atomically). Pre (checked,
-/// std::logic_error): mesh and data as geometry::write_mesh() requires (every array of `data` empty or one entry per
-/// vertex). Throws InputError(path, 0, "unknown mesh format ...") or InputError(path, 0, "cannot write ..."), and
-/// std::invalid_argument for opt.msms_decimals out of range when writing MSMS.
+/// decimals; the atom's name if opt.msms_atom_names is set; without header
+/// lines if !opt.msms_header; one pair per component if opt.msms_split_components; the header's density in vertices per
+/// Å² of mesh area and probe opt.probe_radius; skin/skin_mesh_io.cpp), written as one
+/// (geometry::write_files_atomically). Pre (checked, std::logic_error): mesh and data as geometry::write_mesh()
+/// requires (every array of `data` empty or one entry per vertex). Throws InputError(path, 0, "unknown mesh format
+/// ...") or InputError(path, 0, "cannot write ..."), and std::invalid_argument for opt.msms_decimals out of range when
+/// writing MSMS.
 void write_skin_mesh(const std::string& path, const geometry::IndexedMesh& mesh, const SkinVertexData& data,
                      const SkinMeshWriteOptions& opt = {});
 
 /// Reads a mesh of the skin from `path` (any format write_skin_mesh() writes;
-/// for MSMS either name) and, if `data` is given, the vertex data the file
+/// for MSMS either name, with or without its header lines) and, if `data` is given, the vertex data the file
 /// holds: `atom` from a PLY vertex property or VTK SCALARS array `atom` (an
 /// integer type, values >= -1) or from the MSMS atom field (1-based in the
 /// file); `rho` from a PLY property or VTK array `rho`; `patch` is not read.

@@ -151,6 +151,62 @@ TEST_CASE("formats: MSMS round trip — positions and normals to 1e-3, the 1-bas
   CHECK(Index(a - 1) == m.triangles.back()[0]);
 }
 
+TEST_CASE("formats: MSMS without header lines (-no_header) and one pair per component (-all_components)") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  IndexedMesh m = sphere_mesh();
+  SkinVertexData d = sphere_data(m);
+  // Three components: the sphere and two shifted copies.
+  const std::size_t n = m.positions.size(), nt = m.triangles.size();
+  for (int copy = 1; copy <= 2; ++copy) {
+    for (std::size_t v = 0; v < n; ++v) {
+      m.positions.push_back(m.positions[v] + Vec3(100.0 * copy, 0, 0));
+      m.normals.push_back(m.normals[v]);
+      d.atom.push_back(d.atom[v] + 17 * copy);
+      d.rho.push_back(d.rho[v]);
+      d.patch.push_back(d.patch[v]);
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+      m.triangles.push_back({Index(m.triangles[t][0] + copy * n), Index(m.triangles[t][1] + copy * n),
+                             Index(m.triangles[t][2] + copy * n)});
+  }
+  write_skin_mesh(s.path("h.vert"), m, d);
+  skinmesh::skin::SkinMeshWriteOptions opt;
+  opt.msms_header = false;
+  write_skin_mesh(s.path("n.vert"), m, d, opt);
+  // The records alone: the headered file without its first three lines.
+  const std::string headered = slurp(s.path("h.vert")), bare = slurp(s.path("n.vert"));
+  std::size_t third = 0;
+  for (int k = 0; k < 3; ++k) third = headered.find('\n', third) + 1;
+  CHECK(bare == headered.substr(third));
+  CHECK(bare.front() != '#');
+  SkinVertexData hd, nd;
+  const IndexedMesh h = read_skin_mesh(s.path("h.vert"), &hd), r = read_skin_mesh(s.path("n.face"), &nd);
+  CHECK(r.positions == h.positions);
+  CHECK(r.triangles == h.triangles);
+  CHECK(nd.atom == hd.atom);
+  // A pair per component: the first NAME, then NAME_1, NAME_2, each its own numbering.
+  opt.msms_header = true;
+  opt.msms_split_components = true;
+  write_skin_mesh(s.path("c.vert"), m, d, opt);
+  CHECK_FALSE(fs::exists(s.path("c_3.vert")));
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = k == 0 ? std::string("c.vert") : "c_" + std::to_string(k) + ".vert";
+    CAPTURE(name);
+    SkinVertexData pd;
+    const IndexedMesh part = read_skin_mesh(s.path(name), &pd);
+    REQUIRE(part.positions.size() == n);
+    CHECK(part.triangles.size() == nt);
+    for (std::size_t v = 0; v < n; ++v) {
+      CHECK((part.positions[v] - h.positions[k * n + v]).cwiseAbs().maxCoeff() == 0);
+      CHECK(pd.atom[v] == hd.atom[k * n + v]);
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+      CHECK(part.triangles[t] == std::array<Index, 3>{Index(h.triangles[k * nt + t][0] - k * n),
+                                                      Index(h.triangles[k * nt + t][1] - k * n),
+                                                      Index(h.triangles[k * nt + t][2] - k * n)});
+  }
+}
+
 TEST_CASE("formats: MSMS files written by another program, and broken ones") {
   Scratch s("skinmesh_skin_mesh_io_test_");
   s.write("x.vert",
