@@ -28,6 +28,7 @@
 #include "mesher/summary.h"
 #include "skin/atom_areas.h"
 #include "skin/dual_complex.h"
+#include "skin/element_radii.h"
 #include "skin/molecule_io.h"
 #include "skin/shells.h"
 #include "skin/skin_measures.h"
@@ -426,6 +427,18 @@ PYBIND11_MODULE(skinmesh, m) {
       "sphere patch belongs to its atom, and each hyperboloid or concave sphere patch is cut among its atoms by "
       "their power bisectors (the rule of Mesh.atom). The entries sum to measures()['area_A2'] within about 1e-10 "
       "relative; redundant atoms (no skin) get 0.");
+  m.def(
+      "vdw_radii",
+      [](const std::vector<std::string>& elements) {
+        std::vector<double> radii;
+        for (const std::string& e : elements)
+          radii.push_back(skin::van_der_waals_radius(skin::canonical_element_symbol(e)).radius);
+        return array_of<double>(radii.size(), 1, [&](std::size_t i, std::size_t) { return radii[i]; });
+      },
+      py::arg("elements"),
+      "The van der Waals radius (Å, float64 array) of each element symbol, as the file readers give atoms: "
+      "Bondi's, and 2.0 Å for an element Bondi does not list. For atoms given as arrays, e.g. from an MDAnalysis "
+      "AtomGroup's elements.");
   m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4, py::arg("strict") = false,
         py::arg("cavities") = "keep", py::arg("min_cavity_volume") = 0.0,
         "Verifies a mesh (a Mesh, or a mesh file) against the skin of the molecule: closed, manifold, oriented, "
