@@ -86,10 +86,13 @@ def tetgen_volume(path):
     return volume, len(ele)
 
 
-def test_tetgen_fills_the_off_and_ascii_ply_and_stl_files_with_the_enclosed_volume(tmp_path):
-    m = skinmesh.mesh(LIGAND, threads=1)
+@pytest.mark.parametrize("source,probe", [(LIGAND, 1.4), (CRAMBIN, 1.4), (CRAMBIN, 0.0)])
+def test_tetgen_fills_the_off_and_ascii_ply_and_stl_files_with_the_enclosed_volume(tmp_path, source, probe):
+    # One shell, which TetGen fills whole: crambin at probe 0 has ten cavities,
+    # left out by cavities="remove" (or TetGen would fill them too).
+    m = skinmesh.mesh(source, probe=probe, threads=2, cavities="remove")
     components = m.stats["surface"]["components"]
-    assert len(components) == 1  # one shell: TetGen fills it whole
+    assert len(components) == 1
     for name, ascii in [("l.off", False), ("a.ply", True), ("a.stl", True)]:
         m.write(tmp_path / name, ascii=ascii)
         volume, tetrahedra = tetgen_volume(tmp_path / name)
@@ -205,3 +208,48 @@ def test_meshio_reads_the_vtu_and_vtk_reads_the_vtp_and_vtu_with_every_array(tmp
         assert np.array_equal(vtk_to_numpy(data.GetNormals()), m.normals), name
         assert np.array_equal(vtk_to_numpy(data.GetArray("atom")), m.atom), name
         assert np.array_equal(vtk_to_numpy(data.GetArray("rho")), m.rho), name
+
+
+def masif_read_msms(stem):
+    """MaSIF's reading of MSMS output, re-implemented from its documented
+    fields: the .vert after its 3 header lines, one vertex per line with 10
+    fields (x y z nx ny nz component atom type name); the .face after its 3
+    header lines, 1-based vertices in the first three fields; the .area after
+    its 1 header line, the area (second field) keyed by the name (fourth)."""
+    with open(stem + ".vert") as f:
+        vert_lines = f.read().splitlines()
+    with open(stem + ".face") as f:
+        face_lines = f.read().splitlines()
+    n_vertices, n_faces = int(vert_lines[2].split()[0]), int(face_lines[2].split()[0])
+    assert len(vert_lines) == 3 + n_vertices and len(face_lines) == 3 + n_faces
+    vertices, names = [], []
+    for line in vert_lines[3:]:
+        fields = line.split()
+        assert len(fields) == 10
+        vertices.append([float(x) for x in fields[:3]])
+        names.append(fields[9])
+    faces = [[int(x) - 1 for x in line.split()[:3]] for line in face_lines[3:]]
+    areas = {}
+    with open(stem + ".area") as f:
+        next(f)
+        for line in f:
+            fields = line.split()
+            areas[fields[3]] = float(fields[1])
+    return np.array(vertices), np.array(faces), names, areas
+
+
+@pytest.mark.parametrize("probe", [1.4, 0.0])
+def test_masif_style_reading_of_msms_files_with_names_and_areas(tmp_path, probe):
+    stem = str(tmp_path / "c")
+    subprocess.run([SKINMESH, "mesh", CRAMBIN, "--probe", str(probe), "-o", stem + ".vert", "--msms-atom-names",
+                    "--msms-decimals", "6", "--area-file", stem + ".area", "-q"], check=True, timeout=300)
+    vertices, faces, names, areas = masif_read_msms(stem)
+    m = skinmesh.read_mesh(stem + ".vert")
+    assert np.allclose(vertices, m.vertices, atol=5e-7) and np.array_equal(faces, m.triangles)
+    # Every vertex's name is an atom's (chain_resnum_icode_resname_atomname) and has an area.
+    assert all(len(n.split("_")) == 5 for n in names)
+    assert set(names) <= set(areas)
+    assert all(areas[n] > 0 for n in set(names))
+    exact = skinmesh.atom_areas(CRAMBIN, probe=probe)
+    assert len(areas) <= len(exact)  # names of atoms may repeat across altlocs; crambin's do not
+    assert abs(sum(areas.values()) - exact.sum()) <= 5e-7 * len(exact)
