@@ -31,7 +31,9 @@ using json = nlohmann::ordered_json;
 /// One input of a batch run and what became of it.
 struct BatchItem {
   std::string input, output;
-  int model = 0;  ///< --model all: the model read; 0: as --model says
+  int model = 0;           ///< --model all: the model read; 0: as --model says
+  bool one_chain = false;  ///< --chains each: this item is the chain `chain`
+  std::string chain;
   std::size_t atoms = 0, triangles = 0;
   double min_angle = 0, area = 0, volume = 0, seconds = 0;
   bool checked = false;
@@ -84,6 +86,7 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
     m.input = item.input;
     m.quiet = true;
     if (item.model != 0) m.model = std::to_string(item.model);
+    if (item.one_chain) m.chains = item.chain;
     const skin::Molecule mol = load_molecule(m);
     item.atoms = mol.atoms.size();
     const mesher::MeshResult res = mesher::mesh_skin(mol, base);
@@ -147,15 +150,38 @@ int run_batch(const MeshArgs& a) {
   };
   skin::ReadOptions formats;
   for (const std::string& in : inputs) {
+    std::vector<BatchItem> per_model;
     if (a.mol.model != "all") {
-      items.push_back(item_of(in, 0));
-      continue;
+      per_model.push_back(item_of(in, 0));
+    } else {
+      try {
+        if (!a.mol.format.empty()) formats.format = skin::format_from_extension("x." + a.mol.format);
+        for (int model : skin::model_numbers(in, formats)) per_model.push_back(item_of(in, model));
+      } catch (const InputError&) {
+        per_model.push_back(item_of(in, 0));  // unreadable: it fails as an item, with the reader's message
+      }
     }
-    try {
-      if (!a.mol.format.empty()) formats.format = skin::format_from_extension("x." + a.mol.format);
-      for (int model : skin::model_numbers(in, formats)) items.push_back(item_of(in, model));
-    } catch (const InputError&) {
-      items.push_back(item_of(in, 0));  // unreadable: it fails as an item, with the reader's message
+    for (BatchItem& item : per_model) {
+      if (a.mol.chains != "each") {
+        items.push_back(item);
+        continue;
+      }
+      // --chains each: the chains of this model (and assembly), one item each.
+      try {
+        MoleculeArgs m = a.mol;
+        m.input = in;
+        m.quiet = true;
+        m.chains.clear();
+        if (item.model != 0) m.model = std::to_string(item.model);
+        for (const std::string& chain : skin::chain_names(load_molecule(m))) {
+          BatchItem c = item;
+          c.one_chain = true;
+          c.chain = chain;
+          items.push_back(c);
+        }
+      } catch (const InputError&) {
+        items.push_back(item);
+      }
     }
   }
   // Outputs DIR/NAME.FORMAT (DIR/NAME_modelN.FORMAT); inputs that share a NAME
@@ -168,6 +194,7 @@ int run_batch(const MeshArgs& a) {
     const std::string stem = batch_stem(item.input);
     std::string name = stems[stem] > 1 ? std::filesystem::path(item.input).filename().string() : stem;
     if (item.model != 0) name += "_model" + std::to_string(item.model);
+    if (item.one_chain) name += "_chain" + (item.chain.empty() ? std::string("_") : item.chain);
     item.output = (std::filesystem::path(a.out_dir) / (name + "." + a.batch_format)).string();
     if (auto [it, fresh] = taken.emplace(item.output, item.input); !fresh)
       throw InputError(item.input, 0, "would write " + item.output + " as " + it->second + " does (rename one)");
@@ -191,8 +218,9 @@ int run_batch(const MeshArgs& a) {
       if (a.mol.quiet) continue;
       const BatchItem& it = items[i];
       std::lock_guard<std::mutex> lock(print);
-      std::fprintf(stderr, "[%zu/%zu] %s%s: %s", k, items.size(), it.input.c_str(),
-                   it.model ? (" model " + std::to_string(it.model)).c_str() : "", it.status.c_str());
+      std::fprintf(stderr, "[%zu/%zu] %s%s%s: %s", k, items.size(), it.input.c_str(),
+                   it.model ? (" model " + std::to_string(it.model)).c_str() : "",
+                   it.one_chain ? (" chain " + it.chain).c_str() : "", it.status.c_str());
       if (it.exit_code == 0)
         std::fprintf(stderr, ", %zu triangles, min angle %.2f°, %.2f s", it.triangles, it.min_angle, it.seconds);
       if (!it.message.empty()) std::fprintf(stderr, ": %s", one_line(it.message).c_str());
@@ -207,7 +235,7 @@ int run_batch(const MeshArgs& a) {
 
   // The summary: a table on stdout, CSV and JSON in the output folder.
   std::string table,
-      csv = "input,model,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
+      csv = "input,model,chain,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
   json rows = json::array();
   char line[512];
   std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle",
@@ -217,7 +245,8 @@ int run_batch(const MeshArgs& a) {
   double sum = 0;
   for (const BatchItem& it : items) {
     const std::string name = std::filesystem::path(it.input).filename().string() +
-                             (it.model ? " model " + std::to_string(it.model) : std::string());
+                             (it.model ? " model " + std::to_string(it.model) : std::string()) +
+                             (it.one_chain ? " chain " + it.chain : std::string());
     std::snprintf(line, sizeof line, "%-36s %8zu %10zu %9.3f %8.2f  %s\n", name.c_str(), it.atoms, it.triangles,
                   it.min_angle, it.seconds, it.status.c_str());
     table += line;
@@ -226,14 +255,15 @@ int run_batch(const MeshArgs& a) {
                   it.volume, it.seconds);
     const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
     csv += csv_field(it.input) + "," + (it.model ? std::to_string(it.model) : std::string()) + "," +
-           csv_field(written ? it.output : "") + num + csv_field(it.status) + "," + csv_field(one_line(it.message)) +
-           "\n";
+           (it.one_chain ? csv_field(it.chain) : std::string()) + "," + csv_field(written ? it.output : "") + num +
+           csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
     json row = {{"input", it.input},         {"atoms", it.atoms},
                 {"triangles", it.triangles}, {"min_angle_deg", it.min_angle},
                 {"area_A2", it.area},        {"volume_A3", it.volume},
                 {"seconds", it.seconds},     {"status", it.status},
                 {"exit_code", it.exit_code}};
     if (it.model) row["model"] = it.model;
+    if (it.one_chain) row["chain"] = it.chain;
     if (written) row["output"] = it.output;
     if (!it.message.empty()) row["message"] = it.message;
     rows.push_back(std::move(row));

@@ -69,6 +69,9 @@ void add_molecule_options(CLI::App& cmd, MoleculeArgs& m, bool many) {
                  "read the biological assembly ID of a PDB (REMARK 350 BIOMOLECULE) or mmCIF "
                  "(_pdbx_struct_assembly) file: the model's chains copied by the assembly's operators, the copies "
                  "named A, A2, A3... (default: the file's coordinates)");
+  cmd.add_option("--chains", m.chains,
+                 std::string("mesh only these chains, a comma-separated list (A,B; a copy of an --assembly is A2)") +
+                     (many ? "; each: one mesh per chain (a batch run: -O DIR)" : "") + " (default: every chain)");
   cmd.add_flag("--quiet,-q", m.quiet, "no notes or progress on stderr");
 }
 
@@ -83,6 +86,12 @@ skin::Molecule load_molecule(const MoleculeArgs& m) {
   if (!m.format.empty()) ro.format = formats.at(m.format);
   if (!m.model.empty()) ro.model = std::stoi(m.model);  // validated by the option; "all" is expanded by the batch
   ro.assembly = m.assembly;
+  if (m.chains == "each") throw CLI::ValidationError("--chains", "each applies to `skinmesh mesh` with -O DIR");
+  for (std::size_t at = 0; !m.chains.empty() && at <= m.chains.size();) {
+    const std::size_t comma = std::min(m.chains.find(',', at), m.chains.size());
+    ro.chains.emplace_back(m.chains.substr(at, comma - at));
+    at = comma + 1;
+  }
   skin::Molecule mol = skin::read_molecule(m.input, ro);
   if (!m.quiet) {
     const std::size_t shown = std::min<std::size_t>(mol.notes.size(), 10);

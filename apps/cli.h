@@ -53,6 +53,8 @@ struct MoleculeArgs {
   std::string model;
   /// --assembly: the biological assembly to read ("": the file's coordinates).
   std::string assembly;
+  /// --chains: "" (every chain), a comma-separated list, or (mesh only) "each".
+  std::string chains;
 };
 
 /// IN (several if `many`), --probe, --keep-water, --no-hydrogens, --format,

@@ -240,7 +240,8 @@ int run_mesh(MeshArgs& a) {
 /// given with the other. Prints the problem and returns false.
 bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
   mesh.threads_given = cmd.count("--threads") > 0;
-  batch_run = mesh.mol.inputs.size() > 1 || !mesh.list.empty() || !mesh.out_dir.empty() || mesh.mol.model == "all";
+  batch_run = mesh.mol.inputs.size() > 1 || !mesh.list.empty() || !mesh.out_dir.empty() || mesh.mol.model == "all" ||
+              mesh.mol.chains == "each";
   std::string problem;
   if (mesh.mol.inputs.empty() && mesh.list.empty())
     problem = "IN is required (a molecule file, or several with -O DIR)";
@@ -248,7 +249,9 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
     problem = "-o OUT is required (or -O DIR for a batch run)";
   else if (batch_run && mesh.out_dir.empty())
     problem = mesh.mol.model == "all" ? "--model all writes one mesh per model: it needs -O DIR, the output folder"
-                                      : "several inputs (or --list) need -O DIR, the output folder";
+              : mesh.mol.chains == "each"
+                  ? "--chains each writes one mesh per chain: it needs -O DIR, the output folder"
+                  : "several inputs (or --list) need -O DIR, the output folder";
   else if (batch_run)
     for (const char* name :
          {"--output", "--stats", "--area-file", "--trace", "--paranoid", "--max-steps", "--dump-partial", "--timeout"})

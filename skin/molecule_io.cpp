@@ -235,8 +235,45 @@ std::vector<int> model_numbers(const std::string& path, const ReadOptions& opt) 
   return {1};
 }
 
+std::vector<std::string> chain_names(const Molecule& molecule) {
+  std::vector<std::string> names;
+  for (const Atom& a : molecule.atoms)
+    if (std::find(names.begin(), names.end(), a.chain) == names.end()) names.push_back(a.chain);
+  return names;
+}
+
+namespace {
+
+/// The atoms of `m` in the chains `chains` (file order). Throws InputError for
+/// a chain that holds no atom, listing the molecule's chains.
+Molecule select_chains(Molecule m, const std::vector<std::string>& chains) {
+  for (const std::string& c : chains)
+    if (std::none_of(m.atoms.begin(), m.atoms.end(), [&](const Atom& a) { return a.chain == c; })) {
+      std::string list;
+      for (const std::string& n : chain_names(m)) list += (list.empty() ? "" : ", ") + (n.empty() ? "(blank)" : n);
+      throw InputError(m.source, 0, "no atoms in chain '" + c + "' (the chains read: " + list + "; see --chains)");
+    }
+  std::erase_if(m.atoms,
+                [&](const Atom& a) { return std::find(chains.begin(), chains.end(), a.chain) == chains.end(); });
+  return m;
+}
+
+/// The reader of `format`.
+Molecule read_format(const std::string& text, const std::string& name, ReadOptions::Format format,
+                     const ReadOptions& opt);
+
+}  // namespace
+
 Molecule read_molecule_from_string(const std::string& text, const std::string& name, const ReadOptions& opt) {
   const ReadOptions::Format format = opt.format == ReadOptions::Format::Auto ? format_from_extension(name) : opt.format;
+  Molecule m = read_format(text, name, format, opt);
+  return opt.chains.empty() ? m : select_chains(std::move(m), opt.chains);
+}
+
+namespace {
+
+Molecule read_format(const std::string& text, const std::string& name, ReadOptions::Format format,
+                     const ReadOptions& opt) {
   if (format != ReadOptions::Format::Pdb && format != ReadOptions::Format::Mmcif &&
       (opt.model > 1 || !opt.assembly.empty()))
     throw InputError(name, 0, "models and assemblies are read from PDB and mmCIF files only (this file holds model 1)");
@@ -256,5 +293,7 @@ Molecule read_molecule_from_string(const std::string& text, const std::string& n
   }
   throw InputError(name, 0, "unknown format (expected .pdb, .cif, .pqr, .xyzr or .xyzrn)");
 }
+
+}  // namespace
 
 }  // namespace skinmesh::skin

@@ -40,6 +40,10 @@ struct ReadOptions {
   /// expanded: the model's atoms copied by every operator of the assembly onto
   /// the chains (PDB) or label_asym_id subchains (mmCIF) it names. PDB and mmCIF only.
   std::string assembly;
+  /// If not empty, only the atoms of these chains (Atom::chain, after the
+  /// assembly's expansion, so "A2" names a copy), in file order; a chain that
+  /// holds no atom is an error. chain_names() lists a file's chains.
+  std::vector<std::string> chains;
 };
 
 // Molecule Reading Public Functions
@@ -92,6 +96,10 @@ Molecule read_molecule_from_string(const std::string& text, const std::string& n
 /// and for PQR, XYZR and XYZRN. Throws InputError as read_molecule() does for
 /// an unreadable file or unknown format.
 std::vector<int> model_numbers(const std::string& path, const ReadOptions& opt = {});
+
+/// The chains of `molecule`, in the order of their first atoms (a blank
+/// chain as ""): what ReadOptions::chains selects from.
+std::vector<std::string> chain_names(const Molecule& molecule);
 
 /// The format read_molecule() would choose for `path` by its extension (case
 /// insensitive, a trailing .gz ignored): Pdb, Mmcif, Pqr, Xyzr or Xyzrn. Throws InputError(path, 0, "unknown

@@ -497,8 +497,8 @@ TEST_CASE("--model all: one checked mesh per model in a batch; --model N and --a
   CHECK(all.exit_code == 0);
   CHECK(all.out.find("3 inputs, 0 failed") != std::string::npos);
   const std::string csv = slurp(s.dir / "out/summary.csv");
-  CHECK(csv.find(",1,out/nmr_three_models_model1.ply,") != std::string::npos);
-  CHECK(csv.find(",3,out/nmr_three_models_model3.ply,") != std::string::npos);
+  CHECK(csv.find(",1,,out/nmr_three_models_model1.ply,") != std::string::npos);
+  CHECK(csv.find(",3,,out/nmr_three_models_model3.ply,") != std::string::npos);
   // Each is the mesh of a single run of its model, byte for byte; model 2 is
   // model 1 moved 0.5 Å along x, and so is its mesh.
   REQUIRE(run(s, "mesh " + nmr + " --model 2 -o two.ply --quiet").exit_code == 0);
@@ -527,6 +527,16 @@ TEST_CASE("--model all: one checked mesh per model in a batch; --model N and --a
   CHECK(stats.at("atoms") == 70);
   CHECK(stats.at("surface").at("components").size() == 2);
   CHECK(run(s, "check " + dimer + " --assembly 1 d.ply").exit_code == 0);
+  // --chains each: one mesh per chain (the assembly's copy is chain A2), each the single run of that chain.
+  const Run each = run(s, "mesh " + dimer + " --assembly 1 --chains each -O chains --quiet");
+  CHECK(each.exit_code == 0);
+  CHECK(each.out.find("2 inputs, 0 failed") != std::string::npos);
+  REQUIRE(run(s, "mesh " + dimer + " --assembly 1 --chains A2 -o a2.ply --quiet").exit_code == 0);
+  CHECK(slurp(s.dir / "chains/assembly_dimer_chainA2.ply") == slurp(s.dir / "a2.ply"));
+  CHECK(fs::exists(s.dir / "chains/assembly_dimer_chainA.ply"));
+  CHECK(run(s, "check " + dimer + " --assembly 1 --chains A2 a2.ply").exit_code == 0);
+  CHECK(run(s, "check " + dimer + " --assembly 1 --chains A a2.ply").exit_code == 1);  // the other chain's skin
+  CHECK(run(s, "mesh " + dimer + " --chains each -o x.ply").exit_code == 2);
   const Run unknown = run(s, "mesh " + dimer + " --assembly 7 -o e.ply");
   CHECK(unknown.exit_code == 1);
   CHECK(unknown.err.find("no assembly 7 (the file lists: 1, 2)") != std::string::npos);
@@ -790,8 +800,8 @@ TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not 
   // summary.csv: a header and one row per input, in the order given.
   const std::string csv = slurp(s.dir / "out/summary.csv");
   CHECK(lines(csv) == 4);
-  CHECK(csv.rfind("input,model,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n", 0) ==
-        0);
+  CHECK(csv.rfind("input,model,chain,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n",
+                  0) == 0);
   const nlohmann::json j = nlohmann::json::parse(slurp(s.dir / "out/summary.json"));
   REQUIRE(j.at("inputs").size() == 3);
   CHECK(j.at("failed") == 1);

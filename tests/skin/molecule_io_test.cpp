@@ -753,6 +753,37 @@ TEST_CASE("assemblies: PDB REMARK 350 and mmCIF _pdbx_struct_assembly expand the
   CHECK(read_molecule(data_file("crambin_1crn.pdb"), opt).atoms.size() == 327);
 }
 
+TEST_CASE("chains: ReadOptions::chains keeps those chains' atoms in file order; an absent chain is refused") {
+  const Molecule all = read_molecule(data_file("hivprotease_xk263_1hvr.pdb"));
+  CHECK(skinmesh::skin::chain_names(all) == std::vector<std::string>{"A", "B"});
+  ReadOptions opt;
+  opt.chains = {"B"};
+  const Molecule b = read_molecule(data_file("hivprotease_xk263_1hvr.pdb"), opt);
+  std::vector<skinmesh::skin::Atom> expected;
+  for (const auto& a : all.atoms)
+    if (a.chain == "B") expected.push_back(a);
+  REQUIRE(b.atoms.size() == expected.size());
+  REQUIRE(b.atoms.size() == 922);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    CHECK(b.atoms[i].centre == expected[i].centre);
+    CHECK(b.atoms[i].line == expected[i].line);
+  }
+  opt.chains = {"B", "A"};
+  CHECK(read_molecule(data_file("hivprotease_xk263_1hvr.pdb"), opt).atoms.size() == all.atoms.size());
+  opt.chains = {"C"};
+  CHECK_THROWS_WITH_AS(read_molecule(data_file("hivprotease_xk263_1hvr.pdb"), opt),
+                       doctest::Contains("no atoms in chain 'C' (the chains read: A, B"), InputError);
+  // After the assembly's expansion: the copy is chain A2.
+  const std::string ids[] = {"1", "A2"};
+  opt.assembly = ids[0];
+  opt.chains = {ids[1]};
+  const Molecule copy = read_molecule(std::string(SKINMESH_TEST_DATA) + "/readers/assembly_dimer.pdb", opt);
+  const Molecule plain = read_molecule(std::string(SKINMESH_TEST_DATA) + "/readers/assembly_dimer.pdb");
+  REQUIRE(copy.atoms.size() == plain.atoms.size());
+  for (std::size_t i = 0; i < copy.atoms.size(); ++i)
+    CHECK(copy.atoms[i].centre.x() == doctest::Approx(30 - plain.atoms[i].centre.x()).epsilon(1e-12));
+}
+
 TEST_CASE("fuzzing regressions: PDB") {
   SUBCASE("a LINK record of 74-77 columns is not read past its end") {
     // fuzz_pdb: heap-buffer-overflow in gemmi 0.5.7 pdb_impl::process_conn,
