@@ -77,6 +77,24 @@ std::string error_of(const std::string& path) {
   return "no error";
 }
 
+/// Writes `m` with `attributes` to `path` and checks that reading it back gives
+/// the same positions, triangles, normals and attributes, bit for bit.
+void check_exact_round_trip(const std::string& path, const IndexedMesh& m,
+                            const std::vector<VertexAttribute>& attributes) {
+  write_mesh(path, m, {}, attributes);
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r = read_mesh(path, &read);
+  CHECK(r.positions == m.positions);
+  CHECK(r.triangles == m.triangles);
+  CHECK(r.normals == m.normals);
+  REQUIRE(read.size() == attributes.size());
+  for (std::size_t k = 0; k < attributes.size(); ++k) {
+    CHECK(read[k].name == attributes[k].name);
+    CHECK(read[k].integer == attributes[k].integer);
+    CHECK(read[k].values == attributes[k].values);
+  }
+}
+
 }  // namespace
 
 TEST_SUITE("geometry") {
@@ -154,18 +172,7 @@ TEST_CASE("formats: VTK round trip is exact, with normals, attributes and the mi
   Scratch s("skinmesh_formats_test_");
   const IndexedMesh m = sphere_mesh();
   const std::vector<VertexAttribute> attributes = sphere_attributes(m);
-  write_mesh(s.path("m.vtk"), m, {}, attributes);
-  std::vector<VertexAttribute> read;
-  const IndexedMesh r = read_mesh(s.path("m.vtk"), &read);
-  CHECK(r.positions == m.positions);
-  CHECK(r.triangles == m.triangles);
-  CHECK(r.normals == m.normals);
-  REQUIRE(read.size() == 2);
-  for (int k = 0; k < 2; ++k) {
-    CHECK(read[k].name == attributes[k].name);
-    CHECK(read[k].integer == attributes[k].integer);
-    CHECK(read[k].values == attributes[k].values);
-  }
+  check_exact_round_trip(s.path("m.vtk"), m, attributes);
   const std::string text = slurp(s.path("m.vtk"));
   CHECK(text.rfind("# vtk DataFile Version 3.0\n", 0) == 0);
   CHECK(text.find("DATASET POLYDATA\nPOINTS 66 double\n") != std::string::npos);
@@ -245,18 +252,7 @@ TEST_CASE("formats: XML VTK (.vtp, .vtu) round trips are exact, float32 ones flo
   const std::vector<VertexAttribute> attributes = sphere_attributes(m);
   for (const char* name : {"m.vtp", "m.vtu"}) {
     CAPTURE(name);
-    write_mesh(s.path(name), m, {}, attributes);
-    std::vector<VertexAttribute> read;
-    const IndexedMesh r = read_mesh(s.path(name), &read);
-    CHECK(r.positions == m.positions);
-    CHECK(r.triangles == m.triangles);
-    CHECK(r.normals == m.normals);
-    REQUIRE(read.size() == 2);
-    for (int k = 0; k < 2; ++k) {
-      CHECK(read[k].name == attributes[k].name);
-      CHECK(read[k].integer == attributes[k].integer);
-      CHECK(read[k].values == attributes[k].values);
-    }
+    check_exact_round_trip(s.path(name), m, attributes);
     const std::string text = slurp(s.path(name));
     const bool vtu = std::string(name) == "m.vtu";
     CHECK(text.find(vtu ? "<Piece NumberOfPoints=\"66\" NumberOfCells=\"128\">" : "NumberOfPolys=\"128\"") !=
