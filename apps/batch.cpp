@@ -19,6 +19,7 @@
 #include "core/errors.h"
 #include "core/read_file.h"
 #include "geometry/mesh/mesh_measures.h"
+#include "skin/atom_areas.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_mesh_io.h"
 
@@ -36,6 +37,7 @@ struct BatchItem {
   std::string chain;
   std::size_t atoms = 0, triangles = 0;
   double min_angle = 0, area = 0, volume = 0, seconds = 0;
+  double skin_area = -1;  ///< --area-files: the exact skin's area, the sum of the atoms'; negative: not computed
   bool checked = false;
   int exit_code = -1;  ///< as `skinmesh mesh` on this input alone; -1: not run
   std::string status = "not run", message;
@@ -77,6 +79,11 @@ std::string batch_stem(const std::string& input) {
   return p.stem().string();
 }
 
+/// The per-atom area file beside the mesh `output`: its name with .area for its extension.
+std::string area_path(const std::string& output) {
+  return std::filesystem::path(output).replace_extension(".area").string();
+}
+
 /// Meshes one input of a batch (never throws: the outcome is in the item).
 void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchItem& item) {
   using Clock = std::chrono::steady_clock;
@@ -109,7 +116,15 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
         return;
       }
     }
-    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, write_options(a, &mol));
+    const skin::SkinMeshWriteOptions wopt = write_options(a, &mol);
+    AtomAreas areas;
+    if (a.area_files) areas = atom_areas(mol, a.mol.probe, res, base.threads);  // before anything is written
+    skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, wopt);
+    if (a.area_files) {
+      skin::write_area_file(area_path(item.output), areas.skin, areas.mesh, wopt.msms_atom_names);
+      item.skin_area = 0;
+      for (double x : areas.skin) item.skin_area += x;
+    }
     if (item.exit_code == -1) item.exit_code = 0, item.status = "ok";
     if (!res.static_fallback.empty() && item.message.empty())
       item.message = res.static_fallback + "; meshed by the static baseline instead";
@@ -235,7 +250,8 @@ int run_batch(const MeshArgs& a) {
 
   // The summary: a table on stdout, CSV and JSON in the output folder.
   std::string table,
-      csv = "input,model,chain,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message\n";
+      csv = "input,model,chain,output,atoms,triangles,min_angle_deg,area_A2,volume_A3,seconds,status,message" +
+            std::string(a.area_files ? ",skin_area_A2\n" : "\n");
   json rows = json::array();
   char line[512];
   std::snprintf(line, sizeof line, "%-36s %8s %10s %9s %8s  %s\n", "input", "atoms", "triangles", "min angle",
@@ -256,7 +272,13 @@ int run_batch(const MeshArgs& a) {
     const bool written = it.exit_code == 0 || (a.force && it.status == "failed check");
     csv += csv_field(it.input) + "," + (it.model ? std::to_string(it.model) : std::string()) + "," +
            (it.one_chain ? csv_field(it.chain) : std::string()) + "," + csv_field(written ? it.output : "") + num +
-           csv_field(it.status) + "," + csv_field(one_line(it.message)) + "\n";
+           csv_field(it.status) + "," + csv_field(one_line(it.message));
+    if (a.area_files) {
+      char skin_area[48] = "";
+      if (it.skin_area >= 0) std::snprintf(skin_area, sizeof skin_area, "%.6f", it.skin_area);
+      csv += std::string(",") + skin_area;
+    }
+    csv += "\n";
     json row = {{"input", it.input},         {"atoms", it.atoms},
                 {"triangles", it.triangles}, {"min_angle_deg", it.min_angle},
                 {"area_A2", it.area},        {"volume_A3", it.volume},
@@ -264,6 +286,7 @@ int run_batch(const MeshArgs& a) {
                 {"exit_code", it.exit_code}};
     if (it.model) row["model"] = it.model;
     if (it.one_chain) row["chain"] = it.chain;
+    if (it.skin_area >= 0) row["skin_area_A2"] = it.skin_area, row["area_file"] = area_path(it.output);
     if (written) row["output"] = it.output;
     if (!it.message.empty()) row["message"] = it.message;
     rows.push_back(std::move(row));

@@ -259,6 +259,8 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
         problem = std::string(name) + " applies to one input, not to a batch run (-O)";
         break;
       }
+  if (problem.empty() && !batch_run && mesh.area_files)
+    problem = "--area-files applies to a batch run (-O DIR); for one input write --area-file FILE";
   if (!problem.empty()) {
     std::cerr << "skinmesh mesh: " << problem << " (see 'skinmesh mesh --help')\n";
     return false;
@@ -419,6 +421,10 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--msms-components", mesh.msms_components,
                 "one MSMS .vert/.face pair per surface component, as MSMS's -all_components: the first NAME.vert, "
                 "the k-th NAME_{k-1}.vert, each numbering its own vertices");
+  cmd->add_flag("--area-files", mesh.area_files,
+                "in a batch run (-O DIR): each input's per-atom areas as DIR/NAME.area beside its mesh (the layout "
+                "of --area-file), and summary.csv's skin_area_A2, their sum")
+      ->group(batch);
   cmd->add_option("--area-file", mesh.area_file,
                   "also write each atom's area to this file in MSMS's .area layout: a header line, then per atom "
                   "its 1-based number, the exact skin's area and the mesh's (Å²), and with --msms-atom-names its "

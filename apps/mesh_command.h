@@ -49,6 +49,8 @@ struct MeshArgs {
   bool msms_no_header = false, msms_components = false;
   /// --area-file: the per-atom areas' file (skin/atom_areas.h); empty: none.
   std::string area_file;
+  /// --area-files: in a batch run, DIR/NAME.area beside each mesh.
+  bool area_files = false;
 };
 
 /// The pipeline's options of a run: `a.opt` with the probe, the height

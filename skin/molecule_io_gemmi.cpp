@@ -230,17 +230,18 @@ PdbScan scan_pdb(const std::string& path, std::string_view text, const ReadOptio
       has_models = true;
       current_model = leading_int(std::string_view(line).substr(std::min<std::size_t>(line.size(), 5)));
     }
-    // Another model than the one asked for: an empty line (line numbers stay the file's).
-    if (opt.model != 0 && (has_models ? current_model != opt.model : opt.model != 1)) {
+    // REMARK 350 (the biological assemblies) is kept when one is asked for.
+    const bool assembly_remark =
+        !opt.assembly.empty() && record_is(line, "REMA") && line.size() > 10 && line.compare(6, 4, " 350") == 0;
+    // Another model than the one asked for: an empty line (line numbers stay
+    // the file's). The header's REMARK 350 precedes every model.
+    if (opt.model != 0 && !assembly_remark && (has_models ? current_model != opt.model : opt.model != 1)) {
       scan.gemmi_text += '\n';
       continue;
     }
     const bool last = (record_is(line, "ENDMDL") && seen_atom) ||                           // gemmi starts model 2
                       (record_is(line, "END") && (line.size() == 3 || is_blank(line[3])));  // gemmi stops
     const bool atom = record_is(line, "ATOM") || record_is(line, "HETA");
-    // REMARK 350 (the biological assemblies) is kept when one is asked for.
-    const bool assembly_remark =
-        !opt.assembly.empty() && record_is(line, "REMA") && line.size() > 10 && line.compare(6, 4, " 350") == 0;
     if (!atom && !assembly_remark && !record_is(line, "MODE") && !record_is(line, "END") && !record_is(line, "TER") &&
         !record_is(line, "DATA")) {
       line.clear();
@@ -486,14 +487,14 @@ SourceIndex scan_mmcif(const std::string& path, std::string_view text, gemmi::ci
   const int name_column = table.first_of(kAuthAtom, kLabelAtom);
   // The model kept: the first row's, or the one asked for (a file without
   // model numbers holds model 1).
-  std::string kept_model = model != 0 ? std::to_string(model) : std::string();
+  std::string kept_model;
   std::size_t kept_rows = 0;
   for (std::size_t r = 0; r < table.length(); ++r) {
     gemmi::cif::Table::Row row = table[static_cast<int>(r)];
     if (row.has(kModel)) {
       const std::string row_model = gemmi::cif::as_string(row[kModel]);
       if (r == 0 && model == 0) kept_model = row_model;
-      if (row_model != kept_model) continue;
+      if (model != 0 ? leading_int(row_model) != model : row_model != kept_model) continue;
     } else if (model > 1) {
       continue;
     }
@@ -592,7 +593,7 @@ Molecule from_structure(const std::string& path, const gemmi::Structure& st, Sou
   // (mmCIF, where gemmi makes every model): that model, else the first.
   const gemmi::Model* chosen = &st.models.front();
   for (const gemmi::Model& m : st.models)
-    if (opt.model != 0 && m.name == std::to_string(opt.model)) chosen = &m;
+    if (opt.model != 0 && leading_int(m.name) == opt.model) chosen = &m;
   const gemmi::Model& model = *chosen;
   std::vector<AtomOrigin> origin;  // per atom kept: its chain and subchain, for the assembly
 

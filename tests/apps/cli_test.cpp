@@ -815,6 +815,20 @@ TEST_CASE("batch runs: many inputs with -O and --jobs, a failing input does not 
     std::ofstream list(s.dir / "inputs.txt");
     list << "# two ligands\n" << data << "ligand_2zmm.pdb\n\n  " << data << "ligand_1hvr_xk263.pdb  # the second\n";
   }
+  // --area-files: DIR/NAME.area beside each mesh; summary.csv's skin_area_A2 is their sum, the single run's.
+  REQUIRE(run(s, "mesh " + a + " -o single.ply --quiet --area-file single.area --stats single.json").exit_code == 0);
+  const Run areas = run(s, "mesh " + a + " -O out3 --area-files --quiet");
+  CHECK(areas.exit_code == 0);
+  CHECK(slurp(s.dir / "out3/ligand_2zmm.area") == slurp(s.dir / "single.area"));
+  const std::string csv3 = slurp(s.dir / "out3/summary.csv");
+  CHECK(csv3.substr(0, csv3.find('\n')).ends_with(",skin_area_A2"));
+  const double sum = std::stod(csv3.substr(csv3.rfind(',') + 1));
+  CHECK(std::abs(sum - nlohmann::json::parse(slurp(s.dir / "single.json"))
+                           .at("surface")
+                           .at("atom_areas")
+                           .at("skin_sum_A2")
+                           .get<double>()) < 1e-6);
+  CHECK(run(s, "mesh " + a + " -o x.ply --area-files").exit_code == 2);
   const Run listed = run(s, "mesh --list inputs.txt -O out2 --out-format vtk --quiet");
   CHECK(listed.exit_code == 0);
   CHECK(fs::exists(s.dir / "out2/ligand_1hvr_xk263.vtk"));

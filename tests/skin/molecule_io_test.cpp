@@ -753,6 +753,29 @@ TEST_CASE("assemblies: PDB REMARK 350 and mmCIF _pdbx_struct_assembly expand the
   CHECK(read_molecule(data_file("crambin_1crn.pdb"), opt).atoms.size() == 327);
 }
 
+TEST_CASE("models and assemblies together: the header's REMARK 350 expands model 2 (PDB), rows by number (mmCIF)") {
+  // nmr_three_models.pdb with assembly_dimer.pdb's REMARK 350 block in its header.
+  const std::string dir = std::string(SKINMESH_TEST_DATA) + "/readers/";
+  std::ifstream nmr_file(dir + "nmr_three_models.pdb"), dimer_file(dir + "assembly_dimer.pdb");
+  std::string nmr((std::istreambuf_iterator<char>(nmr_file)), {}), remarks, line;
+  for (std::istringstream dimer(std::string((std::istreambuf_iterator<char>(dimer_file)), {}));
+       std::getline(dimer, line);)
+    if (line.rfind("REMARK 350", 0) == 0) remarks += line + "\n";
+  nmr.insert(nmr.find("\nMODEL") + 1, remarks);
+  ReadOptions opt;
+  opt.model = 2;
+  const Molecule two = read_molecule_from_string(nmr, "ensemble.pdb", opt);
+  REQUIRE(two.atoms.size() == 35);
+  const std::string id = "1";
+  opt.assembly = id;
+  const Molecule dimer = read_molecule_from_string(nmr, "ensemble.pdb", opt);
+  REQUIRE(dimer.atoms.size() == 70);
+  for (std::size_t i = 0; i < 35; ++i) {
+    CHECK(dimer.atoms[i].centre == two.atoms[i].centre);  // model 2's atoms, then their copy
+    CHECK(dimer.atoms[35 + i].centre.x() == doctest::Approx(30 - two.atoms[i].centre.x()).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("chains: ReadOptions::chains keeps those chains' atoms in file order; an absent chain is refused") {
   const Molecule all = read_molecule(data_file("hivprotease_xk263_1hvr.pdb"));
   CHECK(skinmesh::skin::chain_names(all) == std::vector<std::string>{"A", "B"});
