@@ -279,10 +279,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
 AtomAreas atom_areas(const skin::Molecule& mol, double probe, const mesher::MeshResult& res, int threads) {
   AtomAreas areas;
   areas.skin = skin::atom_areas(skin::weighted_points(mol, probe), threads);
-  std::vector<std::int32_t> none;
-  const bool have_atoms = res.vertex_data.atom.size() == res.mesh.positions.size();
-  if (!have_atoms) none.assign(res.mesh.positions.size(), -1);
-  areas.mesh = skin::mesh_atom_areas(res.mesh, have_atoms ? res.vertex_data.atom : none, mol.atoms.size());
+  areas.mesh = skin::mesh_atom_areas(res.mesh, res.vertex_data.atom, mol.atoms.size());
   return areas;
 }
 

@@ -316,12 +316,9 @@ PYBIND11_MODULE(skinmesh, m) {
             std::size_t n = atoms ? *atoms : s.atoms;
             if (!atoms && n == 0)
               for (std::int32_t a : s.vertex_data.atom) n = std::max(n, static_cast<std::size_t>(std::max(a, -1) + 1));
-            std::vector<std::int32_t> none;
-            const bool have = s.vertex_data.atom.size() == s.mesh.positions.size();
-            if (!have) none.assign(s.mesh.positions.size(), -1);
             std::vector<double> areas;
             try {
-              areas = skin::mesh_atom_areas(s.mesh, have ? s.vertex_data.atom : none, n);
+              areas = skin::mesh_atom_areas(s.mesh, s.vertex_data.atom, n);
             } catch (const std::invalid_argument& e) {
               throw InputError("", 0, e.what());
             }

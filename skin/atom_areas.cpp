@@ -11,10 +11,11 @@ namespace skinmesh::skin {
 std::vector<double> mesh_atom_areas(const geometry::IndexedMesh& mesh, const std::vector<std::int32_t>& atom,
                                     std::size_t num_atoms) {
   const std::size_t nv = mesh.positions.size();
+  std::vector<double> areas(num_atoms, 0.0);
+  if (atom.empty()) return areas;  // no vertex names an atom
   if (atom.size() != nv)
     throw std::invalid_argument("mesh_atom_areas: " + std::to_string(atom.size()) + " atoms for " + std::to_string(nv) +
                                 " vertices");
-  std::vector<double> areas(num_atoms, 0.0);
   for (const auto& t : mesh.triangles) {
     if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
       throw std::invalid_argument("mesh_atom_areas: a triangle's vertex index is out of range");

@@ -19,8 +19,9 @@ namespace skinmesh::skin {
 /// the atom nearest in power distance among those of the vertex's mixed
 /// cell). Corners of atom -1 or >= num_atoms add to no atom, so the entries
 /// sum to the mesh's area exactly when every vertex has an atom (up to
-/// rounding). Returns num_atoms entries. Throws std::invalid_argument if
-/// atom.size() != mesh.positions.size() or a triangle's index is out of range.
+/// rounding); an empty `atom` (no atoms known) gives zeros. Returns num_atoms
+/// entries. Throws std::invalid_argument if `atom` is neither empty nor one
+/// per vertex, or a triangle's index is out of range.
 std::vector<double> mesh_atom_areas(const geometry::IndexedMesh& mesh, const std::vector<std::int32_t>& atom,
                                     std::size_t num_atoms);
 
