@@ -559,10 +559,12 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     // with it, then the bands' triangles on the shared vertices.
     const auto glue_start = std::chrono::steady_clock::now();
     out.costs.bands = bands_seconds;
+    // The lowest slab's mesh is taken as it is (garbage-collected, with the
+    // vertex data as its only properties: what appending it to an empty mesh
+    // would make, without a second copy of it at the peak); every other
+    // slab's is appended and then freed, so the peak holds one copy of one
+    // slab at a time.
     geometry::SurfaceMesh& mesh = out.sweep.mesh;
-    mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
-    mesh.add_vertex_property(skin::kVertexRho, 0.0);
-    mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
     {
       std::size_t nv = 0, nf = 0;
       for (const SlabKey& key : keys) {
@@ -571,16 +573,21 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       }
       for (const std::vector<Band>& cut_bands : bands)
         for (const Band& band : cut_bands) nf += band.triangles.size();
+      SlabOutcome& lowest = swept.at(keys[0]);
+      out.costs.slabs.push_back({lowest.seconds, lowest.result->mesh.n_faces()});
+      add_stats(out.sweep.stats, lowest.result->stats);
+      mesh = std::move(lowest.result->mesh);
+      swept.erase(keys[0]);
       mesh.reserve(nv, nf);
     }
-    std::vector<Index> base(keys.size());
-    for (std::size_t k = 0; k < keys.size(); ++k) {
+    std::vector<Index> base(keys.size(), 0);
+    for (std::size_t k = 1; k < keys.size(); ++k) {
       const SlabOutcome& o = swept.at(keys[k]);
       const SlabResult& r = *o.result;
       out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
       add_stats(out.sweep.stats, r.stats);
       base[k] = append_with_vertex_data(mesh, r.mesh);
-      swept.erase(keys[k]);  // its copy is in the glued mesh: the peak holds one copy of the slab at a time
+      swept.erase(keys[k]);
     }
     // Each slab's mesh is a surface whose boundary is its lower curves'
     // samples and its rims, one rim per upper curve (sweep_slab), and every
