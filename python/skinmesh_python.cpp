@@ -1,7 +1,7 @@
 // python/skinmesh_python.cpp: the Python module `skinmesh` (pybind11) — the
 // pipeline's entry points with numpy arrays in and out:
 //   skinmesh.mesh(path_or_atoms, probe=1.4, algorithm="sweep", check=True,
-//                 threads=0) -> Mesh
+//                 threads=0, ..., model=None, assembly=None, chains=None) -> Mesh
 //   skinmesh.check(path_or_atoms, mesh_or_path, probe=1.4) -> dict
 //   skinmesh.read_mesh(path) -> Mesh,  Mesh.write(path)
 // Errors are Python exceptions carrying the command line's one-line messages:
@@ -89,14 +89,59 @@ std::string path_of(const py::object& p) {
   return py::str(os.attr("fsdecode")(os.attr("fspath")(p)));
 }
 
+/// What of a structure file to read (skin::ReadOptions): model (None: the
+/// first; N: the model numbered N), assembly (None or an id) and chains (None,
+/// "A,B" or a list of chain names), as `--model`, `--assembly` and `--chains`.
+struct Selection {
+  py::object model = py::none(), assembly = py::none(), chains = py::none();
+  bool any() const { return !model.is_none() || !assembly.is_none() || !chains.is_none(); }
+};
+
+/// skin::ReadOptions of `sel`; InputError for a bad model, assembly or chain list.
+skin::ReadOptions read_options_of(const Selection& sel) {
+  skin::ReadOptions opt;
+  if (!sel.model.is_none()) {
+    if (!py::isinstance<py::int_>(sel.model) || py::isinstance<py::bool_>(sel.model) || sel.model.cast<long>() < 1)
+      throw InputError("", 0,
+                       "model must be None (the first) or a model number >= 1 (model_numbers() lists a file's; for "
+                       "every model, mesh each in turn)");
+    opt.model = sel.model.cast<int>();
+  }
+  if (!sel.assembly.is_none()) {
+    opt.assembly = py::str(sel.assembly);
+    if (opt.assembly.empty()) throw InputError("", 0, "assembly must be None or an assembly id such as '1'");
+  }
+  if (!sel.chains.is_none()) {
+    std::vector<std::string> names;
+    if (py::isinstance<py::str>(sel.chains)) {
+      const std::string list = sel.chains.cast<std::string>();
+      std::size_t start = 0;
+      while (start <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        names.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+      }
+    } else {
+      for (const py::handle& c : sel.chains) names.push_back(py::str(c));
+    }
+    for (const std::string& n : names)
+      if (n.empty()) throw InputError("", 0, "chains must be chain names such as 'A,B' or ['A', 'B'], none empty");
+    opt.chains = names;
+  }
+  return opt;
+}
+
 /// The atoms of `source`: a path (str, bytes or os.PathLike) read with
-/// read_molecule, or an array (n, 4) of x, y, z (Å) and radius (Å).
-skin::Molecule molecule_of(const py::object& source) {
+/// read_molecule and the selection `sel`, or an array (n, 4) of x, y, z (Å)
+/// and radius (Å), for which a selection is an InputError.
+skin::Molecule molecule_of(const py::object& source, const Selection& sel = {}) {
   if (is_path(source)) {
     const std::string path = path_of(source);
+    const skin::ReadOptions opt = read_options_of(sel);
     py::gil_scoped_release release;
-    return skin::read_molecule(path);
+    return skin::read_molecule(path, opt);
   }
+  if (sel.any()) throw InputError("", 0, "model, assembly and chains select from a structure file, not from an array");
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(source);
   if (!a || a.ndim() != 2 || a.shape(1) != 4)
     throw InputError("", 0, "atoms must be a path or an array of shape (n, 4): x, y, z, radius (Å)");
@@ -163,11 +208,12 @@ void check_probe_and_threads(double probe, int threads) {
 }
 
 PyMesh mesh(const py::object& source, double probe, const std::string& algorithm, bool check, int threads,
-            bool analytic, const std::string& cavities, double min_cavity_volume) {
+            bool analytic, const std::string& cavities, double min_cavity_volume, const py::object& model,
+            const py::object& assembly, const py::object& chains) {
   if (algorithm != "sweep" && algorithm != "dynamic")
     throw InputError("", 0, "algorithm must be 'sweep' or 'dynamic', not '" + algorithm + "'");
   check_probe_and_threads(probe, threads);
-  const skin::Molecule mol = molecule_of(source);
+  const skin::Molecule mol = molecule_of(source, {model, assembly, chains});
   mesher::MeshOptions options;
   options.algorithm = mesher::algorithm_named(algorithm);
   options.probe_radius = probe;
@@ -204,8 +250,9 @@ PyMesh mesh(const py::object& source, double probe, const std::string& algorithm
 
 /// The check's report as a Python dict (through its JSON).
 py::dict check(const py::object& source, const py::object& mesh_or_path, double probe, bool strict,
-               const std::string& cavities, double min_cavity_volume) {
-  const skin::Molecule mol = molecule_of(source);
+               const std::string& cavities, double min_cavity_volume, const py::object& model,
+               const py::object& assembly, const py::object& chains) {
+  const skin::Molecule mol = molecule_of(source, {model, assembly, chains});
   geometry::IndexedMesh m;
   verify::SkinCheckOptions options;
   options.shells = shell_selection(cavities, min_cavity_volume);
@@ -384,7 +431,8 @@ PYBIND11_MODULE(skinmesh, m) {
 
   m.def("mesh", &mesh, py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("algorithm") = "sweep",
         py::arg("check") = true, py::arg("threads") = 0, py::arg("analytic") = false, py::arg("cavities") = "keep",
-        py::arg("min_cavity_volume") = 0.0,
+        py::arg("min_cavity_volume") = 0.0, py::arg("model") = py::none(), py::arg("assembly") = py::none(),
+        py::arg("chains") = py::none(),
         "Meshes the skin (shrink factor 1/2) of a molecule: a file (.pdb .cif .pqr .xyzr .xyzrn, optionally .gz) or an "
         "array (n, 4) of x, y, z, radius in Å. Atom weights are 2 (r + probe)². algorithm: 'sweep' (Cheng & Shi "
         "2004) or 'dynamic' (the dynamic-skin baseline). With check=True the mesh is verified and Mesh.ok says "
@@ -396,22 +444,29 @@ PYBIND11_MODULE(skinmesh, m) {
         "and stats['static_fallback'] says why. Raises InputError for a bad file, array or option, TopologyError "
         "or GeometryError if the algorithm fails. cavities='remove' keeps the outer surfaces only (as MSMS writes), "
         "'only' the cavities only, and cavities enclosing less than min_cavity_volume Å³ are left out: the check "
-        "verifies every shell first, and stats['surface']['shells'] says what was kept.");
+        "verifies every shell first, and stats['surface']['shells'] says what was kept. From a PDB or mmCIF file, "
+        "model=N reads the model numbered N (the first by default; model_numbers() lists them), assembly='1' the "
+        "biological assembly of that id expanded (copies of chain A are named A, A2, ...), chains='A,B' (or a "
+        "list) only those chains (chain_names() lists them), as --model, --assembly and --chains do.");
   m.def(
       "measures",
-      [](const py::object& source, double probe, int threads) {
+      [](const py::object& source, double probe, int threads, const py::object& model, const py::object& assembly,
+         const py::object& chains) {
         check_probe_and_threads(probe, threads);
-        return analytic_measures(molecule_of(source), probe, threads);
+        return analytic_measures(molecule_of(source, {model, assembly, chains}), probe, threads);
       },
-      py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("threads") = 0,
+      py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("threads") = 0, py::arg("model") = py::none(),
+      py::arg("assembly") = py::none(), py::arg("chains") = py::none(),
       "Area (area_A2, Å²) and enclosed volume (volume_A3, Å³, cavities negative) of the exact skin of a molecule, "
       "integrated over its sphere and hyperboloid patches without a mesh (relative accuracy about 1e-10). "
-      "Returns a dict; patch_cells counts the mixed cells whose patch is not empty.");
+      "Returns a dict; patch_cells counts the mixed cells whose patch is not empty. model, assembly and chains "
+      "select atoms of a structure file as in mesh().");
   m.def(
       "atom_areas",
-      [](const py::object& source, double probe, int threads) {
+      [](const py::object& source, double probe, int threads, const py::object& model, const py::object& assembly,
+         const py::object& chains) {
         check_probe_and_threads(probe, threads);
-        const skin::Molecule mol = molecule_of(source);
+        const skin::Molecule mol = molecule_of(source, {model, assembly, chains});
         std::vector<double> areas;
         {
           py::gil_scoped_release release;
@@ -419,11 +474,13 @@ PYBIND11_MODULE(skinmesh, m) {
         }
         return array_of<double>(areas.size(), 1, [&](std::size_t i, std::size_t) { return areas[i]; });
       },
-      py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("threads") = 0,
+      py::arg("path_or_atoms"), py::arg("probe") = 1.4, py::arg("threads") = 0, py::arg("model") = py::none(),
+      py::arg("assembly") = py::none(), py::arg("chains") = py::none(),
       "The exact skin's area per atom (Å², float64 array, one entry per atom in input order), without a mesh: each "
       "sphere patch belongs to its atom, and each hyperboloid or concave sphere patch is cut among its atoms by "
       "their power bisectors (the rule of Mesh.atom). The entries sum to measures()['area_A2'] within about 1e-10 "
-      "relative; redundant atoms (no skin) get 0.");
+      "relative; redundant atoms (no skin) get 0. model, assembly and chains select atoms of a structure file as in "
+      "mesh().");
   m.def(
       "vdw_radii",
       [](const std::vector<std::string>& elements) {
@@ -437,13 +494,34 @@ PYBIND11_MODULE(skinmesh, m) {
       "Bondi's, and 2.0 Å for an element Bondi does not list. For atoms given as arrays, e.g. from an MDAnalysis "
       "AtomGroup's elements.");
   m.def("check", &check, py::arg("path_or_atoms"), py::arg("mesh"), py::arg("probe") = 1.4, py::arg("strict") = false,
-        py::arg("cavities") = "keep", py::arg("min_cavity_volume") = 0.0,
+        py::arg("cavities") = "keep", py::arg("min_cavity_volume") = 0.0, py::arg("model") = py::none(),
+        py::arg("assembly") = py::none(), py::arg("chains") = py::none(),
         "Verifies a mesh (a Mesh, or a mesh file) against the skin of the molecule: closed, manifold, oriented, "
         "no self-intersections, topology, distance to the skin, angles, [L], [U], restricted Delaunay. Returns "
         "the report as a dict; report['problems'] is empty if every check passed. A file that rounds positions "
         "(MSMS, STL, float32 coordinates) is checked to its rounding, without [L], [U] and the restricted "
         "Delaunay test (they hold for the exact positions) unless strict=True, as `skinmesh check` does. cavities and "
-        "min_cavity_volume say which shells the mesh holds, as mesh() took them.");
+        "min_cavity_volume say which shells the mesh holds, and model, assembly and chains which atoms, as mesh() "
+        "took them.");
+  m.def(
+      "model_numbers",
+      [](const py::object& path) {
+        const std::string p = path_of(path);
+        py::gil_scoped_release release;
+        return skin::model_numbers(p);
+      },
+      py::arg("path"),
+      "The model numbers of a PDB or mmCIF file, in file order (a file without models holds model 1): the values "
+      "mesh(model=...) takes. Raises InputError for an unreadable file.");
+  m.def(
+      "chain_names",
+      [](const py::object& path, const py::object& model, const py::object& assembly) {
+        const skin::Molecule mol = molecule_of(path, {model, assembly, py::none()});
+        return skin::chain_names(mol);
+      },
+      py::arg("path"), py::arg("model") = py::none(), py::arg("assembly") = py::none(),
+      "The chain names of a structure file's atoms (of the model, expanded to the assembly if one is named), in "
+      "order of first appearance: the values mesh(chains=...) takes.");
   m.def(
       "read_mesh",
       [](const py::object& path) {

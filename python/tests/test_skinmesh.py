@@ -233,3 +233,47 @@ def test_version_and_bytes_paths(tmp_path):
     back = skinmesh.read_mesh(target)
     assert back.vertices.shape == m.vertices.shape
     assert skinmesh.check(os.fsencode(LIGAND), target)["problems"] == []
+
+
+READERS = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data", "readers")
+NMR = os.path.join(READERS, "nmr_three_models.pdb")
+DIMER_PDB = os.path.join(READERS, "assembly_dimer.pdb")
+DIMER_CIF = os.path.join(READERS, "assembly_dimer.cif")
+
+
+def test_models_assemblies_and_chains_select_atoms_as_the_command_line(tmp_path):
+    # The three-model file's model 2 is model 1 moved by 0.5 Å along x (its
+    # REMARK lines); its mesh is model 1's moved, and the same as
+    # `skinmesh mesh --model 2`.
+    assert skinmesh.model_numbers(NMR) == [1, 2, 3]
+    m1, m2 = skinmesh.mesh(NMR), skinmesh.mesh(NMR, model=2)
+    assert m1.ok and m2.ok
+    assert m1.triangles.shape == m2.triangles.shape
+    assert np.allclose(m2.vertices - m1.vertices, [0.5, 0, 0], atol=1e-9)
+    assert skinmesh.check(NMR, m2, model=2)["problems"] == []
+    assert skinmesh.check(NMR, m2)["problems"] != []  # model 1's atoms: the mesh is off their skin
+    exe = os.environ.get("SKINMESH_BINARY", os.path.join(os.path.dirname(skinmesh.__file__), "..", "skinmesh"))
+    if os.path.exists(exe):
+        out = tmp_path / "m2.ply"
+        subprocess.run([exe, "mesh", NMR, "--model", "2", "-o", str(out), "-q"], check=True)
+        assert np.array_equal(skinmesh.read_mesh(out).vertices, m2.vertices)
+    # Assembly 1 is two copies of the 35-atom model, apart: two bodies, each
+    # of the single chain's area; each copy alone is a chain.
+    for path in (DIMER_PDB, DIMER_CIF):
+        assert skinmesh.chain_names(path) == ["A"]
+        assert skinmesh.chain_names(path, assembly="1") == ["A", "A2"]
+        single = skinmesh.measures(path)["area_A2"]
+        dimer = skinmesh.mesh(path, assembly="1")
+        assert dimer.ok and dimer.stats["atoms"] == 70
+        assert abs(skinmesh.measures(path, assembly="1")["area_A2"] - 2 * single) < 1e-9 * single
+        copy = skinmesh.mesh(path, assembly="1", chains=["A2"])
+        assert copy.ok and copy.stats["atoms"] == 35
+        assert skinmesh.atom_areas(path, assembly="1", chains="A2").sum() == pytest.approx(single, rel=1e-9)
+    with pytest.raises(skinmesh.InputError, match="model 4"):
+        skinmesh.mesh(NMR, model=4)
+    with pytest.raises(skinmesh.InputError, match="model number >= 1"):
+        skinmesh.mesh(NMR, model=0)
+    with pytest.raises(skinmesh.InputError, match="none empty"):
+        skinmesh.mesh(NMR, chains="A,,B")
+    with pytest.raises(skinmesh.InputError, match="not from an array"):
+        skinmesh.mesh(np.array([[0.0, 0.0, 0.0, 1.5]]), chains="A")
