@@ -214,10 +214,17 @@ IndexedMesh read_msms(const std::string& vert_path, const std::string& vert, con
 }  // namespace
 
 IndexedMesh read_msms_from_bytes(const std::string& data, const std::string& name, SkinVertexData* vertex_data) {
-  // The .vert part ends after its three header lines and its records.
+  // With headers, the .vert part ends after its three header lines and the
+  // count of records they give; without (-no_header), at the first line of
+  // fewer than 6 fields: a vertex record has at least 6 numbers, an MSMS face
+  // record 5 (or 3, from tools that write the indices alone).
   const std::vector<std::string_view> lines = split_lines(data);
-  const std::size_t nv = msms_header(name, lines, 0, "vertex");
-  const std::size_t face_line = 3 + nv;
+  std::size_t face_line = 0;
+  if (msms_first_record(lines) == 0) {
+    while (face_line < lines.size() && split_blanks(lines[face_line]).size() >= 6) ++face_line;
+  } else {
+    face_line = 3 + msms_header(name, lines, 0, "vertex");
+  }
   if (face_line >= lines.size())
     throw InputError(name, static_cast<int>(lines.size()), "no .face part after the vertices");
   const std::size_t offset = static_cast<std::size_t>(lines[face_line].data() - data.data());

@@ -107,7 +107,9 @@ geometry::IndexedMesh read_skin_mesh(const std::string& path, SkinVertexData* da
 
 /// Reads an MSMS mesh from `bytes`, the .vert file's content followed by the
 /// .face file's (`name` stands for the paths in messages), as read_skin_mesh()
-/// reads the pair: the in-memory entry point the fuzzers use.
+/// reads the pair, with or without header lines: the in-memory entry point
+/// the fuzzers use. Without headers the .face part begins at the first line
+/// of fewer than 6 fields (a vertex record has at least 6).
 geometry::IndexedMesh read_msms_from_bytes(const std::string& bytes, const std::string& name,
                                            SkinVertexData* data = nullptr);
 

@@ -184,6 +184,13 @@ TEST_CASE("formats: MSMS without header lines (-no_header) and one pair per comp
   CHECK(r.positions == h.positions);
   CHECK(r.triangles == h.triangles);
   CHECK(nd.atom == hd.atom);
+  // In memory without headers too: the .face part starts at its first record.
+  SkinVertexData md;
+  const IndexedMesh mem = read_msms_from_bytes(bare + slurp(s.path("n.face")), "n", &md);
+  CHECK(mem.positions == h.positions);
+  CHECK(mem.triangles == h.triangles);
+  CHECK(md.atom == hd.atom);
+  CHECK_THROWS_AS(read_msms_from_bytes(bare, "n"), InputError);  // no .face part
   // A pair per component: the first NAME, then NAME_1, NAME_2, each its own numbering.
   opt.msms_header = true;
   opt.msms_split_components = true;
