@@ -193,6 +193,11 @@ int run_mesh(MeshArgs& a) {
     areas = atom_areas(mol, a.mol.probe, res, options.threads);
     areas.seconds = since(areas_start);
     peaks.end("atom_areas");
+    // The exact areas are integrated per patch, and a patch is not split by
+    // shell (papers/skin/atom_areas.md): say so where the columns differ.
+    if (res.shells && res.shells->removed_bodies + res.shells->removed_cavities > 0 && !a.mol.quiet)
+      std::cerr << "note: " << a.area_file
+                << ": the exact skin's column counts every shell, the mesh's the kept shells only (--cavities)\n";
   }
   const auto write_start = Clock::now();
   const skin::SkinMeshWriteOptions wopt = write_options(a, &mol);
@@ -427,7 +432,7 @@ Command add_mesh_command(CLI::App& app) {
       "also write each atom's area to this file in MSMS's .area layout: a header line, then per atom "
       "its 1-based number, the exact skin's area and the mesh's (Å²), and with --msms-atom-names its "
       "name (papers/skin/atom_areas.md; costs about 1.6 times --stats' exact area: 1.5 s for maltoporin on 2 "
-      "threads)");
+      "threads). With --cavities remove or only, the exact column still counts every shell");
   cmd->add_flag("--float", mesh.float32,
                 "float32 positions and normals in .ply, .off, .obj, .vtk, .vtp and .vtu (half the size); the mesh is "
                 "checked as the file stores it (default: exact doubles)");
