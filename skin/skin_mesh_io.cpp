@@ -323,7 +323,7 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   int n_atoms = 0;
   for (std::int32_t a : data.atom) n_atoms = std::max(n_atoms, a + 1);
   double area = 0;
-  for (const geometry::ComponentMeasure& c : geometry::component_measures(mesh)) area += c.area;
+  for (const geometry::ComponentMeasure& c : geometry::component_measures(mesh, component)) area += c.area;
   const double density = area > 0 ? mesh.positions.size() / area : 0;
   using geometry::ChunkedWriter;
   using geometry::FileProducer;
@@ -354,6 +354,7 @@ void write_skin_mesh(const std::string& path, const IndexedMesh& mesh, const Ski
   std::vector<Part> parts(static_cast<std::size_t>(components));
   std::vector<Index> local(mesh.positions.size());
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (component[v] == 0) continue;  // in no triangle, so in no component: no part writes it
     Part& part = parts[static_cast<std::size_t>(component[v] - 1)];
     local[v] = static_cast<Index>(part.mesh.positions.size());
     part.mesh.positions.push_back(mesh.positions[v]);

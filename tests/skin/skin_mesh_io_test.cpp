@@ -239,6 +239,25 @@ TEST_CASE("formats: MSMS files written by another program, and broken ones") {
   CHECK(mem.triangles == r.triangles);
 }
 
+TEST_CASE("formats: one MSMS pair per component leaves out a vertex in no triangle") {
+  Scratch s("skinmesh_skin_mesh_io_test_");
+  IndexedMesh m = sphere_mesh();
+  SkinVertexData d = sphere_data(m);
+  const std::size_t n = m.positions.size();
+  m.positions.push_back(Vec3(50, 0, 0));  // isolated: component 0
+  m.normals.push_back(Vec3::UnitZ());
+  d.atom.push_back(0);
+  d.rho.push_back(1.0);
+  d.patch.push_back(d.patch.front());
+  skinmesh::skin::SkinMeshWriteOptions opt;
+  opt.msms_split_components = true;
+  write_skin_mesh(s.path("i.vert"), m, d, opt);
+  CHECK_FALSE(fs::exists(s.path("i_1.vert")));
+  const IndexedMesh r = read_skin_mesh(s.path("i.vert"));
+  CHECK(r.positions.size() == n);
+  CHECK(r.triangles == m.triangles);
+}
+
 TEST_CASE("position storage: a reader gets back exactly stored(), within max_error(), in every format that rounds") {
   // Coordinates of every size and sign, halfway cases of three decimals
   // among them (1.0005 is not a double, so printf rounds its exact value).
