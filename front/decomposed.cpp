@@ -556,7 +556,10 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     }
 
     // 4. The glue: every slab's mesh appended in slab order, its vertex data
-    // with it, then the bands' triangles on the shared vertices.
+    // with it, then the bands' triangles on the shared vertices. What the
+    // slabs' walks made of the complex goes back first (no thread reads it
+    // now): the glue's copies are the sweep's peak.
+    if (opt.release_made_cells) skin.mixed_complex().release_made();
     const auto glue_start = std::chrono::steady_clock::now();
     out.costs.bands = bands_seconds;
     // The lowest slab's mesh is taken as it is (garbage-collected, with the

@@ -87,7 +87,8 @@ struct DecompositionOptions {
   /// reads the complex during the sweep. The groups of components are then
   /// swept in windows of `threads` groups, largest first, and what a window
   /// made goes back before the next, so the made cells of every group do
-  /// not stay beside every group's mesh. The mesh is the same either way.
+  /// not stay beside every group's mesh; with cuts, what the slabs made goes
+  /// back before the glue. The mesh is the same either way.
   /// mesher::mesh_skin() sets it (papers/mesher/decomposition.md, "The made
   /// cells between the stages").
   bool release_made_cells = false;
