@@ -118,7 +118,7 @@ void run_batch_item(const MeshArgs& a, const mesher::MeshOptions& base, BatchIte
     }
     const skin::SkinMeshWriteOptions wopt = write_options(a, &mol);
     AtomAreas areas;
-    if (a.area_files) areas = atom_areas(mol, a.mol.probe, res, base.threads);  // before anything is written
+    if (a.area_files) areas = atom_areas(mol, res);
     skin::write_skin_mesh(item.output, res.mesh, res.vertex_data, wopt);
     if (a.area_files) {
       skin::write_area_file(area_path(item.output), areas.skin, areas.mesh, wopt.msms_atom_names);
@@ -220,6 +220,7 @@ int run_batch(const MeshArgs& a) {
   require_writable(items.front().output);
   mesher::MeshOptions base = mesh_options(a);
   if (!a.threads_given) base.threads = 1;  // the workers share the cores
+  base.skin_atom_areas = a.area_files;
   base.stored_positions = skin::position_storage("mesh." + a.batch_format, write_options(a));
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();

@@ -151,6 +151,7 @@ int run_mesh(MeshArgs& a) {
   peaks.end("read");
   mesher::MeshOptions options = mesh_options(a);
   options.stored_positions = skin::position_storage(a.out, write_options(a));
+  options.skin_atom_areas = !a.area_file.empty();
   if (a.trace) options.sweep.trace = [](const std::string& line) { std::cerr << line << "\n"; };
   ProgressReporter progress(!a.mol.quiet);
   options.progress = [&progress, &peaks](const std::string& stage, double f) {
@@ -185,14 +186,11 @@ int run_mesh(MeshArgs& a) {
     }
     return 3;
   }
-  // Per-atom areas before anything is written: an integration that fails
-  // leaves no mesh without its area file.
+  // The exact per-atom areas came with the mesh (stage "atom_areas"): an
+  // integration that fails leaves no mesh without its area file.
   AtomAreas areas;
   if (!a.area_file.empty()) {
-    const auto areas_start = Clock::now();
-    areas = atom_areas(mol, a.mol.probe, res, options.threads);
-    areas.seconds = since(areas_start);
-    peaks.end("atom_areas");
+    areas = atom_areas(mol, res);
     // The exact areas are integrated per patch, and a patch is not split by
     // shell (papers/skin/atom_areas.md): say so where the columns differ.
     if (res.shells && res.shells->removed_bodies + res.shells->removed_cavities > 0 && !a.mol.quiet)
@@ -226,7 +224,6 @@ int run_mesh(MeshArgs& a) {
       context.area_file = a.area_file;
       context.skin_atom_areas = &areas.skin;
       context.mesh_atom_areas = &areas.mesh;
-      context.atom_areas_seconds = areas.seconds;
     }
     write_text_file(a.stats, mesher::run_summary(res, options, context).dump(2) + "\n");
   }
@@ -281,9 +278,9 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
 
 }  // namespace
 
-AtomAreas atom_areas(const skin::Molecule& mol, double probe, const mesher::MeshResult& res, int threads) {
+AtomAreas atom_areas(const skin::Molecule& mol, const mesher::MeshResult& res) {
   AtomAreas areas;
-  areas.skin = skin::atom_areas(skin::weighted_points(mol, probe), threads);
+  areas.skin = res.skin_atom_areas;
   areas.mesh = skin::mesh_atom_areas(res.mesh, res.vertex_data.atom, mol.atoms.size());
   return areas;
 }

@@ -63,13 +63,12 @@ mesher::MeshOptions mesh_options(const MeshArgs& a);
 struct AtomAreas {
   std::vector<double> skin;  ///< of the exact skin (skin::atom_areas())
   std::vector<double> mesh;  ///< of the mesh (skin::mesh_atom_areas())
-  double seconds = 0;
 };
 
-/// The exact skin's and the mesh's area per atom of `mol` meshed at `probe`
-/// into `res`, on `threads` threads. Throws GeometryError as
-/// skin::atom_areas() does.
-AtomAreas atom_areas(const skin::Molecule& mol, double probe, const mesher::MeshResult& res, int threads);
+/// The exact skin's and the mesh's area per atom of `mol` meshed into `res`
+/// with MeshOptions::skin_atom_areas (the pipeline integrated the exact ones
+/// on its skin; stage "atom_areas" of res.seconds).
+AtomAreas atom_areas(const skin::Molecule& mol, const mesher::MeshResult& res);
 
 /// How the mesh files of a run of `mol` are written: precision, OFF normals,
 /// MSMS decimals, atom names (from `mol`) and the probe radius for its header.

@@ -22,6 +22,7 @@
 #include "morse/critical_points.h"
 #include "skin/molecule_io.h"
 #include "skin/singular_skin.h"
+#include "skin/skin_measures.h"
 #include "skin/skin_surface.h"
 #include "skin/vertex_data.h"
 
@@ -552,6 +553,15 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     if (res.check.ok() && options.stored_positions.lossy())
       run_stored_check(skin, options, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
     std::vector<Index>().swap(res.vertex_cells);
+  }
+  // The exact per-atom areas read every cell of this skin: the same skin that
+  // skin::atom_areas() builds from the points (the same local frame), so the
+  // same values, without a second skin beside the mesh.
+  if (options.skin_atom_areas) {
+    clock.begin("atom_areas");
+    res.skin_atom_areas = skin::atom_areas(skin, thread_count(options.threads));
+    skin.mixed_complex().release_made();
+    clock.end("atom_areas");
   }
   res.seconds = clock.seconds();
   for (const auto& [stage, t] : fallback_clock.seconds()) res.seconds.emplace_back("fallback " + stage, t);

@@ -131,6 +131,11 @@ struct MeshOptions {
   bool static_fallback = false;
   /// Stage 5: verify the mesh (default); the verdict is in MeshResult::check.
   bool check = true;
+  /// After the check, the exact skin's area per atom
+  /// (MeshResult::skin_atom_areas) from the run's own skin: the values
+  /// skin::atom_areas() of the weighted points gives, without building the
+  /// skin a second time (stage "atom_areas"; papers/skin/atom_areas.md).
+  bool skin_atom_areas = false;
   verify::SkinCheckOptions checks;
   /// How the file the mesh goes to stores positions (skin::position_storage
   /// of its path; default exact). When lossy and the check passed, the check
@@ -231,6 +236,11 @@ struct MeshResult {
 
   /// What MeshOptions::shells kept and left out, if it selects.
   std::optional<skin::ShellCounts> shells;
+
+  /// With MeshOptions::skin_atom_areas: the exact skin's area per input point
+  /// (Å², input order, 0 for redundant points; every shell, whatever
+  /// MeshOptions::shells keeps). Empty otherwise.
+  std::vector<double> skin_atom_areas;
 
   /// The check of the positions as MeshOptions::stored_positions stores
   /// them, if it ran (a lossy storage, and the check passed).

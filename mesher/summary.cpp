@@ -222,7 +222,6 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   if (context.read_seconds >= 0) seconds["read"] = context.read_seconds;
   for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
   if (analytic_seconds >= 0) seconds["analytic"] = analytic_seconds;
-  if (context.atom_areas_seconds >= 0) seconds["atom_areas"] = context.atom_areas_seconds;
   // The decomposed sweep's parts (inside "sweep"): per slab, bottom to top,
   // then the bands, the glue and the slabs lost to dropped cuts.
   if (!res.decomposition_costs.slabs.empty()) {

@@ -40,7 +40,6 @@ struct SummaryContext {
   const std::vector<double>* skin_atom_areas = nullptr;
   const std::vector<double>* mesh_atom_areas = nullptr;
   std::string area_file;
-  double atom_areas_seconds = -1;  ///< "seconds"."atom_areas"; negative: absent
 };
 
 /// The summary of a run: input, output, atoms, probe radius, vertices,
