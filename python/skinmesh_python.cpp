@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -101,7 +102,9 @@ struct Selection {
 skin::ReadOptions read_options_of(const Selection& sel) {
   skin::ReadOptions opt;
   if (!sel.model.is_none()) {
-    if (!py::isinstance<py::int_>(sel.model) || py::isinstance<py::bool_>(sel.model) || sel.model.cast<long>() < 1)
+    const bool integer = py::isinstance<py::int_>(sel.model) && !py::isinstance<py::bool_>(sel.model);
+    // Python ints have no bound: compared in Python, so that 2**70 is refused, not wrapped.
+    if (!integer || sel.model < py::int_(1) || sel.model > py::int_(std::numeric_limits<int>::max()))
       throw InputError("", 0,
                        "model must be None (the first) or a model number >= 1 (model_numbers() lists a file's; for "
                        "every model, mesh each in turn)");
@@ -121,8 +124,10 @@ skin::ReadOptions read_options_of(const Selection& sel) {
         names.push_back(list.substr(start, comma - start));
         start = comma + 1;
       }
-    } else {
+    } else if (py::isinstance<py::iterable>(sel.chains)) {
       for (const py::handle& c : sel.chains) names.push_back(py::str(c));
+    } else {
+      names.emplace_back();  // refused below, with the other bad lists
     }
     for (const std::string& n : names)
       if (n.empty()) throw InputError("", 0, "chains must be chain names such as 'A,B' or ['A', 'B'], none empty");

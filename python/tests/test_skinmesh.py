@@ -271,8 +271,11 @@ def test_models_assemblies_and_chains_select_atoms_as_the_command_line(tmp_path)
         assert skinmesh.atom_areas(path, assembly="1", chains="A2").sum() == pytest.approx(single, rel=1e-9)
     with pytest.raises(skinmesh.InputError, match="model 4"):
         skinmesh.mesh(NMR, model=4)
-    with pytest.raises(skinmesh.InputError, match="model number >= 1"):
-        skinmesh.mesh(NMR, model=0)
+    for bad in (0, -1, True, 2**70, "2", 2.0):
+        with pytest.raises(skinmesh.InputError, match="model number >= 1"):
+            skinmesh.mesh(NMR, model=bad)
+    with pytest.raises(skinmesh.InputError, match="none empty"):
+        skinmesh.mesh(NMR, chains=5)
     with pytest.raises(skinmesh.InputError, match="none empty"):
         skinmesh.mesh(NMR, chains="A,,B")
     with pytest.raises(skinmesh.InputError, match="not from an array"):
