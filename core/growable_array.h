@@ -25,7 +25,8 @@
 #endif
 #if defined(__linux__) && !defined(SKINMESH_GROWABLE_ARRAY_ASAN)
 #define SKINMESH_GROWABLE_ARRAY_MMAP 1
-#include <sys/mman.h>  // mmap, mremap, munmap
+#include <sys/mman.h>  // mmap, mremap, munmap, madvise
+#include <unistd.h>    // sysconf
 #else
 #define SKINMESH_GROWABLE_ARRAY_MMAP 0
 #endif
@@ -129,6 +130,23 @@ class GrowableArray {
     if (n > cap_) reallocate(n);
   }
   void clear() { size_ = 0; }
+  /// Gives the whole pages that hold only elements [0, n) back to the system
+  /// (a mapped block's; a no-op for the others and elsewhere than Linux):
+  /// their values are lost, the size and capacity stay. For a consumer that
+  /// has copied the front of the array and reads only the elements from n on
+  /// (SurfaceMesh::append_consuming): the two copies never coexist.
+  void discard_front(std::size_t n) {
+#if SKINMESH_GROWABLE_ARRAY_MMAP
+    if (!mapped(cap_)) return;
+    static const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    const std::size_t bytes = std::min(n, size_) * sizeof(T) / page * page;
+    // MADV_DONTNEED on private anonymous pages cannot fail on a valid range;
+    // if it did, the pages would stay resident and nothing else changes.
+    if (bytes > 0) (void)::madvise(static_cast<void*>(data_), bytes, MADV_DONTNEED);
+#else
+    (void)n;
+#endif
+  }
   void shrink_to_fit() {
     if (size_ < cap_) reallocate(size_);
   }

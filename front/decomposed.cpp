@@ -178,20 +178,12 @@ SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComp
 }
 
 /// Appends `part` (garbage-collected) to `mesh` with its vertex data
-/// (normal, rho, cell); returns the index its vertex 0 gets.
-Index append_with_vertex_data(geometry::SurfaceMesh& mesh, const geometry::SurfaceMesh& part) {
+/// (normal, rho, cell: the properties both carry), emptying `part` as it is
+/// read so that the glue never holds two copies of it
+/// (SurfaceMesh::append_consuming); returns the index its vertex 0 gets.
+Index append_with_vertex_data(geometry::SurfaceMesh& mesh, geometry::SurfaceMesh& part) {
   const Index base = static_cast<Index>(mesh.vertices_size());
-  mesh.append(part);
-  auto normal = mesh.get_vertex_property(skin::kVertexNormal);
-  auto rho = mesh.get_vertex_property(skin::kVertexRho);
-  auto cell = mesh.get_vertex_property(skin::kVertexCell);
-  const auto p_normal = part.get_vertex_property(skin::kVertexNormal);
-  const auto p_rho = part.get_vertex_property(skin::kVertexRho);
-  const auto p_cell = part.get_vertex_property(skin::kVertexCell);
-  for (geometry::Vertex v : part.vertices()) {
-    const geometry::Vertex w(base + v.idx());
-    normal[w] = p_normal[v], rho[w] = p_rho[v], cell[w] = p_cell[v];
-  }
+  mesh.append_consuming(part);
   return base;
 }
 
@@ -284,7 +276,7 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
     mesh.reserve(nv, nf);
   }
   for (Index g = 1; g < groups.count; ++g) {
-    const SweepResult& r = *parts[g];
+    SweepResult& r = *parts[g];
     costs.components.push_back({seconds[g], r.mesh.n_faces()});
     add_stats(out.stats, r.stats);
     append_with_vertex_data(mesh, r.mesh);
@@ -585,8 +577,8 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     }
     std::vector<Index> base(keys.size(), 0);
     for (std::size_t k = 1; k < keys.size(); ++k) {
-      const SlabOutcome& o = swept.at(keys[k]);
-      const SlabResult& r = *o.result;
+      SlabOutcome& o = swept.at(keys[k]);
+      SlabResult& r = *o.result;
       out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
       add_stats(out.sweep.stats, r.stats);
       base[k] = append_with_vertex_data(mesh, r.mesh);

@@ -211,6 +211,35 @@ void SurfaceMesh::append(const SurfaceMesh& other) {
   }
 }
 
+void SurfaceMesh::append_consuming(SurfaceMesh& other) {
+  if (&other == this) throw std::invalid_argument("SurfaceMesh::append_consuming: a mesh cannot be appended to itself");
+  if (other.has_garbage())
+    throw std::invalid_argument("SurfaceMesh::append_consuming: the appended mesh has deleted elements");
+  const Index v0 = Index(vertices_size()), h0 = Index(halfedges_size()), f0 = Index(faces_size());
+  const std::size_t nv = other.vertices_size(), nh = other.halfedges_size(), nf = other.faces_size();
+  vprops_.append_consuming(other.vprops_);
+  hprops_.append_consuming(other.hprops_);
+  eprops_.append_consuming(other.eprops_);
+  fprops_.append_consuming(other.fprops_);
+  // The copied connectivity moves by each kind's offset (invalid handles stay).
+  auto shift_h = [h0](Halfedge h) { return h.is_valid() ? Halfedge(h.idx() + h0) : h; };
+  for (std::size_t i = 0; i < nv; ++i) {
+    VertexConnectivity& c = vconn_[Vertex(Index(v0 + i))];
+    c.halfedge = shift_h(c.halfedge);
+  }
+  for (std::size_t i = 0; i < nh; ++i) {
+    HalfedgeConnectivity& c = hconn_[Halfedge(Index(h0 + i))];
+    if (c.to.is_valid()) c.to = Vertex(c.to.idx() + v0);
+    if (c.face.is_valid()) c.face = Face(c.face.idx() + f0);
+    c.next = shift_h(c.next), c.prev = shift_h(c.prev);
+  }
+  for (std::size_t i = 0; i < nf; ++i) {
+    FaceConnectivity& c = fconn_[Face(Index(f0 + i))];
+    c.halfedge = shift_h(c.halfedge);
+  }
+  other.clear();
+}
+
 Halfedge SurfaceMesh::new_edge(Vertex a, Vertex b) {
   eprops_.push_back();
   hprops_.push_back();

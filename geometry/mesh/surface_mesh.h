@@ -103,6 +103,11 @@ class BasePropertyArray {
   virtual void release() = 0;
   /// Append one element with the default value.
   virtual void push_back() = 0;
+  /// Appends the n elements of `src` if it holds this array's type (else n
+  /// default values), then empties `src`: copied in chunks, each chunk's
+  /// pages of `src` given back as soon as it is copied, so the peak holds one
+  /// copy of the elements plus a chunk. Pre: src is nullptr or has n elements.
+  virtual void append_consuming(BasePropertyArray* src, std::size_t n) = 0;
   /// Keep elements kept[0], kept[1], ... in this order (kept[i] >= i), drop the rest.
   virtual void compact(const std::vector<Index>& kept) = 0;
   /// Deep copy.
@@ -132,6 +137,23 @@ class PropertyArray final : public BasePropertyArray {
   void reserve(std::size_t n) override { data_.reserve(n); }
   void release() override { data_ = PropertyStorage<T>(); }
   void push_back() override { data_.push_back(init_); }
+  void append_consuming(BasePropertyArray* src, std::size_t n) override {
+    const std::size_t base = data_.size();
+    if (src == nullptr || src->type() != typeid(T)) {
+      data_.resize(base + n, init_);
+      return;
+    }
+    auto& from = static_cast<PropertyArray<T>*>(src)->data_;
+    data_.reserve(base + n);
+    // [chosen] about 1 MiB a chunk: a few hundred pages given back at a time.
+    constexpr std::size_t kChunk = std::max<std::size_t>(1, (std::size_t{1} << 20) / sizeof(T));
+    for (std::size_t i = 0; i < n; i += kChunk) {
+      const std::size_t end = std::min(n, i + kChunk);
+      for (std::size_t j = i; j < end; ++j) data_.push_back(from[j]);
+      if constexpr (!std::is_same_v<PropertyStorage<T>, std::vector<T>>) from.discard_front(end);
+    }
+    src->release();
+  }
   void compact(const std::vector<Index>& kept) override {
     for (std::size_t i = 0; i < kept.size(); ++i)
       if (kept[i] != i) data_[i] = data_[kept[i]];
@@ -198,6 +220,16 @@ class PropertyContainer {
   }
   void reserve(std::size_t n) {
     for (auto& a : arrays_) a->reserve(n);
+  }
+  /// Appends `other`'s elements: each array gets the values of `other`'s
+  /// array of the same name and type, or default values where it has none
+  /// (BasePropertyArray::append_consuming). `other` is left with no element
+  /// and no memory (its properties stay).
+  void append_consuming(PropertyContainer& other) {
+    const std::size_t n = other.size_;
+    for (auto& a : arrays_) a->append_consuming(other.find(a->name()), n);
+    size_ += n;
+    other.release();
   }
   /// Every array emptied and its memory given back (the properties stay).
   void release() {
@@ -511,6 +543,15 @@ class SurfaceMesh {
   /// Throws std::invalid_argument if `other` has deleted elements (call its
   /// garbage_collection() first) or is this mesh.
   void append(const SurfaceMesh& other);
+  /// append(other), with every property of this mesh that `other` also has
+  /// (the same name and type) given `other`'s values on the new elements (the
+  /// others their initial value), and `other` emptied as it is read: its
+  /// arrays go back to the system a chunk at a time once copied, so the two
+  /// meshes together never hold much more than the result (the decomposed
+  /// sweep's glue, papers/mesher/decomposition.md). Afterwards `other` has no
+  /// element; its properties stay. O(size of `other`). Throws
+  /// std::invalid_argument as append() does, before anything changes.
+  void append_consuming(SurfaceMesh& other);
 
   /// Add the triangle (a, b, c), counter-clockwise seen from outside, and return it.
   /// Supported: any of the three edges may be new or an existing boundary

@@ -458,6 +458,87 @@ TEST_CASE("SurfaceMesh: append keeps each mesh's connectivity, and the band betw
   CHECK_THROWS_AS(m.append(m), std::invalid_argument);
 }
 
+TEST_CASE("SurfaceMesh: append_consuming makes append's mesh with the shared properties, and empties the part") {
+  // Levels 1 (arrays of a few kB, malloc'd) and 4 (mapped arrays, given back
+  // a page at a time as they are copied).
+  for (int level : {1, 4}) {
+    INFO("level " << level);
+    const IndexedMesh whole = sphere(level);
+    std::vector<int> side(whole.positions.size());
+    for (std::size_t i = 0; i < side.size(); ++i) side[i] = whole.positions[i].z() < 0 ? 0 : 1;
+    IndexedMesh part[2];
+    std::vector<Index> local(whole.positions.size());
+    for (std::size_t i = 0; i < side.size(); ++i) {
+      local[i] = Index(part[side[i]].positions.size());
+      part[side[i]].positions.push_back(whole.positions[i]);
+    }
+    std::vector<std::array<Index, 3>> band;
+    for (const auto& t : whole.triangles) {
+      const int s0 = side[t[0]];
+      if (side[t[1]] == s0 && side[t[2]] == s0)
+        part[s0].triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+      else
+        band.push_back(t);
+    }
+    SurfaceMesh lower = build(part[0]), upper = build(part[1]);
+    auto tag = lower.add_vertex_property<int>("v:tag", -1);
+    auto weight = lower.add_vertex_property<double>("v:weight", 0.25);
+    auto upper_tag = upper.add_vertex_property<int>("v:tag", -2);
+    upper.add_vertex_property<float>("v:weight", 9.0f);  // another type: not copied
+    upper.add_vertex_property<char>("v:only_upper", 'x');
+    for (Vertex v : lower.vertices()) tag[v] = int(v.idx());
+    for (Vertex v : upper.vertices()) upper_tag[v] = 1000 + int(v.idx());
+
+    SurfaceMesh expected = lower;
+    expected.append(upper);
+    const std::size_t nv0 = lower.vertices_size(), nv1 = upper.vertices_size(), nh = upper.halfedges_size();
+    lower.append_consuming(upper);
+    consistent(lower);
+    REQUIRE(lower.vertices_size() == expected.vertices_size());
+    REQUIRE(lower.halfedges_size() == expected.halfedges_size());
+    REQUIRE(lower.faces_size() == expected.faces_size());
+    CHECK(lower.halfedges_size() == expected.halfedges_size());
+    bool same = true;
+    for (Vertex v : expected.vertices())
+      same = same && lower.position(v) == expected.position(v) && lower.halfedge(v) == expected.halfedge(v);
+    for (std::size_t i = 0; i < expected.halfedges_size(); ++i) {
+      const Halfedge h(static_cast<Index>(i));
+      same = same && lower.to_vertex(h) == expected.to_vertex(h) && lower.face(h) == expected.face(h) &&
+             lower.next(h) == expected.next(h) && lower.prev(h) == expected.prev(h);
+    }
+    for (Face f : expected.faces()) same = same && lower.halfedge(f) == expected.halfedge(f);
+    CHECK(same);
+    CHECK(nh > 0);
+    // The shared property is copied, the one of another type is not.
+    bool tags = true, weights = true;
+    for (std::size_t i = 0; i < nv0 + nv1; ++i) {
+      const Vertex v(static_cast<Index>(i));
+      tags = tags && tag[v] == (i < nv0 ? int(i) : 1000 + int(i - nv0));
+      weights = weights && (i < nv0 || weight[v] == 0.25);
+    }
+    CHECK(tags);
+    CHECK(weights);
+    // The part is empty and keeps its properties.
+    CHECK(upper.vertices_size() == 0);
+    CHECK(upper.halfedges_size() == 0);
+    CHECK(upper.faces_size() == 0);
+    CHECK(upper.get_vertex_property<char>("v:only_upper"));
+    // The band glues the appended boundaries into the whole sphere.
+    auto glued = [&](Index i) { return Vertex((side[i] ? Index(nv0) : 0) + local[i]); };
+    for (const auto& t : band) lower.add_triangle(glued(t[0]), glued(t[1]), glued(t[2]));
+    consistent(lower);
+    CHECK(lower.boundary_loops().empty());
+    CHECK(euler(lower) == 2);
+  }
+  SurfaceMesh m = build(icosahedron());
+  SurfaceMesh with_garbage = build(icosahedron());
+  with_garbage.delete_face(Face(0));
+  CHECK_THROWS_AS(m.append_consuming(with_garbage), std::invalid_argument);
+  CHECK(with_garbage.n_faces() == 19);  // refused before anything changed
+  CHECK_THROWS_AS(m.append_consuming(m), std::invalid_argument);
+  CHECK(m.n_faces() == 20);
+}
+
 TEST_CASE("SurfaceMesh: from_indexed_mesh refuses non-manifold input") {
   SUBCASE("duplicated triangle") {
     IndexedMesh im = icosahedron();
