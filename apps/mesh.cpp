@@ -391,16 +391,18 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_option("--slabs", mesh.opt.decomposition.slabs,
                   "cut the skin at N - 1 heights and sweep the slabs on the threads, glued along the cut curves' "
                   "shared samples (papers/mesher/decomposition.md); fewer slabs where no admissible cut height "
-                  "exists; 1: one sweep; 0: one slab per 2500 atoms (the mesh depends on N, never on --threads)")
+                  "exists; 1: one sweep; 0 (default): one slab per 2500 atoms of the largest group of components "
+                  "if it holds most of the skin, else one sweep (the mesh depends on N, never on --threads)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
                 "with --slabs: cuts that pass around the critical points they meet, which large components need "
                 "(experimental; papers/mesher/decomposition.md, \"The detoured cut\")");
-  cmd->add_flag("--no-component-sweeps", mesh.no_component_sweeps,
-                "sweep every skin component in one front (default without --slabs: each group of whole "
-                "components is swept on its own, on the threads, and the meshes appended; "
-                "papers/mesher/decomposition.md, \"Components\")");
+  cmd->add_flag(
+      "--no-component-sweeps", mesh.no_component_sweeps,
+      "sweep every skin component in one front, with no slab unless --slabs asks (default: each group of whole "
+      "components is swept on its own, on the threads, and the meshes appended; "
+      "papers/mesher/decomposition.md, \"Components\")");
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
                   "this many seconds (nothing is written; 0: no limit)")

@@ -357,10 +357,23 @@ int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt) {
   return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(opt.max_slabs)));
 }
 
+int automatic_slabs(std::size_t atoms, const morse::MorseSmaleComplex& ms, const DecompositionOptions& opt,
+                    const SweepOptions& sweep) {
+  if (!opt.components || sweep.observer || sweep.trace || ms.critical.empty()) return 1;
+  const morse::ComponentGroups groups = morse::component_groups(ms);
+  if (groups.count < 2) return automatic_slabs(atoms, opt);
+  std::vector<std::size_t> points(static_cast<std::size_t>(groups.count), 0);
+  for (const Index g : groups.group) ++points[g];
+  const std::size_t largest = *std::max_element(points.begin(), points.end());
+  if (2 * largest <= ms.critical.size()) return 1;
+  const double share = static_cast<double>(largest) / static_cast<double>(ms.critical.size());
+  return automatic_slabs(static_cast<std::size_t>(std::llround(share * static_cast<double>(atoms))), opt);
+}
+
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const SweepOptions& sweep) {
   if (opt.slabs < 0) throw std::invalid_argument("choose_cuts: the slab count must be positive, or 0 (automatic)");
-  const int slabs = opt.slabs == 0 ? automatic_slabs(skin.points().size(), opt) : opt.slabs;
+  const int slabs = opt.slabs == 0 ? automatic_slabs(skin.points().size(), ms, opt, sweep) : opt.slabs;
   std::vector<Cut> cuts;
   if (slabs == 1 || ms.critical.empty()) return cuts;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;

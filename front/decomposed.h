@@ -20,14 +20,16 @@ namespace skinmesh::front {
 /// Tuning of the cut choice and of the glue. Lengths are multiples of the
 /// disc radius r = disc_factor · rho of the point concerned.
 struct DecompositionOptions {
-  /// Slabs wanted (1: no cut; 0: automatic_slabs() of the atom count). The
-  /// cut heights aim at equal parts of the range of the critical heights, so
-  /// they depend on the input and on this number only, never on the thread
-  /// count. Fewer slabs come out where no admissible height is found near a
-  /// target.
-  int slabs = 1;
+  /// Slabs wanted (1: no cut; 0, the default: automatic_slabs() of the input,
+  /// one sweep below 3,750 atoms). The cut heights aim at equal parts of the
+  /// range of the critical heights, so they depend on the input and on this
+  /// number only, never on the thread count. Fewer slabs come out where no
+  /// admissible height is found near a target.
+  int slabs = 0;
   /// With slabs = 0: one slab per this many atoms. [measured] 2500: maltoporin
-  /// (10,123 atoms) in 4 slabs (papers/mesher/decomposition.md, increment 5).
+  /// (10,123 atoms) in 4 slabs, whose sweeps on two threads take 0.34 s
+  /// against 0.58 s for one sweep, at a lower peak than one sweep's
+  /// (papers/mesher/decomposition.md, "Slabs by default").
   double atoms_per_slab = 2500;
   /// With slabs = 0: at most this many slabs.
   int max_slabs = 256;
@@ -97,6 +99,18 @@ struct DecompositionOptions {
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
 /// round(atoms / opt.atoms_per_slab), within [1, opt.max_slabs].
 int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt);
+
+/// The slab count of DecompositionOptions::slabs = 0 for a skin of `atoms`
+/// atoms with the Morse–Smale complex `ms`: automatic_slabs() of the atoms'
+/// share of the largest group of whole components (morse::component_groups(),
+/// its share of the critical points) when that group holds more than half of
+/// them; 1 when it does not (the groups already share the threads, and cuts
+/// through many groups would need heights clear of all of them), when
+/// opt.components is off (one front for everything), and where the sweep has
+/// an observer or a trace (they follow one front, as the paper's Algorithm 1).
+/// Depends on the input only, never on the thread count.
+int automatic_slabs(std::size_t atoms, const morse::MorseSmaleComplex& ms, const DecompositionOptions& opt,
+                    const SweepOptions& sweep);
 
 /// One cut of the decomposition: its height (Å) and its sampled level
 /// curves (morse::level_curves(), oriented by n × e).

@@ -99,7 +99,8 @@ struct MeshOptions {
   /// decomposition.slabs > 1 the skin is cut at regular heights chosen in
   /// stage 2 (front::choose_cuts) and swept slab by slab, the slabs glued
   /// along the shared cut samples (front::sweep_decomposed); the stages
-  /// after the sweep see one closed mesh as before. Default 1: one sweep.
+  /// after the sweep see one closed mesh as before. Default 0: automatic
+  /// (front::automatic_slabs: one sweep below 3,750 atoms).
   front::DecompositionOptions decomposition;
   /// Stage 4: run the local refinement (default). Without it the mesh is
   /// closed, embedded and of the right topology but [L], [U] and the

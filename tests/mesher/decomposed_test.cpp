@@ -296,6 +296,51 @@ TEST_CASE("morse: component groups follow the integral lines, and refuse what th
   CHECK(morse::component_groups(broken).count == 1);
 }
 
+TEST_CASE("decomposed sweep: the default slab count follows the largest group of components") {
+  const auto complex_of = [](const std::vector<geometry::WeightedPoint>& pts) {
+    const skin::SkinSurface skin(pts);
+    return morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  };
+  CHECK(mesher::MeshOptions{}.decomposition.slabs == 0);  // automatic unless asked
+  front::DecompositionOptions opt;
+  opt.atoms_per_slab = 1;  // a slab per atom: small inputs tell the rule
+  const front::SweepOptions sweep;
+  // A dumbbell (6 critical points, linked by its saddles' lines) and two
+  // separate balls (a minimum and a maximum each, one group together): the
+  // dumbbell's group holds 6 of the 10 points, so the 6 atoms count as 3.6.
+  const morse::MorseSmaleComplex uneven =
+      complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(3.5, 0, 0), 4.0}, {Vec3(40, 0, 0), 4.0}, {Vec3(60, 0, 0), 4.0}});
+  REQUIRE(uneven.critical.size() == 10);
+  REQUIRE(morse::component_groups(uneven).count == 2);
+  CHECK(front::automatic_slabs(6, uneven, opt, sweep) == 4);
+  CHECK(front::automatic_slabs(6000, uneven, front::DecompositionOptions{}, sweep) == 1);  // 3,600 atoms: 1
+  CHECK(front::automatic_slabs(6500, uneven, front::DecompositionOptions{}, sweep) == 2);  // 3,900 atoms: 2
+  // Two equal dumbbells: no group holds more than half; the groups share the threads.
+  const morse::MorseSmaleComplex even =
+      complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(3.5, 0, 0), 4.0}, {Vec3(40, 0, 0), 4.0}, {Vec3(43.5, 0, 0), 4.0}});
+  REQUIRE(morse::component_groups(even).count == 2);
+  CHECK(front::automatic_slabs(4, even, opt, sweep) == 1);
+  // One group (here a refused partition): every atom counts.
+  morse::MorseSmaleComplex broken = even;
+  for (morse::IntegralLine& line : broken.lines)
+    if (line.saddle != kInvalidIndex) {
+      line.end = kInvalidIndex;
+      break;
+    }
+  REQUIRE(morse::component_groups(broken).count == 1);
+  CHECK(front::automatic_slabs(4, broken, opt, sweep) == 4);
+  // One front where groups are off or someone follows the sweep.
+  front::DecompositionOptions one_front = opt;
+  one_front.components = false;
+  CHECK(front::automatic_slabs(6, uneven, one_front, sweep) == 1);
+  front::SweepOptions traced;
+  traced.trace = [](const std::string&) {};
+  CHECK(front::automatic_slabs(6, uneven, opt, traced) == 1);
+  front::SweepOptions observed;
+  observed.observer = [](const front::SweepEvent&) {};
+  CHECK(front::automatic_slabs(4, broken, opt, observed) == 1);
+}
+
 TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
   const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
   mesher::MeshOptions options;

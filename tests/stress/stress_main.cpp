@@ -75,8 +75,8 @@ struct Options {
   double cost_bound_us = 100.0;
   bool list = false;
   bool fork = true;
-  /// MeshOptions::decomposition.slabs of every case (1: one sweep, 0: automatic).
-  int slabs = 1;
+  /// MeshOptions::decomposition.slabs of every case (1: one sweep, 0: automatic, the mesher's default).
+  int slabs = 0;
   /// MeshOptions::decomposition.detours of every case (cuts that pass around critical points).
   bool cut_detours = false;
   /// MeshOptions::decomposition.components of every case (false: every skin
@@ -99,8 +99,8 @@ struct Options {
                "                   (default 100; 0: no bound)\n"
                "  --list           list the cases and exit\n"
                "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n"
-               "  --slabs N        mesh every case decomposed into (up to) N slabs, 0: automatic "
-               "(papers/mesher/decomposition.md)\n"
+               "  --slabs N        mesh every case decomposed into (up to) N slabs, 1: one sweep, 0: automatic\n"
+               "                   (default, as skinmesh mesh; papers/mesher/decomposition.md)\n"
                "  --cut-detours    with --slabs: cuts that pass around the critical points they meet\n"
                "  --no-component-sweeps  every skin component in one sweep (default: one sweep per group of\n"
                "                   whole components, papers/mesher/decomposition.md)\n",
@@ -734,10 +734,11 @@ int main(int argc, char** argv) {
       if (rep.run.kind != RunResult::Mesh) continue;
       ++meshed, slabs += rep.run.slabs, dropping += rep.run.dropped_cuts > 0, dropped += rep.run.dropped_cuts;
     }
+    const std::string wanted = opt.slabs == 0 ? "automatic" : "up to " + std::to_string(opt.slabs) + " each";
     std::printf(
-        "decomposition (papers/mesher/decomposition.md): %zu slabs over %zu meshed cases (up to %d each); cuts "
+        "decomposition (papers/mesher/decomposition.md): %zu slabs over %zu meshed cases (%s); cuts "
         "dropped in %zu cases, %zu in all\n",
-        slabs, meshed, opt.slabs, dropping, dropped);
+        slabs, meshed, wanted.c_str(), dropping, dropped);
     for (const CaseReport& rep : reports)
       if (rep.run.dropped_cuts > 0)
         std::printf("  %s: %zu slabs, %zu cuts dropped%s\n", rep.c->name.c_str(), rep.run.slabs, rep.run.dropped_cuts,
