@@ -360,6 +360,9 @@ int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt) {
 int automatic_slabs(std::size_t atoms, const morse::MorseSmaleComplex& ms, const DecompositionOptions& opt,
                     const SweepOptions& sweep) {
   if (!opt.components || sweep.observer || sweep.trace || ms.critical.empty()) return 1;
+  // A group's share only lowers the count: one slab for every atom means one
+  // for any group, without the groups' cost (small inputs).
+  if (automatic_slabs(atoms, opt) == 1) return 1;
   const morse::ComponentGroups groups = morse::component_groups(ms);
   if (groups.count < 2) return automatic_slabs(atoms, opt);
   std::vector<std::size_t> points(static_cast<std::size_t>(groups.count), 0);
