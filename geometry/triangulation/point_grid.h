@@ -487,15 +487,23 @@ class BasicFlatPointGrid {
     // from the ends, in decreasing index order) their starts, shifted down.
     const std::size_t num_columns = std::size_t(dims_[0] * dims_[1]);
     column_cells_.assign(num_columns + 1, 0);
-    for (const Vec3& p : points)
-      if (p.allFinite()) ++column_cells_[column_of(p) + 1];
+    // Each point's column and z cell, computed once (the sorts below compare
+    // z cells many times per point).
+    std::vector<std::uint32_t> point_column(points.size()), point_z(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].allFinite()) {
+        point_column[i] = std::uint32_t(column_of(points[i]));
+        point_z[i] = std::uint32_t(cell(points[i].z(), 2));
+        ++column_cells_[point_column[i] + 1];
+      }
     for (std::size_t c = 1; c <= num_columns; ++c) column_cells_[c] += column_cells_[c - 1];
     std::vector<std::uint32_t> order(n);
     for (std::size_t i = points.size(); i-- > 0;)
-      if (points[i].allFinite()) order[--column_cells_[column_of(points[i]) + 1]] = std::uint32_t(i);
+      if (points[i].allFinite()) order[--column_cells_[point_column[i] + 1]] = std::uint32_t(i);
+    std::vector<std::uint32_t>().swap(point_column);
     for (std::size_t c = 0; c < num_columns; ++c) column_cells_[c] = column_cells_[c + 1];
     column_cells_[num_columns] = std::uint32_t(n);
-    auto z_of = [&](std::uint32_t i) { return std::uint32_t(cell(points[i].z(), 2)); };
+    auto z_of = [&](std::uint32_t i) { return point_z[i]; };
     for (std::size_t c = 0; c < num_columns; ++c)
       if (column_cells_[c + 1] - column_cells_[c] > 1)
         std::sort(order.begin() + column_cells_[c], order.begin() + column_cells_[c + 1],
