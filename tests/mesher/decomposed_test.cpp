@@ -53,6 +53,17 @@ std::vector<std::array<double, 9>> triangle_set(const geometry::IndexedMesh& m) 
   return out;
 }
 
+/// `ms` with the first saddle's integral line left without an end (as a
+/// line whose trace failed): component_groups() must refuse to vouch for it.
+morse::MorseSmaleComplex with_an_open_line(morse::MorseSmaleComplex ms) {
+  for (morse::IntegralLine& line : ms.lines)
+    if (line.saddle != kInvalidIndex) {
+      line.end = kInvalidIndex;
+      break;
+    }
+  return ms;
+}
+
 struct Case {
   const char* file;
   double probe;
@@ -287,13 +298,7 @@ TEST_CASE("morse: component groups follow the integral lines, and refuse what th
     CHECK(g.group[i] == (ms.critical[i].position.x() < 20 ? g.group[0] : 1 - g.group[0]));
   }
   // A line without an end: the partition is refused (one group).
-  morse::MorseSmaleComplex broken = ms;
-  for (morse::IntegralLine& line : broken.lines)
-    if (line.saddle != kInvalidIndex) {
-      line.end = kInvalidIndex;
-      break;
-    }
-  CHECK(morse::component_groups(broken).count == 1);
+  CHECK(morse::component_groups(with_an_open_line(ms)).count == 1);
 }
 
 TEST_CASE("decomposed sweep: the default slab count follows the largest group of components") {
@@ -321,12 +326,7 @@ TEST_CASE("decomposed sweep: the default slab count follows the largest group of
   REQUIRE(morse::component_groups(even).count == 2);
   CHECK(front::automatic_slabs(4, even, opt, sweep) == 1);
   // One group (here a refused partition): every atom counts.
-  morse::MorseSmaleComplex broken = even;
-  for (morse::IntegralLine& line : broken.lines)
-    if (line.saddle != kInvalidIndex) {
-      line.end = kInvalidIndex;
-      break;
-    }
+  const morse::MorseSmaleComplex broken = with_an_open_line(even);
   REQUIRE(morse::component_groups(broken).count == 1);
   CHECK(front::automatic_slabs(4, broken, opt, sweep) == 4);
   // One front where groups are off or someone follows the sweep.
