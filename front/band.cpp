@@ -96,7 +96,11 @@ Corridor make_corridor(const std::vector<Vec3>& rim, const std::vector<Vec3>& cu
 /// from the nearest curve vertex s0 has the curve vertex b = s0 + d - j (mod
 /// m), so with u = j - d its rim-step triangle (rim i, rim i+1, curve b) and
 /// its curve-step triangle (curve b-1, curve b, rim i mod n) depend on (i, u)
-/// only. Each row keeps the u of every corridor's states in that row.
+/// only. Each row keeps the u of every corridor's states in that row, up to
+/// kMaxCachedStates in all: beyond (the whole-annulus fallback of a long
+/// band, whose states alone take 9 bytes each) every value is computed
+/// where it is needed, as without the cache, so the cache never doubles a
+/// large search's memory.
 class QualityCache {
  public:
   QualityCache(const std::vector<Vec3>& rim, const std::vector<Vec3>& rim_normals, const std::vector<Vec3>& curve,
@@ -114,28 +118,37 @@ class QualityCache {
         }
     for (std::size_t i = 0; i <= n; ++i)
       start_[i + 1] = start_[i] + (last[i] >= first_[i] ? static_cast<std::size_t>(last[i] - first_[i] + 1) : 0);
+    if (start_[n + 1] > kMaxCachedStates) return;  // computed where needed
     constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
     rim_step_.assign(start_[n + 1], kUnknown);
     curve_step_.assign(start_[n + 1], kUnknown);
   }
   /// Quality of the rim-step triangle of state (i, j) of corridor c (i < n).
   double rim_step(const Corridor& c, std::size_t i, std::size_t j) {
-    double& q = rim_step_[slot(c, i, j)];
-    if (std::isnan(q)) {
+    auto make = [&] {
       const std::size_t n = rim_.size(), a0 = i, a1 = (i + 1) % n, b = c.walk[j % curve_.size()];
-      q = outward_quality(rim_[a0], rim_[a1], curve_[b], rim_normals_[a0], rim_normals_[a1], curve_normals_[b]);
-    }
+      return outward_quality(rim_[a0], rim_[a1], curve_[b], rim_normals_[a0], rim_normals_[a1], curve_normals_[b]);
+    };
+    if (rim_step_.empty()) return make();
+    double& q = rim_step_[slot(c, i, j)];
+    if (std::isnan(q)) q = make();
     return q;
   }
   /// Quality of the curve-step triangle of state (i, j) of corridor c (j < m).
   double curve_step(const Corridor& c, std::size_t i, std::size_t j) {
-    double& q = curve_step_[slot(c, i, j)];
-    if (std::isnan(q)) {
+    auto make = [&] {
       const std::size_t m = curve_.size(), b = c.walk[j % m], b1 = c.walk[(j + 1) % m], a = i % rim_.size();
-      q = outward_quality(curve_[b1], curve_[b], rim_[a], curve_normals_[b1], curve_normals_[b], rim_normals_[a]);
-    }
+      return outward_quality(curve_[b1], curve_[b], rim_[a], curve_normals_[b1], curve_normals_[b], rim_normals_[a]);
+    };
+    if (curve_step_.empty()) return make();
+    double& q = curve_step_[slot(c, i, j)];
+    if (std::isnan(q)) q = make();
     return q;
   }
+  /// Values kept at most (two doubles each: 64 MiB). [chosen] far above a
+  /// band's corridor (maltoporin's: about 30,000), far below the whole
+  /// annulus of curves of thousands of samples.
+  static constexpr std::size_t kMaxCachedStates = std::size_t{1} << 22;
 
  private:
   std::size_t slot(const Corridor& c, std::size_t i, std::size_t j) const {
