@@ -522,76 +522,14 @@ MixedComplex::MixedComplex(const geometry::RegularTriangulation& rt, int threads
 
   // The cells' geometry and planes are made on first use (make_cell(),
   // make_planes()).
-  made_cells_ = std::make_unique<std::atomic<const MixedCell*>[]>(num_cells);
-  cell_planes_ = std::make_unique<std::atomic<const CellPlane*>[]>(num_cells);
-  for (std::size_t c = 0; c < num_cells; ++c) {
-    made_cells_[c].store(nullptr, std::memory_order_relaxed);
-    cell_planes_[c].store(nullptr, std::memory_order_relaxed);
-  }
+  made_cells_.init(num_cells, num_cells);
+  made_planes_.init(num_cells, neighbors_.size());
 }
 
 // MixedComplex Cells and Planes Made on First Use
 
-const CellPlane MixedComplex::kMakingPlanes{Vec3::Zero(), 0.0, kInvalidIndex, kInvalidIndex};
-const MixedCell MixedComplex::kMakingCell{};
-
-namespace {
-
-/// Makes the value of `slot` once: if it is nullptr, marks it `making`,
-/// calls make() and stores its result; if another thread makes it, waits for
-/// it (a few microseconds). If make() throws, the slot is cleared and the
-/// error passed on (a thread that waited makes it again and meets the error
-/// itself).
-template <class T, class Make>
-const T* make_once(std::atomic<const T*>& slot, const T* making, Make&& make) {
-  const T* seen = nullptr;
-  while (!slot.compare_exchange_strong(seen, making, std::memory_order_acquire)) {
-    while (seen == making) {
-      std::this_thread::yield();
-      seen = slot.load(std::memory_order_acquire);
-    }
-    if (seen != nullptr) return seen;
-  }
-  try {
-    const T* made = make();
-    slot.store(made, std::memory_order_release);
-    return made;
-  } catch (...) {
-    slot.store(nullptr, std::memory_order_release);
-    throw;
-  }
-}
-
-}  // namespace
-
-template <class T>
-T* MixedComplex::allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n,
-                               Index c) const {
-  static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= alignof(std::max_align_t));
-  constexpr std::size_t kBlockBytes = std::size_t{160} << 10;  // [chosen] a lock per several hundred cells
-  const std::lock_guard<std::mutex> lock(made_mutex_);
-  if (blocks.empty() || (used + n) * sizeof(T) > blocks.back().size()) {
-    const std::size_t block = std::max<std::size_t>(kBlockBytes / sizeof(T), n);
-    GrowableArray<std::byte> bytes;
-    bytes.reserve(block * sizeof(T));  // one block of exactly this size: it never moves
-    bytes.resize(block * sizeof(T));
-    std::uninitialized_default_construct_n(reinterpret_cast<T*>(bytes.data()), block);
-    blocks.push_back(std::move(bytes));
-    used = 0;
-  }
-  T* p = std::launder(reinterpret_cast<T*>(blocks.back().data())) + used;
-  used += n;
-  made_bytes_ += n * sizeof(T);
-  made_ids_.push_back(c);
-  return p;
-}
-
 const MixedCell* MixedComplex::make_cell(Index c) const {
-  return make_once(made_cells_[c], &kMakingCell, [&] {
-    MixedCell* out = allocate_made<MixedCell>(cell_blocks_, cell_block_used_, 1, c);
-    fill_cell(c, *out);
-    return out;
-  });
+  return made_cells_.make(c, 1, [&](MixedCell* out) { fill_cell(c, *out); });
 }
 
 void MixedComplex::fill_cell(Index c, MixedCell& m) const {
@@ -619,8 +557,7 @@ const MixedComplex::MovedFocus* MixedComplex::moved_focus(Index c) const {
 }
 
 Vec3 MixedComplex::focus_of_cell(Index c) const {
-  const MixedCell* made = made_cells_[c].load(std::memory_order_acquire);
-  if (made != nullptr && made != &kMakingCell) return made->focus;
+  if (const MixedCell* made = made_cells_.find(c)) return made->focus;
   const CellSimplex& x = simplices_[c];
   if (const MovedFocus* moved = x.dim == 3 ? moved_focus(c) : nullptr) return moved->focus;
   std::array<WeightedPoint, 4> p;
@@ -638,11 +575,7 @@ MixedCell MixedComplex::cell_value(Index c) const {
 }
 
 const CellPlane* MixedComplex::make_planes(Index c) const {
-  return make_once(cell_planes_[c], &kMakingPlanes, [&] {
-    CellPlane* out = allocate_made<CellPlane>(plane_blocks_, plane_block_used_, num_planes(c), c);
-    fill_planes(c, out);
-    return out;
-  });
+  return made_planes_.make(c, num_planes(c), [&](CellPlane* out) { fill_planes(c, out); });
 }
 
 void MixedComplex::fill_planes(Index c, CellPlane* out) const {
@@ -686,7 +619,7 @@ void MixedComplex::fill_planes(Index c, CellPlane* out) const {
     }
     const double off = (1.0 - s) * n.dot(za) + s * n.dot(zY);
     SKINMESH_ASSERT_MSG(std::isfinite(off) && n.allFinite(), "non-finite plane in the mixed complex");
-    out[i] = {coface ? Vec3(-n) : n, coface ? -off : off, nb, k};
+    out[i] = {coface ? Vec3(-n) : n, coface ? -off : off};
   }
 }
 
@@ -696,22 +629,11 @@ void MixedComplex::planes_into(Index c, std::vector<CellPlane>& out) const {
 }
 
 void MixedComplex::release_made() const {
-  const std::lock_guard<std::mutex> lock(made_mutex_);
-  for (const Index c : made_ids_) {
-    made_cells_[c].store(nullptr, std::memory_order_relaxed);
-    cell_planes_[c].store(nullptr, std::memory_order_relaxed);
-  }
-  made_ids_ = GrowableArray<Index>();
-  std::vector<GrowableArray<std::byte>>().swap(plane_blocks_);
-  std::vector<GrowableArray<std::byte>>().swap(cell_blocks_);
-  plane_block_used_ = cell_block_used_ = 0;
-  made_bytes_ = 0;
+  made_cells_.release();
+  made_planes_.release();
 }
 
-std::size_t MixedComplex::made_bytes() const {
-  const std::lock_guard<std::mutex> lock(made_mutex_);
-  return made_bytes_;
-}
+std::size_t MixedComplex::made_bytes() const { return made_cells_.bytes() + made_planes_.bytes(); }
 
 Index MixedComplex::num_cells_of_dim(int d) const {
   Index n = 0;
@@ -753,11 +675,12 @@ Index MixedComplex::locate(const Vec3& x, Index hint) const {
   for (std::size_t step = 0; step < max_walk_steps_; ++step) {
     double worst = tol;
     Index next = kInvalidIndex;
-    for (const CellPlane& p : planes(c)) {
-      const double v = p.normal.dot(x) - p.offset;
+    const std::span<const CellPlane> ps = planes(c);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const double v = ps[i].normal.dot(x) - ps[i].offset;
       if (v > worst) {
         worst = v;
-        next = p.neighbor;
+        next = neighbors_[simplices_[c].first_plane + i];
       }
     }
     if (next == kInvalidIndex) return c;

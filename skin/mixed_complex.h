@@ -5,15 +5,22 @@
 // Notes: papers/skin/mixed_complex.md
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <span>
+#include <stdexcept>
+#include <thread>
+#include <type_traits>
 #include <vector>
 
+#include "core/assert.h"
 #include "core/growable_array.h"
 #include "core/types.h"
 #include "geometry/kernel/weighted_point.h"
@@ -27,18 +34,18 @@ using geometry::WeightedPoint;
 
 /// One bounding plane of a mixed cell, as seen from that cell: the cell lies
 /// in {x : normal·x <= offset}. `normal` is a unit vector (Å⁰), `offset` in Å.
-/// `neighbor` is the cell on the other side of the plane (it shares the
-/// plane, papers/skin/skin_math.md §2.3). The two cells are a simplex X and a
-/// coface Y = X ∪ {k}; `extra` is k, the point of the triangulation in Y and
-/// not in X, on both sides. Made by MixedComplex::planes() on first use: the
+/// The cell on the other side of plane i of cell c is MixedComplex::
+/// neighbors(c)[i] (it shares the plane, papers/skin/skin_math.md §2.3). The
+/// two cells are a simplex X and a coface Y = X ∪ {k}, k = MixedComplex::
+/// extra_vertex(X, Y). Made by MixedComplex::planes() on first use: the
 /// plane is computed as X sees it, and Y stores it negated (exactly: negation
-/// commutes with rounding, so both sides read the same numbers).
+/// commutes with rounding, so both sides read the same numbers). The
+/// neighbour is not repeated here: 32 bytes a made plane instead of 40.
 struct CellPlane {
   Vec3 normal;
   double offset;
-  Index neighbor;
-  Index extra;
 };
+static_assert(sizeof(CellPlane) == 32, "CellPlane: a unit normal and an offset");
 
 /// The mixed cell mu_X of a simplex X of the regular triangulation and the
 /// quadric patch f_X it carries (papers/skin/skin_math.md §3.2 with s = 1/2):
@@ -77,6 +84,120 @@ struct CellSimplex {
   bool bounding = false;
 };
 static_assert(sizeof(CellSimplex) == 24, "CellSimplex: 24 bytes a cell");
+
+// MadeStore Definition
+
+/// Values made on first use for a fixed set of keys (the cells of a mixed
+/// complex), read without a lock: per key a 4-byte slot, 0 before its values
+/// are made, 1 while a thread makes them, else 2 + their handle in blocks of
+/// pages that never move (block << kShift | offset; a list of more values than
+/// a block holds gets a block of its own). A pointer per key would take 8
+/// bytes for every cell of the complex, most never read
+/// (papers/mesher/decomposition.md, "Normals and rho from the cell").
+/// Preconditions: at most `max_values` values are made between two
+/// release() calls (each key's list once), and release() runs while no other
+/// thread reads or makes.
+template <class T>
+class MadeStore {
+ public:
+  /// Values per block: 160 KiB of them, rounded down to a power of two.
+  static constexpr unsigned kShift = std::bit_width((std::size_t{160} << 10) / sizeof(T)) - 1;
+  static constexpr std::size_t kBlock = std::size_t{1} << kShift;
+
+  /// Slots for `keys` keys, all unmade, and a block table for `max_values` values.
+  void init(std::size_t keys, std::size_t max_values) {
+    slots_ = std::make_unique<std::atomic<std::uint32_t>[]>(keys);
+    for (std::size_t k = 0; k < keys; ++k) slots_[k].store(0, std::memory_order_relaxed);
+    // Every block but the last is at least half full, or holds one list
+    // larger than a block.
+    max_blocks_ = 3 * (max_values / kBlock + 1) + 2;
+    if (max_blocks_ > (std::size_t{0xffffffff} - 2) >> kShift)
+      throw std::length_error("mixed complex: too many cells for 32-bit handles of the made cells");
+    blocks_ = std::make_unique<GrowableArray<std::byte>[]>(max_blocks_);
+  }
+  /// Key k's values, or nullptr if they are not made (or being made).
+  const T* find(Index k) const {
+    const std::uint32_t h = slots_[k].load(std::memory_order_acquire);
+    if (h < 2) [[unlikely]]
+      return nullptr;
+    return at(h - 2);
+  }
+  /// Key k's values, made of n values by fill(T*) if no thread made them
+  /// yet; if another thread is making them, waits for it (a few
+  /// microseconds). If fill throws, the slot is cleared and the error passed
+  /// on (a thread that waited makes them again and meets the error itself).
+  template <class Fill>
+  const T* make(Index k, std::size_t n, Fill&& fill) {
+    std::atomic<std::uint32_t>& slot = slots_[k];
+    std::uint32_t seen = 0;
+    while (!slot.compare_exchange_strong(seen, 1, std::memory_order_acquire)) {
+      while (seen == 1) {
+        std::this_thread::yield();
+        seen = slot.load(std::memory_order_acquire);
+      }
+      if (seen != 0) return at(seen - 2);
+    }
+    try {
+      const std::uint32_t h = allocate(k, n);
+      T* out = const_cast<T*>(at(h));
+      fill(out);
+      slot.store(h + 2, std::memory_order_release);
+      return out;
+    } catch (...) {
+      slot.store(0, std::memory_order_release);
+      throw;
+    }
+  }
+  /// Every slot unmade again and every block given back to the system.
+  void release() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const Index k : made_keys_) slots_[k].store(0, std::memory_order_relaxed);
+    made_keys_ = GrowableArray<Index>();
+    for (std::size_t b = 0; b < num_blocks_; ++b) blocks_[b] = GrowableArray<std::byte>();
+    num_blocks_ = used_ = 0;
+    bytes_ = 0;
+  }
+  /// Bytes of the values made since the last release.
+  std::size_t bytes() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return bytes_;
+  }
+
+ private:
+  const T* at(std::uint32_t h) const {
+    return std::launder(reinterpret_cast<const T*>(blocks_[h >> kShift].data())) + (h & (kBlock - 1));
+  }
+  /// Room for n values (the handle of the first); records key k.
+  std::uint32_t allocate(Index k, std::size_t n) {
+    static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= alignof(std::max_align_t));
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (num_blocks_ == 0 || used_ + n > kBlock) {
+      SKINMESH_ASSERT_MSG(num_blocks_ < max_blocks_, "MadeStore: more values made than declared");
+      const std::size_t size = std::max(kBlock, n);
+      GrowableArray<std::byte>& bytes = blocks_[num_blocks_++];
+      bytes.reserve(size * sizeof(T));  // exactly this size: the block never moves
+      bytes.resize(size * sizeof(T));
+      std::uninitialized_default_construct_n(reinterpret_cast<T*>(bytes.data()), size);
+      used_ = 0;
+    }
+    const auto h = static_cast<std::uint32_t>(((num_blocks_ - 1) << kShift) | used_);
+    used_ = n > kBlock ? kBlock : used_ + n;  // a list larger than a block fills it
+    bytes_ += n * sizeof(T);
+    made_keys_.push_back(k);
+    return h;
+  }
+
+  std::unique_ptr<std::atomic<std::uint32_t>[]> slots_;
+  std::unique_ptr<GrowableArray<std::byte>[]> blocks_;
+  std::size_t max_blocks_ = 0;
+  mutable std::mutex mutex_;  ///< guards the members below and the block table's growth
+  std::size_t num_blocks_ = 0;
+  std::size_t used_ = 0;  ///< values used in the last block
+  std::size_t bytes_ = 0;
+  /// The keys made since the last release: 4 bytes per key made, so that
+  /// release() costs what was made, not the number of keys.
+  GrowableArray<Index> made_keys_;
+};
 
 // MixedComplex Definition
 
@@ -174,6 +295,9 @@ class MixedComplex {
   double f(Index c, const Vec3& x) const;
   /// grad f_X(x) = 2 (P_perp y - P_par y) (Å).
   Vec3 gradient(Index c, const Vec3& x) const;
+  /// The skin's unit outward normal at x in cell c: gradient(c, x)
+  /// normalized (the value SkinSurface::sample's gradient gives).
+  Vec3 unit_normal(Index c, const Vec3& x) const { return gradient(c, x).normalized(); }
   /// Local length scale rho(x) = |x - z_X| (Å), papers/skin/skin_math.md §4.1
   /// (s = 1/2).
   double rho(Index c, const Vec3& x) const { return (x - cell(c).focus).norm(); }
@@ -216,19 +340,6 @@ class MixedComplex {
   const MovedFocus* moved_focus(Index c) const;
   /// Writes the planes of cell c into out[0 .. num_planes).
   void fill_planes(Index c, CellPlane* out) const;
-  /// Room for n values of type T in `blocks` (the last one `used` values
-  /// full), counted in made_bytes_; under made_mutex_. A block is a
-  /// GrowableArray of bytes, so at its size (160 KiB) pages mapped on their
-  /// own: release_made() gives them back to the system, where freed heap
-  /// blocks of malloc would stay resident and only serve later small blocks
-  /// (papers/mesher/decomposition.md, "The made cells between the stages").
-  /// Records cell c in made_ids_, so that release_made() clears the slots of
-  /// the cells made, not of every cell.
-  template <class T>
-  T* allocate_made(std::vector<GrowableArray<std::byte>>& blocks, std::size_t& used, std::size_t n, Index c) const;
-  /// The markers of a cell whose planes, or geometry, a thread is making.
-  static const CellPlane kMakingPlanes;
-  static const MixedCell kMakingCell;
 
   /// A tetrahedron cell's focus and focus weight moved by order_flat_foci().
   struct MovedFocus {
@@ -241,23 +352,15 @@ class MixedComplex {
   std::vector<CellSimplex> simplices_;  ///< per cell, and one more: the end of the last plane list
   std::vector<MovedFocus> moved_foci_;  ///< by increasing cell
   std::vector<Index> neighbors_;        ///< per cell, the cells across its planes (first_plane, num_planes)
-  /// Per cell, its planes once made (nullptr before; a marker while a thread
-  /// makes them), in blocks of the store below: 8 bytes per cell, and 40 per
-  /// plane only for the cells read.
-  mutable std::unique_ptr<std::atomic<const CellPlane*>[]> cell_planes_;
-  /// Per cell, its geometry once made (nullptr before; kMakingCell while a
-  /// thread makes it): 8 bytes per cell, and 88 only for the cells read.
-  mutable std::unique_ptr<std::atomic<const MixedCell*>[]> made_cells_;
-  mutable std::mutex made_mutex_;                               ///< guards the blocks below
-  mutable std::vector<GrowableArray<std::byte>> plane_blocks_;  ///< of CellPlane
-  mutable std::size_t plane_block_used_ = 0;                    ///< planes used in plane_blocks_.back()
-  mutable std::vector<GrowableArray<std::byte>> cell_blocks_;   ///< of MixedCell
-  mutable std::size_t cell_block_used_ = 0;                     ///< cells used in cell_blocks_.back()
-  mutable std::size_t made_bytes_ = 0;  ///< bytes of the cells and planes made since the last release
-  /// The cells whose geometry or planes were made since the last release, in
-  /// the order made (a cell twice if both were): 4 bytes per cell made, so
-  /// that release_made() costs what was made, not the size of the complex.
-  mutable GrowableArray<Index> made_ids_;
+  /// Per cell, its planes once made: 4 bytes per cell, and 40 per plane only
+  /// for the cells read. The blocks are pages mapped on their own:
+  /// release_made() gives them back to the system, where freed heap blocks of
+  /// malloc would stay resident (papers/mesher/decomposition.md, "The made
+  /// cells between the stages").
+  mutable MadeStore<CellPlane> made_planes_;
+  /// Per cell, its geometry once made: 4 bytes per cell, and 88 only for the
+  /// cells read.
+  mutable MadeStore<MixedCell> made_cells_;
   std::vector<Index> vertex_cell_;
   double length_scale_ = 1.0;
   std::size_t max_walk_steps_ = 64;  ///< bound of locate()'s walk, from the cell count
@@ -265,15 +368,15 @@ class MixedComplex {
 };
 
 inline std::span<const CellPlane> MixedComplex::planes(Index c) const {
-  const CellPlane* p = cell_planes_[c].load(std::memory_order_acquire);
-  if (p == nullptr || p == &kMakingPlanes) [[unlikely]]
+  const CellPlane* p = made_planes_.find(c);
+  if (p == nullptr) [[unlikely]]
     p = make_planes(c);
   return {p, num_planes(c)};
 }
 
 inline const MixedCell& MixedComplex::cell(Index c) const {
-  const MixedCell* p = made_cells_[c].load(std::memory_order_acquire);
-  if (p == nullptr || p == &kMakingCell) [[unlikely]]
+  const MixedCell* p = made_cells_.find(c);
+  if (p == nullptr) [[unlikely]]
     p = make_cell(c);
   return *p;
 }

@@ -530,8 +530,7 @@ std::array<double, 4> patch_atom_areas(const MixedComplex& mc, Index c) {
       const Vec3 d = pj.z - pi.z;
       const double len = d.norm();
       const Vec3 n = d / len;
-      half_spaces.push_back(
-          {n, n.dot(0.5 * (pi.z + pj.z)) + (pi.w - pj.w) / (2.0 * len), kInvalidIndex, kInvalidIndex});
+      half_spaces.push_back({n, n.dot(0.5 * (pi.z + pj.z)) + (pi.w - pj.w) / (2.0 * len)});
     }
     areas[i] = integrate_piece(mc, c, s, half_spaces).area;
   }

@@ -141,15 +141,18 @@ bool SkinSurface::project_along_line(const Vec3& q, const Vec3& n, double delta,
     lo = -std::numeric_limits<double>::infinity();
     hi = std::numeric_limits<double>::infinity();
     Index exit_hi = kInvalidIndex, exit_lo = kInvalidIndex;
-    for (const CellPlane& p : mc.planes(c)) {
+    const std::span<const CellPlane> ps = mc.planes(c);
+    const std::span<const Index> across = mc.neighbors(c);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const CellPlane& p = ps[i];
       const double dn = p.normal.dot(n);
       const double rhs = p.offset - p.normal.dot(q);
       if (dn > 0) {
         const double t = rhs / dn;
-        if (t < hi) hi = t, exit_hi = p.neighbor;
+        if (t < hi) hi = t, exit_hi = across[i];
       } else if (dn < 0) {
         const double t = rhs / dn;
-        if (t > lo) lo = t, exit_lo = p.neighbor;
+        if (t > lo) lo = t, exit_lo = across[i];
       }
     }
     return std::pair<Index, Index>{exit_lo, exit_hi};

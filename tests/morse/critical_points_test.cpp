@@ -187,12 +187,14 @@ TEST_CASE("rotated bcc lattice: a cocircular sliver's focus adds no saddles") {
     for (Index t = 0; t < mc.num_cells(); ++t) {
       const skin::MixedCell& T = mc.cell(t);
       if (T.dim != 3 || T.bounding) continue;
-      for (const skin::CellPlane& f : mc.planes(t)) {
-        if (mc.cell(f.neighbor).dim != 2) continue;
-        for (const skin::CellPlane& g : mc.planes(f.neighbor))
-          if (g.neighbor != t && mc.cell(g.neighbor).dim == 3 &&
-              f.normal.dot(mc.cell(g.neighbor).focus - T.focus) < -1e-9 * mc.length_scale())
-            ++inverted;  // outward normal of T at f points away from the other focus
+      const auto faces = mc.planes(t);
+      for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Index tri = mc.neighbors(t)[i];
+        if (mc.cell(tri).dim != 2) continue;
+        for (const Index other : mc.neighbors(tri))
+          if (other != t && mc.cell(other).dim == 3 &&
+              faces[i].normal.dot(mc.cell(other).focus - T.focus) < -1e-9 * mc.length_scale())
+            ++inverted;  // outward normal of T at the face points away from the other focus
       }
     }
     CHECK(inverted == 0);

@@ -7,6 +7,7 @@
 // several threads make them at once.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -109,14 +110,16 @@ void check_against_scan(const std::vector<geometry::WeightedPoint>& pts, int thr
       ++mismatches;
       continue;
     }
-    std::size_t i = 0;
-    for (const skin::CellPlane& p : range) {
-      const auto [nb, extra] = sc.planes[c][i++];
-      if (p.neighbor != nb || p.extra != extra) ++mismatches;
+    for (std::size_t i = 0; i < range.size(); ++i) {
+      const skin::CellPlane& p = range[i];
+      const auto [nb, extra] = sc.planes[c][i];
+      if (mc.neighbors(c)[i] != nb || mc.extra_vertex(c, nb) != extra) ++mismatches;
       // The neighbour's copy is this plane negated, bit for bit.
       bool mirrored = false;
-      for (const skin::CellPlane& q : mc.planes(nb))
-        mirrored = mirrored || (q.neighbor == c && q.offset == -p.offset && q.normal == -p.normal);
+      const auto across = mc.planes(nb);
+      for (std::size_t j = 0; j < across.size(); ++j)
+        mirrored =
+            mirrored || (mc.neighbors(nb)[j] == c && across[j].offset == -p.offset && across[j].normal == -p.normal);
       CHECK(mirrored);
       const bool coface = mc.cell(nb).dim < m.dim;  // this cell is Y
       const skin::MixedCell& X = coface ? mc.cell(nb) : m;
@@ -144,8 +147,7 @@ std::vector<std::vector<skin::CellPlane>> all_planes(const skin::MixedComplex& m
 bool same_planes(std::span<const skin::CellPlane> planes, const std::vector<skin::CellPlane>& ref) {
   if (planes.size() != ref.size()) return false;
   for (std::size_t i = 0; i < ref.size(); ++i)
-    if (planes[i].neighbor != ref[i].neighbor || planes[i].extra != ref[i].extra ||
-        std::memcmp(planes[i].normal.data(), ref[i].normal.data(), sizeof(double) * 3) != 0 ||
+    if (std::memcmp(planes[i].normal.data(), ref[i].normal.data(), sizeof(double) * 3) != 0 ||
         std::memcmp(&planes[i].offset, &ref[i].offset, sizeof(double)) != 0)
       return false;
   return true;
@@ -165,8 +167,7 @@ bool same_complex(const skin::MixedComplex& a, const skin::MixedComplex& b) {
     for (const skin::CellPlane& p : a.planes(c)) {
       const skin::CellPlane q = *pb;
       ++pb;
-      if (p.neighbor != q.neighbor || p.extra != q.extra ||
-          std::memcmp(p.normal.data(), q.normal.data(), sizeof(double) * 3) != 0 ||
+      if (std::memcmp(p.normal.data(), q.normal.data(), sizeof(double) * 3) != 0 ||
           std::memcmp(&p.offset, &q.offset, sizeof(double)) != 0)
         return false;
     }
@@ -216,17 +217,17 @@ TEST_CASE("mixed complex: cells and planes made on first use, again after a rele
   const skin::SkinSurface skin(pts, 1);
   const skin::MixedComplex& mc = skin.mixed_complex();
   CHECK(mc.made_bytes() == 0);  // the construction makes none
-  // The neighbour lists are the planes' neighbours, and the extra vertex of
-  // each pair is the plane's.
+  // One plane per neighbour; each neighbour lists the cell back, and sees
+  // the same extra vertex across the shared plane.
   std::size_t planes = 0;
   for (Index c = 0; c < mc.num_cells(); ++c) {
     const auto nb = mc.neighbors(c);
     const auto pl = mc.planes(c);
     REQUIRE(nb.size() == pl.size());
     for (std::size_t i = 0; i < nb.size(); ++i) {
-      CHECK(nb[i] == pl[i].neighbor);
-      CHECK(mc.extra_vertex(c, nb[i]) == pl[i].extra);
-      CHECK(mc.extra_vertex(nb[i], c) == pl[i].extra);
+      const auto back = mc.neighbors(nb[i]);
+      CHECK(std::count(back.begin(), back.end(), c) == 1);
+      CHECK(mc.extra_vertex(c, nb[i]) == mc.extra_vertex(nb[i], c));
     }
     planes += pl.size();
   }
@@ -280,6 +281,42 @@ TEST_CASE("mixed complex: cells and planes made on first use, again after a rele
   }
   CHECK(differ == 0);
   CHECK(mc.made_bytes() == std::size_t(mc.num_cells()) * sizeof(skin::MixedCell));
+}
+
+TEST_CASE("mixed complex: a cell with more planes than a block of the made store") {
+  // A ball at the centre of a shell of 6,000 balls (radii jittered, so that
+  // no five centres are cospherical): the centre's vertex cell has a plane
+  // per shell ball it sees, more than a block of skin::MadeStore holds, so
+  // its planes get a block of their own between cells with ordinary blocks.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> jitter(0.9999, 1.0001);
+  std::vector<geometry::WeightedPoint> pts{{Vec3::Zero(), 4.0}};
+  for (int i = 0; i < 6000; ++i) {
+    Vec3 d(g(rng), g(rng), g(rng));
+    pts.push_back({40.0 * jitter(rng) * d.normalized(), 4.0});
+  }
+  const skin::SkinSurface skin(pts, 1);
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  const Index centre = mc.vertex_cell(0);
+  REQUIRE(centre != kInvalidIndex);
+  REQUIRE(mc.num_planes(centre) > skin::MadeStore<skin::CellPlane>::kBlock);
+  std::vector<std::vector<skin::CellPlane>> ref(mc.num_cells());
+  for (Index c = 0; c < mc.num_cells(); ++c) mc.planes_into(c, ref[c]);  // computed and not kept
+  CHECK(mc.made_bytes() == 0);
+  // Ordinary cells before and after the large one, then every cell again.
+  const Index before = centre > 0 ? centre - 1 : centre + 1, after = centre + 1 < mc.num_cells() ? centre + 1 : before;
+  CHECK(same_planes(mc.planes(before), ref[before]));
+  CHECK(same_planes(mc.planes(centre), ref[centre]));
+  CHECK(same_planes(mc.planes(after), ref[after]));
+  std::size_t wrong = 0, planes = 0;
+  for (Index c = 0; c < mc.num_cells(); ++c) {
+    wrong += same_planes(mc.planes(c), ref[c]) ? 0 : 1;
+    planes += mc.num_planes(c);
+  }
+  CHECK(wrong == 0);
+  CHECK(mc.made_bytes() == planes * sizeof(skin::CellPlane));
+  CHECK(same_planes(mc.planes(centre), ref[centre]));  // still where it was made
 }
 
 }  // TEST_SUITE
