@@ -703,41 +703,37 @@ void SurfaceMesh::delete_vertex(Vertex v) {
 
 void SurfaceMesh::garbage_collection() {
   if (!has_garbage()) return;
-  // Old -> new index maps; kept lists (new -> old) drive the compaction.
+  // Old -> new index maps (detail::CompactionMap) drive the compaction.
   auto build = [](std::size_t n, auto deleted) {
-    std::pair<std::vector<Index>, std::vector<Index>> r;  // (map, kept)
+    std::pair<std::vector<Index>, std::size_t> r;  // (map, kept)
     r.first.assign(n, kInvalidIndex);
     for (std::size_t i = 0; i < n; ++i)
-      if (!deleted(Index(i))) {
-        r.first[i] = Index(r.second.size());
-        r.second.push_back(Index(i));
-      }
+      if (!deleted(Index(i))) r.first[i] = Index(r.second++);
     return r;
   };
-  auto [vmap, vkept] = build(vertices_size(), [&](Index i) { return is_deleted(Vertex(i)); });
-  auto [emap, ekept] = build(edges_size(), [&](Index i) { return is_deleted(Edge(i)); });
-  auto [fmap, fkept] = build(faces_size(), [&](Index i) { return is_deleted(Face(i)); });
-  std::vector<Index> hkept;
-  hkept.reserve(2 * ekept.size());
-  for (Index e : ekept) {
-    hkept.push_back(2 * e);
-    hkept.push_back(2 * e + 1);
-  }
+  const auto [vmap, vkept] = build(vertices_size(), [&](Index i) { return is_deleted(Vertex(i)); });
+  const auto [emap, ekept] = build(edges_size(), [&](Index i) { return is_deleted(Edge(i)); });
+  const auto [fmap, fkept] = build(faces_size(), [&](Index i) { return is_deleted(Face(i)); });
   auto hmap = [&](Halfedge h) { return h.is_valid() ? Halfedge(2 * emap[h.idx() >> 1] + (h.idx() & 1u)) : h; };
 
-  for (Index v : vkept) vconn_[Vertex(v)].halfedge = hmap(vconn_[Vertex(v)].halfedge);
-  for (Index f : fkept) fconn_[Face(f)].halfedge = hmap(fconn_[Face(f)].halfedge);
-  for (Index hi : hkept) {
-    HalfedgeConnectivity& c = hconn_[Halfedge(hi)];
-    c.to = Vertex(vmap[c.to.idx()]);
-    if (c.face.is_valid()) c.face = Face(fmap[c.face.idx()]);
-    c.next = hmap(c.next);
-    c.prev = hmap(c.prev);
+  for (std::size_t v = 0; v < vmap.size(); ++v)
+    if (vmap[v] != kInvalidIndex) vconn_[Vertex(Index(v))].halfedge = hmap(vconn_[Vertex(Index(v))].halfedge);
+  for (std::size_t f = 0; f < fmap.size(); ++f)
+    if (fmap[f] != kInvalidIndex) fconn_[Face(Index(f))].halfedge = hmap(fconn_[Face(Index(f))].halfedge);
+  for (std::size_t e = 0; e < emap.size(); ++e) {
+    if (emap[e] == kInvalidIndex) continue;
+    for (Index hi : {Index(2 * e), Index(2 * e + 1)}) {
+      HalfedgeConnectivity& c = hconn_[Halfedge(hi)];
+      c.to = Vertex(vmap[c.to.idx()]);
+      if (c.face.is_valid()) c.face = Face(fmap[c.face.idx()]);
+      c.next = hmap(c.next);
+      c.prev = hmap(c.prev);
+    }
   }
-  vprops_.compact(vkept);
-  hprops_.compact(hkept);
-  eprops_.compact(ekept);
-  fprops_.compact(fkept);
+  vprops_.compact({vmap, vkept, false});
+  hprops_.compact({emap, 2 * ekept, true});
+  eprops_.compact({emap, ekept, false});
+  fprops_.compact({fmap, fkept, false});
   deleted_vertices_ = deleted_edges_ = deleted_faces_ = 0;
 }
 

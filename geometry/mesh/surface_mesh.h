@@ -88,6 +88,26 @@ std::ostream& operator<<(std::ostream& os, Face f);
 
 namespace detail {
 
+/// The old -> new index map of a compaction (SurfaceMesh::garbage_collection):
+/// element i goes to index (*this)(i), or is dropped if that is
+/// kInvalidIndex. Kept elements keep their order, so (*this)(i) <= i and an
+/// array compacts in place, front to back. With `pairs` (the half-edges) the
+/// map is per edge: half-edge i goes where its edge goes, times two, plus i's
+/// parity. Only the map is held (4 bytes per vertex, edge and face): a list of
+/// the kept elements beside it would double that at a slab's end, the sweep's
+/// peak (papers/mesher/decomposition.md, "Normals and rho from the cell").
+struct CompactionMap {
+  std::span<const Index> map;
+  std::size_t kept = 0;  ///< elements kept
+  bool pairs = false;
+  std::size_t size() const { return pairs ? 2 * map.size() : map.size(); }
+  Index operator()(std::size_t i) const {
+    if (!pairs) return map[i];
+    const Index e = map[i >> 1];
+    return e == kInvalidIndex ? kInvalidIndex : 2 * e + Index(i & 1u);
+  }
+};
+
 /// Type-erased array of per-element values, owned by a PropertyContainer.
 class BasePropertyArray {
  public:
@@ -108,8 +128,8 @@ class BasePropertyArray {
   /// pages of `src` given back as soon as it is copied, so the peak holds one
   /// copy of the elements plus a chunk. Pre: src is nullptr or has n elements.
   virtual void append_consuming(BasePropertyArray* src, std::size_t n) = 0;
-  /// Keep elements kept[0], kept[1], ... in this order (kept[i] >= i), drop the rest.
-  virtual void compact(const std::vector<Index>& kept) = 0;
+  /// Moves every element i to map(i) and drops the others (CompactionMap).
+  virtual void compact(const CompactionMap& map) = 0;
   /// Deep copy.
   virtual std::unique_ptr<BasePropertyArray> clone() const = 0;
   /// The value type.
@@ -154,10 +174,12 @@ class PropertyArray final : public BasePropertyArray {
     }
     src->release();
   }
-  void compact(const std::vector<Index>& kept) override {
-    for (std::size_t i = 0; i < kept.size(); ++i)
-      if (kept[i] != i) data_[i] = data_[kept[i]];
-    data_.resize(kept.size());
+  void compact(const CompactionMap& map) override {
+    for (std::size_t i = 0, n = map.size(); i < n; ++i) {
+      const Index j = map(i);
+      if (j != kInvalidIndex && j != i) data_[j] = data_[i];
+    }
+    data_.resize(map.kept);
   }
   std::unique_ptr<BasePropertyArray> clone() const override { return std::make_unique<PropertyArray<T>>(*this); }
   const std::type_info& type() const override { return typeid(T); }
@@ -236,9 +258,9 @@ class PropertyContainer {
     for (auto& a : arrays_) a->release();
     size_ = 0;
   }
-  void compact(const std::vector<Index>& kept) {
-    for (auto& a : arrays_) a->compact(kept);
-    size_ = kept.size();
+  void compact(const CompactionMap& map) {
+    for (auto& a : arrays_) a->compact(map);
+    size_ = map.kept;
   }
 
  private:
