@@ -300,11 +300,12 @@ struct Band {
 
 /// The bands under the cut at `height` between the slab `below` and the
 /// slab `above`: each parked rim of `below` with the samples of its curve,
-/// which are the vertices of `above`'s lower loop of that curve. Throws
-/// TopologyError if a band has no outward strip.
-std::vector<Band> close_bands(const SlabResult& below, const SlabResult& above, double height) {
-  const auto normal_below = below.mesh.get_vertex_property(skin::kVertexNormal);
-  const auto normal_above = above.mesh.get_vertex_property(skin::kVertexNormal);
+/// which are the vertices of `above`'s lower loop of that curve (both
+/// meshes of the skin whose mixed complex is `mc`). Throws TopologyError if a
+/// band has no outward strip.
+std::vector<Band> close_bands(const skin::MixedComplex& mc, const SlabResult& below, const SlabResult& above,
+                              double height) {
+  const skin::VertexNormals normal_below(mc, below.mesh), normal_above(mc, above.mesh);
   std::vector<Band> bands;
   for (std::size_t i = 0; i < below.upper_rims.size(); ++i) {
     const std::vector<Index>& whole = below.upper_rims[i];
@@ -547,7 +548,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       const SlabResult& below = *swept.at(keys[k]).result;
       const SlabResult& above = *swept.at(keys[k + 1]).result;
       try {
-        bands[k] = close_bands(below, above, cuts[live[k]].height);
+        bands[k] = close_bands(skin.mixed_complex(), below, above, cuts[live[k]].height);
       } catch (const TopologyError& e) {
         band_error[k] = e.what();
       }

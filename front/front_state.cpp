@@ -32,8 +32,8 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   // The per-vertex counters are 8 bits wide.
   if (!(opt.max_deferrals >= 0 && opt.max_deferrals <= 255) || !(opt.max_reopenings >= 0 && opt.max_reopenings <= 255))
     throw std::invalid_argument("sweep: max_deferrals and max_reopenings must lie in [0, 255]");
-  normal = mesh.add_vertex_property(skin::kVertexNormal, Vec3::Zero());
-  rho = mesh.add_vertex_property(skin::kVertexRho, 0.0);
+  normal = mesh.add_vertex_property(kVertexFrontNormal, Vec3::Zero());
+  rho = mesh.add_vertex_property(kVertexFrontRho, 0.0);
   cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
   state = mesh.add_vertex_property(kVertexState, VState::Interior);
   held_by = mesh.add_vertex_property(kVertexHeldBy, kInvalidIndex);
@@ -127,7 +127,7 @@ Vertex new_vertex(FrontState& fs, const Vec3& p, Index cell) {
     fs.vertex_grid->insert_for_queries(v.idx(), p, s.rho / (1 + fs.collision_reach), s.rho / (1 - fs.collision_reach));
   else
     fs.vertex_grid->insert_for_queries(v.idx(), p, 0, std::numeric_limits<double>::infinity());
-  fs.normal[v] = s.gradient.normalized();
+  fs.normal[v] = s.gradient.normalized();  // what skin::VertexNormals gives from the cell below
   fs.rho[v] = s.rho;
   fs.cell[v] = s.cell;
   fs.set_state(v, VState::Front);

@@ -78,6 +78,11 @@ enum class VState : std::uint8_t {
 };
 
 /// The sweep's own per-vertex properties (the shared ones: skin/vertex_data.h).
+/// The normal and rho are read at every step of the sweep, so the sweep keeps
+/// them beside the cell they derive from (skin::VertexNormals), and drops them
+/// with the others when it ends.
+inline constexpr geometry::VertexPropertyKey<Vec3> kVertexFrontNormal{"v:front_normal"};
+inline constexpr geometry::VertexPropertyKey<double> kVertexFrontRho{"v:front_rho"};
 inline constexpr geometry::VertexPropertyKey<VState> kVertexState{"v:state"};
 inline constexpr geometry::VertexPropertyKey<Index> kVertexHeldBy{"v:held_by"};
 inline constexpr geometry::VertexPropertyKey<std::uint32_t> kVertexStamp{"v:stamp"};
@@ -129,8 +134,8 @@ struct FrontState {
 
   // The partial mesh and its per-vertex data.
   SurfaceMesh mesh;
-  geometry::VertexProperty<Vec3> normal;  ///< unit outward skin normal
-  geometry::VertexProperty<double> rho;   ///< local length scale (Å)
+  geometry::VertexProperty<Vec3> normal;  ///< unit outward skin normal (dropped with the sweep)
+  geometry::VertexProperty<double> rho;   ///< local length scale (Å) (dropped with the sweep)
   geometry::VertexProperty<Index> cell;   ///< mixed cell
   geometry::VertexProperty<VState> state;
   geometry::VertexProperty<Index> held_by;            ///< the critical point holding a Held vertex

@@ -203,6 +203,8 @@ void drop_sweep_properties(FrontState& fs) {
   fs.mesh.remove_vertex_property(fs.stamp);
   fs.mesh.remove_vertex_property(fs.deferrals);
   fs.mesh.remove_vertex_property(fs.reopenings);
+  fs.mesh.remove_vertex_property(fs.normal);
+  fs.mesh.remove_vertex_property(fs.rho);
 }
 
 SweepResult run_sweep(FrontState& fs) {

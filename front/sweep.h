@@ -232,9 +232,10 @@ struct SweepStats {
 struct SweepResult {
   /// Closed triangle mesh of the skin, faces counter-clockwise about the
   /// outward normal, every vertex on the skin. Elements may be marked deleted
-  /// (call garbage_collection()). Vertex properties (skin/vertex_data.h):
-  /// skin::kVertexNormal (unit outward skin normal), skin::kVertexRho (local
-  /// length scale, Å), skin::kVertexCell (mixed cell).
+  /// (call garbage_collection()). Vertex property (skin/vertex_data.h):
+  /// skin::kVertexCell (mixed cell), which gives the unit outward skin normal
+  /// and the local length scale rho (Å) at the vertex (skin::VertexNormals,
+  /// skin::VertexRhos).
   geometry::SurfaceMesh mesh;
   SweepStats stats;
 };

@@ -96,16 +96,11 @@ class AngleImprover {
  public:
   AngleImprover(const skin::SkinSurface& skin, SurfaceMesh& mesh, const AngleImprovementOptions& opt)
       : skin_(skin), mesh_(mesh), opt_(opt), L_(skin.length_scale()) {
-    normal_ = mesh_.vertex_property(skin::kVertexNormal, Vec3::Zero());
-    rho_ = mesh_.vertex_property(skin::kVertexRho, 0.0);
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     for (Vertex v : mesh_.vertices())
-      if (!(rho_[v] > 0)) {
-        const skin::SkinSample s = skin_.sample(mesh_.position(v), cell_[v]);
-        normal_[v] = s.gradient.normalized();
-        rho_[v] = s.rho;
-        cell_[v] = s.cell;
-      }
+      if (cell_[v] == kInvalidIndex) cell_[v] = skin_.sample(mesh_.position(v)).cell;
+    normal_ = skin::VertexNormals(skin_.mixed_complex(), mesh_);
+    rho_ = skin::VertexRhos(skin_.mixed_complex(), mesh_);
   }
 
   AngleImprovementStats run();
@@ -163,9 +158,9 @@ class AngleImprover {
   const AngleImprovementOptions& opt_;
   const double L_;
   double kappa_ = 0;  ///< max R / rho_min over the triangles, at least CQ
-  geometry::VertexProperty<Vec3> normal_;
-  geometry::VertexProperty<double> rho_;
   geometry::VertexProperty<Index> cell_;
+  skin::VertexNormals normal_;  ///< from the cell
+  skin::VertexRhos rho_;        ///< from the cell
   /// Every vertex at its position when the pass started (built when there
   /// is something to move; cells of half the median reach of the first
   /// candidates), and the vertices moved since at their new positions (a
@@ -226,8 +221,14 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   const double low_factor = 4 * cos_t * cos_t;  // low iff N² > 4 cos_t² D
   const double CQ2 = opt_.size.C * opt_.size.Q * opt_.size.C * opt_.size.Q;
   const auto& P = mesh_.positions().vector();
-  const auto& rho = rho_.vector();
   double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = CQ2;
+  // The smallest rho of all vertices bounds each triangle's rho_min from
+  // below: a triangle whose ratio stays within kappa at that bound needs no
+  // rho of its own (rounding is monotone, so the skip never drops a triangle
+  // the exact comparison below would take).
+  double rho_floor = std::numeric_limits<double>::infinity();
+  if (kappa)
+    for (Vertex v : mesh_.vertices()) rho_floor = std::min(rho_floor, rho_[v]);
   Face worst;
   for (Face f : mesh_.faces()) {
     const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0);
@@ -247,8 +248,9 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
       // R² = e0 e1 e2 / (4 |(b - a) x (c - a)|²) against kappa² rho_min²;
       // the ratio only for triangles beyond the current kappa.
       const double n4 = 4 * (b - a).cross(c - a).squaredNorm();
-      const double rmin = std::min(std::min(rho[i0], rho[i1]), rho[i2]);
       const double num = x * y * z;
+      if (!(num > n4 * kappa2 * rho_floor * rho_floor)) continue;
+      const double rmin = std::min(std::min(rho_[Vertex(i0)], rho_[Vertex(i1)]), rho_[Vertex(i2)]);
       if (num > n4 * kappa2 * rmin * rmin)
         kappa2 = n4 > 0 ? num / (n4 * rmin * rmin) : std::numeric_limits<double>::infinity();
     }
@@ -590,9 +592,7 @@ bool AngleImprover::try_improve(Vertex v) {
     const Refusal why = admissible(v, t, ring, nearby, faces);
     if (why == Refusal::None) {
       mesh_.position(v) = t.p;
-      normal_[v] = t.s.gradient.normalized();
-      rho_[v] = t.s.rho;
-      cell_[v] = t.s.cell;
+      cell_[v] = t.s.cell;  // and with it t.s's normal and rho
       moved_grid_->insert(v.idx(), t.p);
       moved_[v.idx()] = 1;
       for (Face f : mesh_.faces(v)) touched_.push_back(f);

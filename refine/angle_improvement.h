@@ -96,9 +96,10 @@ struct AngleImprovementStats {
 /// Positions in Å, angles of the options and statistics in degrees.
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;
-/// it uses the vertex properties skin::kVertexNormal, kVertexRho, kVertexCell of the
-/// refinement (refine_mesh; sampled from the skin where absent) and keeps
-/// them up to date for the moved vertices. Meant to
+/// it uses the vertex property skin::kVertexCell of the refinement
+/// (refine_mesh; sampled from the skin where absent), from which it takes the
+/// normal and rho (skin::VertexNormals, skin::VertexRhos), and keeps it up to
+/// date for the moved vertices. Meant to
 /// run after refine_mesh(): a vertex whose star breaks one of the conditions
 /// already is not moved (every condition is required after the move), so the
 /// pass never adds a violation. Deterministic (no hashing order, no threads).

@@ -37,12 +37,19 @@ class Refiner {
  public:
   Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt)
       : skin_(skin), mesh_(mesh), opt_(opt) {
-    normal_ = mesh_.vertex_property(skin::kVertexNormal, Vec3::Zero());
-    rho_ = mesh_.vertex_property(skin::kVertexRho, 0.0);
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     inserted_ = mesh_.vertex_property(skin::kVertexInserted, 0);
     for (Vertex v : mesh_.vertices())
-      if (!(rho_[v] > 0)) sample(v);
+      if (cell_[v] == kInvalidIndex) cell_[v] = skin_.sample(mesh_.position(v)).cell;
+    normal_ = skin::VertexNormals(skin_.mixed_complex(), mesh_);
+    // rho is read at every edge and face of every scan: computed once here
+    // (the values skin::VertexRhos gives) and kept while the pass runs.
+    const skin::VertexRhos rho(skin_.mixed_complex(), mesh_);
+    rho_.resize(mesh_.vertices_size());
+    parallel_for((rho_.size() + kScanGrain - 1) / kScanGrain, opt_.threads, 1, [&](std::size_t b) {
+      for (std::size_t i = b * kScanGrain, end = std::min(rho_.size(), i + kScanGrain); i < end; ++i)
+        if (!mesh_.is_deleted(Vertex(static_cast<Index>(i)))) rho_[i] = rho[Vertex(static_cast<Index>(i))];
+    });
     // Grid of the vertices inserted here, for the separation test of insert():
     // cells of the mean edge length (the scale of R), hashed, so its size
     // follows the inserted vertices only. The mean of about 4,096 edges spread
@@ -64,12 +71,6 @@ class Refiner {
   RefineStats run();
 
  private:
-  void sample(Vertex v) {
-    const skin::SkinSample s = skin_.sample(mesh_.position(v), cell_[v]);
-    normal_[v] = s.gradient.normalized();
-    rho_[v] = s.rho;
-    cell_[v] = s.cell;
-  }
   const Vec3& pos(Vertex v) const { return mesh_.position(v); }
   /// True if triangle (a, b, c), counter-clockwise, faces along the skin
   /// normal at each of its corners.
@@ -91,13 +92,14 @@ class Refiner {
   void push_edges_around(Vertex v);
   bool violates_L(Edge e) const {
     const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
-    return !skin::satisfies_L(pos(a), pos(b), rho_[a], rho_[b], opt_.size);
+    return !skin::satisfies_L(pos(a), pos(b), rho_[a.idx()], rho_[b.idx()], opt_.size);
   }
   bool violates_U(Face f) const {
     Vertex v[3];
     int i = 0;
     for (Vertex x : mesh_.vertices(f)) v[i++] = x;
-    return !skin::satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0]], rho_[v[1]], rho_[v[2]], opt_.size);
+    return !skin::satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0].idx()], rho_[v[1].idx()], rho_[v[2].idx()],
+                              opt_.size);
   }
   bool contract(Edge e);
   bool insert(Face f);
@@ -118,9 +120,11 @@ class Refiner {
   const skin::SkinSurface& skin_;
   SurfaceMesh& mesh_;
   const RefineOptions& opt_;
-  geometry::VertexProperty<Vec3> normal_;
-  geometry::VertexProperty<double> rho_;
   geometry::VertexProperty<Index> cell_;
+  skin::VertexNormals normal_;  ///< from the cell
+  /// rho per vertex index (Å), the values skin::VertexRhos gives (0 at
+  /// deleted vertices), kept up to date by insert().
+  std::vector<double> rho_;
   geometry::VertexProperty<std::uint8_t> inserted_;  ///< 1: inserted by this refinement
   std::optional<geometry::PointGrid> inserted_grid_;
   std::vector<Edge> stack_;
@@ -365,9 +369,9 @@ bool Refiner::insert(Face f) {
     }
     nv = mesh_.split_face(t, m);
   }
-  normal_[nv] = nm;
-  rho_[nv] = s.rho;
-  cell_[nv] = s.cell;
+  cell_[nv] = s.cell;  // and with it nm and s.rho
+  rho_.resize(mesh_.vertices_size());
+  rho_[nv.idx()] = s.rho;
   inserted_[nv] = 1;
   inserted_grid_->insert(nv.idx(), m);
   ++stats_.insertions;

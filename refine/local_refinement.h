@@ -93,10 +93,11 @@ struct RefineStats {
 /// bound every angle below by arcsin(1/Q²) = 21.55°.
 ///
 /// `mesh` must be closed, oriented outwards, with every vertex on the skin;
-/// it uses (and creates if absent, sampling the skin) the vertex properties
-/// skin::kVertexNormal (unit outward normal), skin::kVertexRho (Å) and
-/// skin::kVertexCell (mixed cell), and sets skin::kVertexInserted (1 on the
-/// vertices it inserted) (skin/vertex_data.h).
+/// it uses (and creates if absent, sampling the skin) the vertex property
+/// skin::kVertexCell (mixed cell), from which it takes the normal and rho
+/// (skin::VertexNormals, skin::VertexRhos), sets it on the vertices it
+/// inserts, and sets skin::kVertexInserted (1 on the vertices it inserted)
+/// (skin/vertex_data.h).
 /// No operation turns a triangle against the normals of its corners, no vertex
 /// moves, and a vertex inserted here is never deleted; the number of
 /// operations is finite (papers/refine/local_refinement.md, "Termination").

@@ -13,17 +13,56 @@
 
 #include "core/types.h"
 #include "geometry/mesh/surface_mesh.h"
+#include "skin/mixed_complex.h"
 
 namespace skinmesh::skin {
 
-/// Unit outward normal of the skin at the vertex (the gradient direction of f).
-inline constexpr geometry::VertexPropertyKey<Vec3> kVertexNormal{"v:normal"};
-/// Local length scale rho at the vertex (Å; Cheng & Shi §2.2).
-inline constexpr geometry::VertexPropertyKey<double> kVertexRho{"v:rho"};
 /// The mixed cell that holds the vertex (an index into skin::MixedComplex).
+/// With the vertex's position it fixes the skin's normal and rho there
+/// (VertexNormals, VertexRhos), which are therefore not stored.
 inline constexpr geometry::VertexPropertyKey<Index> kVertexCell{"v:cell"};
 /// 1 on the vertices the local refinement inserted (refine/local_refinement.h).
 inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexInserted{"v:inserted"};
+
+/// The unit outward normal of the skin at the vertices of a mesh of the skin
+/// (the gradient direction of f, Cheng & Shi §2.1), derived on each read from
+/// the vertex's position and its mixed cell (kVertexCell):
+/// MixedComplex::unit_normal. Every stage places a vertex with a sample of
+/// the skin there (SkinSurface::sample) and stores that sample's cell, so the
+/// value read is bit for bit the sample's normal; keeping it would cost 24
+/// bytes a vertex through every stage (papers/mesher/decomposition.md,
+/// "Normals and rho from the cell").
+/// Preconditions: `mc` and `mesh` outlive the view, `mesh` has the kVertexCell
+/// property, and every vertex read has a valid cell.
+class VertexNormals {
+ public:
+  VertexNormals() = default;
+  VertexNormals(const MixedComplex& mc, const geometry::SurfaceMesh& mesh)
+      : mc_(&mc), mesh_(&mesh), cell_(mesh.get_vertex_property(kVertexCell)) {}
+  Vec3 operator[](geometry::Vertex v) const { return mc_->unit_normal(cell_[v], mesh_->position(v)); }
+
+ private:
+  const MixedComplex* mc_ = nullptr;
+  const geometry::SurfaceMesh* mesh_ = nullptr;
+  geometry::VertexProperty<Index> cell_;
+};
+
+/// The local length scale rho (Å, Cheng & Shi §2.2) at the vertices of a
+/// mesh of the skin, derived on each read from the vertex's position and its
+/// mixed cell as VertexNormals is (MixedComplex::rho, the value
+/// SkinSurface::sample gives), with the same preconditions.
+class VertexRhos {
+ public:
+  VertexRhos() = default;
+  VertexRhos(const MixedComplex& mc, const geometry::SurfaceMesh& mesh)
+      : mc_(&mc), mesh_(&mesh), cell_(mesh.get_vertex_property(kVertexCell)) {}
+  double operator[](geometry::Vertex v) const { return mc_->rho(cell_[v], mesh_->position(v)); }
+
+ private:
+  const MixedComplex* mc_ = nullptr;
+  const geometry::SurfaceMesh* mesh_ = nullptr;
+  geometry::VertexProperty<Index> cell_;
+};
 
 /// The skin's data at the vertices of an output mesh, each array empty or one
 /// entry per vertex of its geometry::IndexedMesh:

@@ -522,9 +522,9 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     pending.add(refine::operation_name(op), text, std::nullopt, kInvalidIndex);
     if (pending.n >= every_refine) record("refine", mesh, refine_counters());
   };
-  auto rho_quality = [&](const skin::SkinSurface&, const SurfaceMesh& mesh) {
-    if (!mesh.has_vertex_property(skin::kVertexRho)) return;
-    const auto rho = mesh.get_vertex_property(skin::kVertexRho);
+  auto rho_quality = [&](const skin::SkinSurface& skin, const SurfaceMesh& mesh) {
+    if (!mesh.has_vertex_property(skin::kVertexCell)) return;
+    const skin::VertexRhos rho(skin.mixed_complex(), mesh);
     history.set_quality([&](Index id) { return rho[Vertex(id)]; }, size);
   };
   run.observers.stage_end = [&](const char* stage, const skin::SkinSurface& skin, const SurfaceMesh& mesh) {

@@ -73,10 +73,9 @@ void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& m
                 const front::SlabResult& res) {
   const geometry::SurfaceMesh& m = res.mesh;
   const Vec3 e = ms.height_direction;
-  const auto rho = m.get_vertex_property(skin::kVertexRho);
-  const auto normal = m.get_vertex_property(skin::kVertexNormal);
-  REQUIRE(rho);
-  REQUIRE(normal);
+  REQUIRE(m.has_vertex_property(skin::kVertexCell));
+  const skin::VertexRhos rho(skin.mixed_complex(), m);
+  const skin::VertexNormals normal(skin.mixed_complex(), m);
   std::size_t off_skin = 0, below = 0, above = 0, inward = 0;
   Index hint = kInvalidIndex;
   for (geometry::Vertex v : m.vertices()) {

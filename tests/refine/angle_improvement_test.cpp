@@ -97,19 +97,18 @@ double min_angle_deg(const geometry::SurfaceMesh& mesh) {
 /// every pair of triangles tested for intersection).
 void check_by_brute_force(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh,
                           const skin::SizeConstants& size) {
-  const auto normal = mesh.get_vertex_property(skin::kVertexNormal);
-  const auto rho = mesh.get_vertex_property(skin::kVertexRho);
   const auto cell = mesh.get_vertex_property(skin::kVertexCell);
-  REQUIRE(normal);
-  REQUIRE(rho);
   REQUIRE(cell);
+  const skin::VertexNormals normal(skin.mixed_complex(), mesh);
+  const skin::VertexRhos rho(skin.mixed_complex(), mesh);
   std::vector<geometry::Vertex> verts;
   for (geometry::Vertex v : mesh.vertices()) {
     verts.push_back(v);
     const Vec3& p = mesh.position(v);
     const skin::SkinSample s = skin.sample(p);
     CHECK(std::abs(s.f) / s.gradient.norm() <= 1e-9);  // on the skin
-    // The pass keeps the vertex properties up to date.
+    // The pass keeps the vertices' cells up to date, and with them the
+    // normal and rho derived from them.
     CHECK(std::abs(rho[v] - s.rho) <= 1e-9 * s.rho);
     CHECK((normal[v] - s.gradient.normalized()).norm() <= 1e-9);
     CHECK(std::abs(skin.sample(p, cell[v]).f) / s.gradient.norm() <= 1e-9);
@@ -160,7 +159,7 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   // over the triangles before the pass, by brute force.
   double kappa = opt.size.C * opt.size.Q;
   {
-    const auto rho = mesh.get_vertex_property(skin::kVertexRho);
+    const skin::VertexRhos rho(skin.mixed_complex(), mesh);
     for (geometry::Face f : mesh.faces()) {
       Vec3 x[3];
       double rho_min = std::numeric_limits<double>::infinity();

@@ -91,7 +91,7 @@ TEST_CASE("refinement: the invariants of the termination argument hold") {
     CHECK(st.flip_caps == 0);
     REQUIRE(st.insertions > 10);
     auto inserted = mesh.vertex_property(skin::kVertexInserted, 0);
-    auto rho = mesh.vertex_property(skin::kVertexRho, 0.0);
+    const skin::VertexRhos rho(skin.mixed_complex(), mesh);
     std::vector<geometry::Vertex> ins;
     for (geometry::Vertex v : mesh.vertices())
       if (inserted[v]) ins.push_back(v);
