@@ -61,31 +61,43 @@ nlohmann::ordered_json finite_or_null(double x) {
 }
 
 /// The number of distinct undirected edges {u, w} of the triangles accepted by
-/// `valid` that violate [L]. `start` holds, at start[v + 1], how many triangle
-/// edges have v as their lower vertex; it becomes the offsets of a compressed
-/// list of the higher ends, which is sorted per vertex to visit each edge once.
-/// skin::satisfies_L() is symmetric in its two ends, so the order of u, w is irrelevant.
-template <class Valid>
-std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid, std::vector<Index>& start,
-                               const std::vector<double>& rho, const skin::SizeConstants& size) {
+/// `valid` that violate [L], rho(v) giving rho at vertex v. `start` holds, at
+/// start[v + 1], how many triangle edges have v as their lower vertex; it
+/// becomes the offsets of a compressed list of the higher ends, which is
+/// sorted per vertex to visit each edge once. The list is made for a run of
+/// lower vertices at a time (one pass over the triangles per run), so that
+/// it holds at most about kEntriesPerPass ends: it runs beside the mesh-only
+/// checks, at the check's peak. skin::satisfies_L() is symmetric in its two
+/// ends, so the order of u, w is irrelevant.
+template <class Valid, class Rho>
+std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid, std::vector<Index>& start, Rho&& rho,
+                               const skin::SizeConstants& size) {
   const auto& P = mesh.positions;
   const std::size_t nv = P.size();
+  constexpr std::size_t kEntriesPerPass = std::size_t{1} << 20;  // [chosen] 4 MB of ends at a time
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Index> higher(start[nv]);
-  std::vector<Index> fill(start.begin(), start.end() - 1);
-  for (const auto& t : mesh.triangles) {
-    if (!valid(t)) continue;
-    for (int i = 0; i < 3; ++i) {
-      const Index u = t[i], w = t[(i + 1) % 3];
-      higher[fill[std::min(u, w)]++] = std::max(u, w);
-    }
-  }
+  std::vector<Index> higher, cursor;
   std::size_t violations = 0;
-  for (std::size_t v = 0; v < nv; ++v) {
-    const auto b = higher.begin() + start[v], e = higher.begin() + start[v + 1];
-    std::sort(b, e);
-    for (auto it = b; it != e; ++it)
-      if ((it == b || *it != it[-1]) && !skin::satisfies_L(P[v], P[*it], rho[v], rho[*it], size)) ++violations;
+  for (std::size_t v0 = 0; v0 < nv;) {
+    std::size_t v1 = v0 + 1;  // this pass: lower vertices v0 .. v1 - 1
+    while (v1 < nv && start[v1 + 1] - start[v0] <= kEntriesPerPass) ++v1;
+    const Index base = start[v0];
+    higher.resize(start[v1] - base);
+    cursor.assign(start.begin() + std::ptrdiff_t(v0), start.begin() + std::ptrdiff_t(v1));
+    for (const auto& t : mesh.triangles) {
+      if (!valid(t)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const Index u = t[i], w = t[(i + 1) % 3], lo = std::min(u, w);
+        if (lo >= v0 && lo < v1) higher[cursor[lo - v0]++ - base] = std::max(u, w);
+      }
+    }
+    for (std::size_t v = v0; v < v1; ++v) {
+      const auto b = higher.begin() + (start[v] - base), e = higher.begin() + (start[v + 1] - base);
+      std::sort(b, e);
+      for (auto it = b; it != e; ++it)
+        if ((it == b || *it != it[-1]) && !skin::satisfies_L(P[v], P[*it], rho(Index(v)), rho(*it), size)) ++violations;
+    }
+    v0 = v1;
   }
   return violations;
 }
@@ -146,9 +158,9 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   const std::size_t nv = mesh.positions.size();
   const auto& P = mesh.positions;
 
-  // Vertices: distance to the skin, normal, rho.
-  std::vector<double> rho(nv, 0.0);
-  std::vector<Vec3> normal(nv, Vec3::Zero());
+  // Vertices: distance to the skin, and the cell, from which the tests
+  // below take the normal and rho again (32 bytes a vertex not kept beside
+  // the mesh-only checks' arrays).
   std::vector<Index> cell(nv, kInvalidIndex);
   // Point location walks from a hint: the caller's cell of the vertex if
   // given, else the cell of a vertex located before that shares a triangle
@@ -213,9 +225,7 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
       }
       const skin::SkinSample s = skin.sample(P[v], h);
       last = cell[v] = s.cell;
-      rho[v] = s.rho;
       const double g = s.gradient.norm();
-      normal[v] = s.gradient / g;
       const double d = std::abs(s.f) / g;
       if (d > f.distance) f.distance = d, f.vertex = v;
       if (d > rep.vertex_distance_tolerance) ++f.far;
@@ -237,20 +247,25 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
   };
   std::vector<Index> edge_start(nv + 1, 0);  // edges listed at their lower vertex (CSR)
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  auto normal = [&](Index v) -> Vec3 {  // the sample's gradient over its norm
+    if (cell[v] == kInvalidIndex) return Vec3::Zero();
+    const Vec3 g = mc.gradient(cell[v], P[v]);
+    return g / g.norm();
+  };
+  auto rho = [&](Index v) { return cell[v] == kInvalidIndex ? 0.0 : mc.rho(cell[v], P[v]); };  // the sample's rho
   for (const auto& t : mesh.triangles) {
     if (!valid(t)) continue;
     const Vec3 &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
-    if ((b - a).cross(c - a).dot(normal[t[0]] + normal[t[1]] + normal[t[2]]) <= 0) ++rep.num_inward_triangles;
-    if (opt.check_size_conditions && !skin::satisfies_U(a, b, c, rho[t[0]], rho[t[1]], rho[t[2]], opt.size))
+    if ((b - a).cross(c - a).dot(normal(t[0]) + normal(t[1]) + normal(t[2])) <= 0) ++rep.num_inward_triangles;
+    if (opt.check_size_conditions && !skin::satisfies_U(a, b, c, rho(t[0]), rho(t[1]), rho(t[2]), opt.size))
       ++rep.num_U_violations;
     for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
   }
   // What the tests below do not read goes back as soon as it is read: they
   // run beside the mesh-only checks, at the peak of the whole run's memory.
-  release(normal);  // before the [L] count's edge lists (24 against 12 bytes per triangle)
   if (opt.check_size_conditions) rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
   release(edge_start);
-  release(rho);
   if (rep.num_inward_triangles)
     skin_problems.push_back(std::to_string(rep.num_inward_triangles) +
                             " triangles face inwards (against the skin normal)");

@@ -93,7 +93,7 @@ constexpr std::size_t kEntriesPerBlock = std::size_t{1} << 15;
 /// Boxes stored at a time by the broad phase (a band of strips, below): 12
 /// MB of them, so that the check's peak follows this, not the mesh's size.
 /// [chosen]
-constexpr std::size_t kBoxesPerBand = std::size_t{1} << 18;
+constexpr std::size_t kBoxesPerBand = std::size_t{1} << 17;
 
 // Broad phase over n boxes, make(i) giving box i and its payload (BoxItem;
 // called at least five times per box, and again for a box stored in two
