@@ -108,8 +108,10 @@ class MadeStore {
   void init(std::size_t keys, std::size_t max_values) {
     slots_ = std::make_unique<std::atomic<std::uint32_t>[]>(keys);
     for (std::size_t k = 0; k < keys; ++k) slots_[k].store(0, std::memory_order_relaxed);
-    // Every block but the last is at least half full, or holds one list
-    // larger than a block.
+    // A block of its own holds more than kBlock values. An ordinary block is
+    // closed only when the next list does not fit in it: its values and that
+    // list's exceed kBlock, and each value is counted so at most twice. So
+    // fewer than 3 max_values / kBlock + 1 blocks.
     max_blocks_ = 3 * (max_values / kBlock + 1) + 2;
     if (max_blocks_ > (std::size_t{0xffffffff} - 2) >> kShift)
       throw std::length_error("mixed complex: too many cells for 32-bit handles of the made cells");
