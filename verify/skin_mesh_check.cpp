@@ -66,21 +66,25 @@ nlohmann::ordered_json finite_or_null(double x) {
 /// becomes the offsets of a compressed list of the higher ends, which is
 /// sorted per vertex to visit each edge once. The list is made for a run of
 /// lower vertices at a time (one pass over the triangles per run), so that
-/// it holds at most about kEntriesPerPass ends: it runs beside the mesh-only
-/// checks, at the check's peak. skin::satisfies_L() is symmetric in its two
-/// ends, so the order of u, w is irrelevant.
+/// it holds about kEntriesPerPass ends, or a kMaxPasses-th of them if that is
+/// more (the passes' cost stays a few scans of the triangles at every size):
+/// it runs beside the mesh-only checks, at the check's peak.
+/// skin::satisfies_L() is symmetric in its two ends, so the order of u, w is
+/// irrelevant.
 template <class Valid, class Rho>
 std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid, std::vector<Index>& start, Rho&& rho,
                                const skin::SizeConstants& size) {
   const auto& P = mesh.positions;
   const std::size_t nv = P.size();
   constexpr std::size_t kEntriesPerPass = std::size_t{1} << 20;  // [chosen] 4 MB of ends at a time
+  constexpr std::size_t kMaxPasses = 4;                          // [chosen]
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  const std::size_t per_pass = std::max(kEntriesPerPass, std::size_t(start[nv]) / kMaxPasses + 1);
   std::vector<Index> higher, cursor;
   std::size_t violations = 0;
   for (std::size_t v0 = 0; v0 < nv;) {
     std::size_t v1 = v0 + 1;  // this pass: lower vertices v0 .. v1 - 1
-    while (v1 < nv && start[v1 + 1] - start[v0] <= kEntriesPerPass) ++v1;
+    while (v1 < nv && start[v1 + 1] - start[v0] <= per_pass) ++v1;
     const Index base = start[v0];
     higher.resize(start[v1] - base);
     cursor.assign(start.begin() + std::ptrdiff_t(v0), start.begin() + std::ptrdiff_t(v1));
