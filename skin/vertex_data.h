@@ -24,22 +24,22 @@ inline constexpr geometry::VertexPropertyKey<Index> kVertexCell{"v:cell"};
 /// 1 on the vertices the local refinement inserted (refine/local_refinement.h).
 inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexInserted{"v:inserted"};
 
-/// The unit outward normal of the skin at the vertices of a mesh of the skin
-/// (the gradient direction of f, Cheng & Shi §2.1), derived on each read from
-/// the vertex's position and its mixed cell (kVertexCell):
-/// MixedComplex::unit_normal. Every stage places a vertex with a sample of
-/// the skin there (SkinSurface::sample) and stores that sample's cell, so the
-/// value read is bit for bit the sample's normal; keeping it would cost 24
-/// bytes a vertex through every stage (papers/mesher/decomposition.md,
+/// A value of the skin at the vertices of a mesh of the skin, derived on each
+/// read from the vertex's position and its mixed cell (kVertexCell) by
+/// MixedComplex member `Of`. Every stage places a vertex with a sample of the
+/// skin there (SkinSurface::sample) and stores that sample's cell, so the
+/// value read is bit for bit the sample's; keeping it would cost its bytes
+/// for every vertex through every stage (papers/mesher/decomposition.md,
 /// "Normals and rho from the cell").
 /// Preconditions: `mc` and `mesh` outlive the view, `mesh` has the kVertexCell
 /// property, and every vertex read has a valid cell.
-class VertexNormals {
+template <class T, T (MixedComplex::*Of)(Index, const Vec3&) const>
+class VertexSkinValues {
  public:
-  VertexNormals() = default;
-  VertexNormals(const MixedComplex& mc, const geometry::SurfaceMesh& mesh)
+  VertexSkinValues() = default;
+  VertexSkinValues(const MixedComplex& mc, const geometry::SurfaceMesh& mesh)
       : mc_(&mc), mesh_(&mesh), cell_(mesh.get_vertex_property(kVertexCell)) {}
-  Vec3 operator[](geometry::Vertex v) const { return mc_->unit_normal(cell_[v], mesh_->position(v)); }
+  T operator[](geometry::Vertex v) const { return (mc_->*Of)(cell_[v], mesh_->position(v)); }
 
  private:
   const MixedComplex* mc_ = nullptr;
@@ -47,22 +47,12 @@ class VertexNormals {
   geometry::VertexProperty<Index> cell_;
 };
 
-/// The local length scale rho (Å, Cheng & Shi §2.2) at the vertices of a
-/// mesh of the skin, derived on each read from the vertex's position and its
-/// mixed cell as VertexNormals is (MixedComplex::rho, the value
-/// SkinSurface::sample gives), with the same preconditions.
-class VertexRhos {
- public:
-  VertexRhos() = default;
-  VertexRhos(const MixedComplex& mc, const geometry::SurfaceMesh& mesh)
-      : mc_(&mc), mesh_(&mesh), cell_(mesh.get_vertex_property(kVertexCell)) {}
-  double operator[](geometry::Vertex v) const { return mc_->rho(cell_[v], mesh_->position(v)); }
-
- private:
-  const MixedComplex* mc_ = nullptr;
-  const geometry::SurfaceMesh* mesh_ = nullptr;
-  geometry::VertexProperty<Index> cell_;
-};
+/// The unit outward normal of the skin (the gradient direction of f, Cheng &
+/// Shi §2.1) at the vertices: MixedComplex::unit_normal.
+using VertexNormals = VertexSkinValues<Vec3, &MixedComplex::unit_normal>;
+/// The local length scale rho (Å, Cheng & Shi §2.2) at the vertices:
+/// MixedComplex::rho.
+using VertexRhos = VertexSkinValues<double, &MixedComplex::rho>;
 
 /// The skin's data at the vertices of an output mesh, each array empty or one
 /// entry per vertex of its geometry::IndexedMesh:
