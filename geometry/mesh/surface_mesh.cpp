@@ -38,6 +38,14 @@ std::ostream& print_handle(std::ostream& os, char prefix, H h) {
   return os;
 }
 
+/// A half-edge's face-or-prev field (SurfaceMesh::HalfedgeConnectivity) moved
+/// by the offsets of an appended mesh: h0 for a prev, f0 for a face.
+Index shift_face_or_prev(Index fp, Index h0, Index f0) {
+  constexpr Index kTag = SurfaceMesh::kBoundaryTag, kNone = SurfaceMesh::kNoPrev;
+  if (!(fp & kTag)) return fp + f0;
+  return (fp & kNone) == kNone ? fp : kTag | ((fp & kNone) + h0);
+}
+
 }  // namespace
 
 // Handle Printing
@@ -183,11 +191,11 @@ Vertex SurfaceMesh::add_vertex(const Vec3& p) {
 void SurfaceMesh::append(const SurfaceMesh& other) {
   if (&other == this) throw std::invalid_argument("SurfaceMesh::append: a mesh cannot be appended to itself");
   if (other.has_garbage()) throw std::invalid_argument("SurfaceMesh::append: the appended mesh has deleted elements");
+  require_room_for(other);
   const Index v0 = Index(vertices_size()), h0 = Index(halfedges_size()), f0 = Index(faces_size());
   // Invalid handles stay invalid; valid ones move by their kind's offset.
   auto shift_v = [v0](Vertex v) { return v.is_valid() ? Vertex(v.idx() + v0) : v; };
   auto shift_h = [h0](Halfedge h) { return h.is_valid() ? Halfedge(h.idx() + h0) : h; };
-  auto shift_f = [f0](Face f) { return f.is_valid() ? Face(f.idx() + f0) : f; };
   reserve(vertices_size() + other.vertices_size(), faces_size() + other.faces_size());
   for (std::size_t i = 0; i < other.vertices_size(); ++i) {
     const Vertex w(static_cast<Index>(i));
@@ -203,7 +211,7 @@ void SurfaceMesh::append(const SurfaceMesh& other) {
     const Halfedge g(static_cast<Index>(i));
     HalfedgeConnectivity& c = hconn_[Halfedge(g.idx() + h0)];
     const HalfedgeConnectivity& o = other.hconn_[g];
-    c.to = shift_v(o.to), c.face = shift_f(o.face), c.next = shift_h(o.next), c.prev = shift_h(o.prev);
+    c.to = shift_v(o.to), c.face_or_prev = shift_face_or_prev(o.face_or_prev, h0, f0), c.next = shift_h(o.next);
   }
   for (std::size_t i = 0; i < other.faces_size(); ++i) {
     const Face g(static_cast<Index>(i));
@@ -215,6 +223,7 @@ void SurfaceMesh::append_consuming(SurfaceMesh& other) {
   if (&other == this) throw std::invalid_argument("SurfaceMesh::append_consuming: a mesh cannot be appended to itself");
   if (other.has_garbage())
     throw std::invalid_argument("SurfaceMesh::append_consuming: the appended mesh has deleted elements");
+  require_room_for(other);
   const Index v0 = Index(vertices_size()), h0 = Index(halfedges_size()), f0 = Index(faces_size());
   const std::size_t nv = other.vertices_size(), nh = other.halfedges_size(), nf = other.faces_size();
   vprops_.append_consuming(other.vprops_);
@@ -230,8 +239,8 @@ void SurfaceMesh::append_consuming(SurfaceMesh& other) {
   for (std::size_t i = 0; i < nh; ++i) {
     HalfedgeConnectivity& c = hconn_[Halfedge(Index(h0 + i))];
     if (c.to.is_valid()) c.to = Vertex(c.to.idx() + v0);
-    if (c.face.is_valid()) c.face = Face(c.face.idx() + f0);
-    c.next = shift_h(c.next), c.prev = shift_h(c.prev);
+    c.face_or_prev = shift_face_or_prev(c.face_or_prev, h0, f0);
+    c.next = shift_h(c.next);
   }
   for (std::size_t i = 0; i < nf; ++i) {
     FaceConnectivity& c = fconn_[Face(Index(f0 + i))];
@@ -240,7 +249,14 @@ void SurfaceMesh::append_consuming(SurfaceMesh& other) {
   other.clear();
 }
 
+void SurfaceMesh::require_room_for(const SurfaceMesh& other) const {
+  if (halfedges_size() + other.halfedges_size() > kNoPrev || faces_size() + other.faces_size() > kNoPrev)
+    throw std::length_error("SurfaceMesh: more than 2^31 - 1 half-edges or faces (the limit of the half-edge links)");
+}
+
 Halfedge SurfaceMesh::new_edge(Vertex a, Vertex b) {
+  if (hprops_.size() + 2 > kNoPrev)
+    throw std::length_error("SurfaceMesh: more than 2^31 - 1 half-edges (the limit of the half-edge links)");
   eprops_.push_back();
   hprops_.push_back();
   hprops_.push_back();
@@ -251,6 +267,8 @@ Halfedge SurfaceMesh::new_edge(Vertex a, Vertex b) {
 }
 
 Face SurfaceMesh::new_face() {
+  if (fprops_.size() + 1 > kNoPrev)
+    throw std::length_error("SurfaceMesh: more than 2^31 - 1 faces (the limit of the half-edge links)");
   fprops_.push_back();
   return Face(Index(fprops_.size() - 1));
 }
@@ -546,9 +564,12 @@ void SurfaceMesh::collapse(Halfedge h) {
     const Halfedge t = opposite(drop);
     const Halfedge tp = prev(t), tn = next(t);
     const Face ft = face(t);
+    if (ft.is_valid())
+      set_face(keep, ft);
+    else
+      set_boundary(keep);  // before the link that records its prev
     set_next(tp, keep);
     set_next(keep, tn);
-    set_face(keep, ft);
     if (ft.is_valid() && halfedge(ft) == t) set_halfedge(ft, keep);
     if (halfedge(apex) == drop || halfedge(apex) == t) set_halfedge(apex, apex_out);
     edeleted_[edge(drop)] = true;
@@ -659,9 +680,9 @@ void SurfaceMesh::delete_face(Face f) {
   // The face's half-edges become a boundary loop of three; edges with no face
   // left are then cut out of the boundary loops.
   std::vector<Edge> dead;
-  for (Halfedge h : hs) {
-    set_face(h, Face());
-    if (is_boundary(opposite(h))) dead.push_back(edge(h));
+  for (int k = 0; k < 3; ++k) {
+    set_boundary(hs[k], hs[(k + 2) % 3]);
+    if (is_boundary(opposite(hs[k]))) dead.push_back(edge(hs[k]));
   }
   fdeleted_[f] = true;
   ++deleted_faces_;
@@ -725,9 +746,13 @@ void SurfaceMesh::garbage_collection() {
     for (Index hi : {Index(2 * e), Index(2 * e + 1)}) {
       HalfedgeConnectivity& c = hconn_[Halfedge(hi)];
       c.to = Vertex(vmap[c.to.idx()]);
-      if (c.face.is_valid()) c.face = Face(fmap[c.face.idx()]);
+      if (c.face_or_prev & kBoundaryTag) {
+        const Index p = c.face_or_prev & kNoPrev;
+        if (p != kNoPrev) c.face_or_prev = kBoundaryTag | hmap(Halfedge(p)).idx();
+      } else {
+        c.face_or_prev = fmap[c.face_or_prev];
+      }
       c.next = hmap(c.next);
-      c.prev = hmap(c.prev);
     }
   }
   vprops_.compact({vmap, vkept, false});

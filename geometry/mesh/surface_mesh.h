@@ -446,8 +446,15 @@ class Circulator {
 /// Half-edge triangle mesh (pmp-library style, papers/conventions.md §1 and §3).
 ///
 /// Storage. Half-edges come in pairs: opposite(h) = h ^ 1, edge(h) = h >> 1.
-/// Every half-edge stores its target vertex, its face (invalid on the boundary),
-/// next and prev; every vertex one outgoing half-edge; every face one half-edge.
+/// Every half-edge stores its target vertex, next, and one more field: its
+/// face, or on the boundary (no face) its prev. Inside a face prev(h) is
+/// next(next(h)), the faces being triangles, so storing it there too would
+/// cost 4 bytes a half-edge, 12 a triangle, for a value one step away; a
+/// boundary half-edge's prev (the front's previous edge) cannot be derived
+/// that way. Every vertex stores one outgoing half-edge, every face one
+/// half-edge. Hence at most 2^31 - 1 faces and half-edges (the field's top
+/// bit says which of the two it holds); new_edge() and new_face() throw
+/// std::length_error beyond.
 /// Connectivity, positions ("v:point") and the deletion flags are ordinary
 /// properties, so garbage_collection() compacts user properties with them.
 ///
@@ -475,12 +482,19 @@ class SurfaceMesh {
   struct VertexConnectivity {
     Halfedge halfedge;
   };
-  /// Connectivity of a half-edge.
+  /// Connectivity of a half-edge: 12 bytes.
   struct HalfedgeConnectivity {
     Vertex to;  ///< target vertex
-    Face face;  ///< face on the left, invalid on the boundary
-    Halfedge next, prev;
+    /// The face on the left (top bit clear) or, on the boundary, kBoundaryTag
+    /// | prev's index (kNoPrev while not linked yet).
+    Index face_or_prev = kInvalidIndex;
+    Halfedge next;
   };
+  static_assert(sizeof(HalfedgeConnectivity) == 12, "HalfedgeConnectivity: 12 bytes a half-edge");
+  /// The top bit of HalfedgeConnectivity::face_or_prev: a boundary half-edge.
+  static constexpr Index kBoundaryTag = Index{1} << 31;
+  /// The prev of a boundary half-edge not linked yet (the low bits all set).
+  static constexpr Index kNoPrev = kBoundaryTag - 1;
   /// Connectivity of a face: one of its half-edges.
   struct FaceConnectivity {
     Halfedge halfedge;
@@ -563,7 +577,8 @@ class SurfaceMesh {
   /// Only the built-in properties are copied; the user properties of this
   /// mesh get their initial value on the new elements. O(size of `other`).
   /// Throws std::invalid_argument if `other` has deleted elements (call its
-  /// garbage_collection() first) or is this mesh.
+  /// garbage_collection() first) or is this mesh, and std::length_error if
+  /// the result would pass 2^31 - 1 half-edges or faces.
   void append(const SurfaceMesh& other);
   /// append(other), with every property of this mesh that `other` also has
   /// (the same name and type) given `other`'s values on the new elements (the
@@ -571,8 +586,8 @@ class SurfaceMesh {
   /// arrays go back to the system a chunk at a time once copied, so the two
   /// meshes together never hold much more than the result (the decomposed
   /// sweep's glue, papers/mesher/decomposition.md). Afterwards `other` has no
-  /// element; its properties stay. O(size of `other`). Throws
-  /// std::invalid_argument as append() does, before anything changes.
+  /// element; its properties stay. O(size of `other`). Throws as append()
+  /// does, before anything changes.
   void append_consuming(SurfaceMesh& other);
 
   /// Add the triangle (a, b, c), counter-clockwise seen from outside, and return it.
@@ -605,8 +620,16 @@ class SurfaceMesh {
   Halfedge opposite(Halfedge h) const { return Halfedge(h.idx() ^ 1u); }
   /// Next half-edge in h's face, or along the boundary loop if h is a boundary half-edge.
   Halfedge next(Halfedge h) const { return hconn_[h].next; }
-  /// Previous half-edge (inverse of next).
-  Halfedge prev(Halfedge h) const { return hconn_[h].prev; }
+  /// Previous half-edge (inverse of next): next(next(h)) in a face, the
+  /// stored link on the boundary.
+  Halfedge prev(Halfedge h) const {
+    const HalfedgeConnectivity& c = hconn_[h];
+    if (c.face_or_prev & kBoundaryTag) {
+      const Index p = c.face_or_prev & kNoPrev;
+      return p == kNoPrev ? Halfedge() : Halfedge(p);
+    }
+    return hconn_[c.next].next;
+  }
   /// Target vertex of h.
   Vertex to_vertex(Halfedge h) const { return hconn_[h].to; }
   /// Source vertex of h.
@@ -614,14 +637,17 @@ class SurfaceMesh {
   /// Vertex i (0 or 1) of e: to_vertex(halfedge(e, i)).
   Vertex vertex(Edge e, unsigned i) const { return to_vertex(halfedge(e, i)); }
   /// Face on the left of h; invalid if h is a boundary half-edge.
-  Face face(Halfedge h) const { return hconn_[h].face; }
+  Face face(Halfedge h) const {
+    const Index f = hconn_[h].face_or_prev;
+    return f & kBoundaryTag ? Face() : Face(f);
+  }
   /// Face i (0 or 1) of e; invalid on the boundary side.
   Face face(Edge e, unsigned i) const { return face(halfedge(e, i)); }
   /// Next outgoing half-edge around from_vertex(h), counter-clockwise: opposite(prev(h)).
   Halfedge ccw_rotated(Halfedge h) const { return opposite(prev(h)); }
 
   /// True if h has no face (the hole is on its left).
-  bool is_boundary(Halfedge h) const { return !face(h).is_valid(); }
+  bool is_boundary(Halfedge h) const { return (hconn_[h].face_or_prev & kBoundaryTag) != 0; }
   /// True if one of e's half-edges is a boundary half-edge.
   bool is_boundary(Edge e) const { return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1)); }
   /// True if v is isolated or has an outgoing boundary half-edge.
@@ -820,14 +846,27 @@ class SurfaceMesh {
   void require_valid(Edge e, const char* where) const;
   void require_valid(Halfedge h, const char* where) const;
 
+  /// Throws std::length_error if this mesh and `other` together would pass
+  /// the limit of 2^31 - 1 half-edges or faces (nothing changed).
+  void require_room_for(const SurfaceMesh& other) const;
   Halfedge new_edge(Vertex a, Vertex b);  // returns the half-edge a -> b
   Face new_face();
+  // The links are set face first: set_next(h, n) records h as n's prev only
+  // if n is on the boundary then (inside a face prev is derived), so a
+  // half-edge that becomes boundary gets its face cleared (set_boundary)
+  // before, or with, its prev.
   void set_next(Halfedge h, Halfedge n) {
     hconn_[h].next = n;
-    hconn_[n].prev = h;
+    Index& fp = hconn_[n].face_or_prev;
+    if (fp & kBoundaryTag) fp = kBoundaryTag | h.idx();
   }
   void set_vertex(Halfedge h, Vertex v) { hconn_[h].to = v; }
-  void set_face(Halfedge h, Face f) { hconn_[h].face = f; }
+  /// h gets face f (valid).
+  void set_face(Halfedge h, Face f) { hconn_[h].face_or_prev = f.idx(); }
+  /// h becomes a boundary half-edge whose prev is p (invalid: set later by set_next).
+  void set_boundary(Halfedge h, Halfedge p = Halfedge()) {
+    hconn_[h].face_or_prev = kBoundaryTag | (p.is_valid() ? p.idx() : kNoPrev);
+  }
   void set_halfedge(Vertex v, Halfedge h) { vconn_[v].halfedge = h; }
   void set_halfedge(Face f, Halfedge h) { fconn_[f].halfedge = h; }
   /// Make halfedge(v) a boundary half-edge if v has one (v not isolated).
