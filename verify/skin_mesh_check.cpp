@@ -76,8 +76,8 @@ std::size_t count_L_violations(const geometry::IndexedMesh& mesh, Valid&& valid,
                                const skin::SizeConstants& size) {
   const auto& P = mesh.positions;
   const std::size_t nv = P.size();
-  constexpr std::size_t kEntriesPerPass = std::size_t{1} << 20;  // [chosen] 4 MB of ends at a time
-  constexpr std::size_t kMaxPasses = 4;                          // [chosen]
+  constexpr std::size_t kEntriesPerPass = std::size_t{1} << 18;  // [chosen] 1 MB of ends at a time
+  constexpr std::size_t kMaxPasses = 8;                          // [chosen]
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   const std::size_t per_pass = std::max(kEntriesPerPass, std::size_t(start[nv]) / kMaxPasses + 1);
   std::vector<Index> higher, cursor;

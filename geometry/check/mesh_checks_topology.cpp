@@ -353,10 +353,16 @@ VertexIncidence build_incidence(const IndexedMesh& mesh, const TriangleClasses& 
 std::vector<Index> check_topology(const IndexedMesh& mesh, const TriangleClasses& classes,
                                   const VertexIncidence& incidence, std::size_t max_examples, MeshCheckReport& r) {
   r.num_duplicate_triangles = count_duplicate_triangles(mesh, incidence);
-  UnionFind faces_uf(mesh.triangles.size());  // triangles joined through shared edges
-  const EdgeCounts edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
-  std::vector<Index> component = label_components(classes, faces_uf, r);
-  count_component_edges(edges, component, r);
+  std::vector<Index> component;
+  {
+    // The union-find (5 bytes a triangle) goes back once the components are
+    // labelled, before the vertex links: the check runs at the whole run's
+    // peak of memory.
+    UnionFind faces_uf(mesh.triangles.size());  // triangles joined through shared edges
+    const EdgeCounts edges = scan_edges(mesh, incidence, faces_uf, max_examples, r);
+    component = label_components(classes, faces_uf, r);
+    count_component_edges(edges, component, r);
+  }
   check_vertex_links(mesh, incidence, component, max_examples, r);
   set_euler_and_genus(r);
   r.num_vertex_components = count_vertex_components(mesh, classes);
