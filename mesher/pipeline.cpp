@@ -517,7 +517,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // 1. The skin: regular triangulation and mixed complex (§2.1).
   clock.begin("skin");
   const skin::SkinSurface skin(points, thread_count(options.threads));
-  skin::require_non_singular(skin);
+  skin::require_non_singular(skin, thread_count(options.threads));
   // The whole-skin fallback's stages are timed on their own clock and listed
   // after the others as "fallback <stage>".
   StageClock::Progress fallback_progress;

@@ -18,7 +18,8 @@ namespace skinmesh::skin {
 /// radius and no mesh of bounded size resolves it. Throws InputError naming
 /// the atoms (input order, 1-based) and what to change. papers/mesher/pipeline.md,
 /// "Singular skins". Shared by the sweep (mesher/pipeline) and the dynamic-skin
-/// baseline (dynamic/dynamic_skin).
-void require_non_singular(const skin::SkinSurface& skin);
+/// baseline (dynamic/dynamic_skin). The cells are tested on up to `threads`
+/// threads (0: every core); the error is the one a single loop raises.
+void require_non_singular(const skin::SkinSurface& skin, int threads = 1);
 
 }  // namespace skinmesh::skin

@@ -16,6 +16,8 @@
 
 #include "core/errors.h"
 #include "mesher/pipeline.h"
+#include "skin/singular_skin.h"
+#include "skin/skin_surface.h"
 #include "tests/skin/skin_test_util.h"
 #include "tests/verify/check_expectations.h"
 
@@ -192,4 +194,38 @@ TEST_CASE("singular skins are refused with the atoms named; a gap of 2e-4 Å sti
   REQUIRE(res.checked);
   test::check_every_property(res.check);
   CHECK(res.expected_topology.components() == 3);
+}
+
+TEST_CASE("the singular-skin test on several threads refuses with the error one loop raises") {
+  // A 12 x 12 x 12 lattice of balls 6 Å apart (radius sqrt(8) Å: gaps of
+  // 0.34 Å, far from singular) and two extra balls, each touching a corner
+  // ball from outside: two cone points, in cells far apart in the complex's
+  // numbering, which spans several blocks of the parallel test.
+  const double w = skin::atom_weight(1.5, 0.5);
+  constexpr int k = 12;
+  std::vector<geometry::WeightedPoint> points;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      for (int l = 0; l < k; ++l) points.push_back({Vec3(6.0 * i, 6.0 * j, 6.0 * l), w});
+  const double far = 6.0 * (k - 1);
+  points.push_back({Vec3(far + 4, far + 4, far), w});
+  points.push_back({Vec3(-4, -4, 0), w});
+  const skin::SkinSurface skin(points, 2);
+  REQUIRE(skin.mixed_complex().num_cells() > 2 * 16384);  // three blocks at least
+  std::vector<std::string> messages;
+  for (int threads : {1, 2, 4}) {
+    try {
+      skin::require_non_singular(skin, threads);
+      FAIL("a skin with two cone points passed, threads = " << threads);
+    } catch (const InputError& e) {
+      messages.push_back(e.what());
+    }
+  }
+  REQUIRE(messages.size() == 3);
+  CHECK(messages[0].find("singular skin") != std::string::npos);
+  const bool names_a_pair =
+      messages[0].find("#1 and #1730") != std::string::npos || messages[0].find("#1728 and #1729") != std::string::npos;
+  CHECK_MESSAGE(names_a_pair, messages[0]);
+  CHECK(messages[1] == messages[0]);
+  CHECK(messages[2] == messages[0]);
 }
