@@ -38,12 +38,16 @@ std::ostream& print_handle(std::ostream& os, char prefix, H h) {
   return os;
 }
 
-/// A half-edge's face-or-prev field (SurfaceMesh::HalfedgeConnectivity) moved
-/// by the offsets of an appended mesh: h0 for a prev, f0 for a face.
-Index shift_face_or_prev(Index fp, Index h0, Index f0) {
+/// A half-edge's face-or-prev field (SurfaceMesh::HalfedgeConnectivity) with
+/// its face index renumbered by face_of or its prev's by halfedge_of (a prev
+/// not linked yet stays so): for the offsets of append() and the maps of
+/// garbage_collection().
+template <class FaceOf, class HalfedgeOf>
+Index renumbered_face_or_prev(Index fp, FaceOf&& face_of, HalfedgeOf&& halfedge_of) {
   constexpr Index kTag = SurfaceMesh::kBoundaryTag, kNone = SurfaceMesh::kNoPrev;
-  if (!(fp & kTag)) return fp + f0;
-  return (fp & kNone) == kNone ? fp : kTag | ((fp & kNone) + h0);
+  if (!(fp & kTag)) return face_of(fp);
+  const Index p = fp & kNone;
+  return p == kNone ? fp : kTag | halfedge_of(p);
 }
 
 }  // namespace
@@ -211,7 +215,9 @@ void SurfaceMesh::append(const SurfaceMesh& other) {
     const Halfedge g(static_cast<Index>(i));
     HalfedgeConnectivity& c = hconn_[Halfedge(g.idx() + h0)];
     const HalfedgeConnectivity& o = other.hconn_[g];
-    c.to = shift_v(o.to), c.face_or_prev = shift_face_or_prev(o.face_or_prev, h0, f0), c.next = shift_h(o.next);
+    c.to = shift_v(o.to), c.next = shift_h(o.next);
+    c.face_or_prev = renumbered_face_or_prev(
+        o.face_or_prev, [f0](Index f) { return f + f0; }, [h0](Index p) { return p + h0; });
   }
   for (std::size_t i = 0; i < other.faces_size(); ++i) {
     const Face g(static_cast<Index>(i));
@@ -239,7 +245,8 @@ void SurfaceMesh::append_consuming(SurfaceMesh& other) {
   for (std::size_t i = 0; i < nh; ++i) {
     HalfedgeConnectivity& c = hconn_[Halfedge(Index(h0 + i))];
     if (c.to.is_valid()) c.to = Vertex(c.to.idx() + v0);
-    c.face_or_prev = shift_face_or_prev(c.face_or_prev, h0, f0);
+    c.face_or_prev = renumbered_face_or_prev(
+        c.face_or_prev, [f0](Index f) { return f + f0; }, [h0](Index p) { return p + h0; });
     c.next = shift_h(c.next);
   }
   for (std::size_t i = 0; i < nf; ++i) {
@@ -746,12 +753,8 @@ void SurfaceMesh::garbage_collection() {
     for (Index hi : {Index(2 * e), Index(2 * e + 1)}) {
       HalfedgeConnectivity& c = hconn_[Halfedge(hi)];
       c.to = Vertex(vmap[c.to.idx()]);
-      if (c.face_or_prev & kBoundaryTag) {
-        const Index p = c.face_or_prev & kNoPrev;
-        if (p != kNoPrev) c.face_or_prev = kBoundaryTag | hmap(Halfedge(p)).idx();
-      } else {
-        c.face_or_prev = fmap[c.face_or_prev];
-      }
+      c.face_or_prev = renumbered_face_or_prev(
+          c.face_or_prev, [&](Index f) { return fmap[f]; }, [&](Index p) { return hmap(Halfedge(p)).idx(); });
       c.next = hmap(c.next);
     }
   }
