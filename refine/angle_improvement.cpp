@@ -57,6 +57,12 @@ constexpr double kBoundPadL = 1e-9;
 /// Relative rounding allowance of reach() over its closed form. [derived]
 /// above the rounding of a few products and quotients.
 constexpr double kReachRounding = 1e-12;
+/// Octaves of rho per level of the neighbourhood grids (as the sweep's
+/// grids, front/front_state.h). [measured]
+constexpr int kGridOctaves = 2;
+/// Smallest rho (Å) a grid cell is scaled by: a guard for degenerate skins.
+/// [derived] far below any vertex's rho.
+constexpr double kMinScale = 1e-9;
 /// The normal-line projection of a trial position searches within these
 /// multiples of the sandwiching balls' bracket rho - sqrt(rho² - r²): twice
 /// it, then eight times. [derived] the bracket itself (papers/skin/skin_math.md
@@ -162,17 +168,20 @@ class AngleImprover {
   skin::VertexNormals normal_;  ///< from the cell
   skin::VertexRhos rho_;        ///< from the cell
   /// Every vertex at its position when the pass started (built when there
-  /// is something to move; cells of half the median reach of the first
-  /// candidates), and the vertices moved since at their new positions (a
-  /// vertex moved twice leaves a stale entry, told by its position). The
-  /// first holds indices only and reads the mesh's positions: a vertex that
-  /// never moved is where it was, and a moved one is skipped there (moved_),
-  /// so it visits what a grid of copied positions visits, with 4 bytes an
-  /// entry instead of 32 (on a 66-million-triangle mesh, 0.9 GB at the angle
-  /// improvement's peak). The mesh gains no vertex here, so the positions
-  /// stay where the grid reads them.
-  std::optional<geometry::FlatIndexGrid> grid_;
-  std::optional<geometry::PointGrid> moved_grid_;
+  /// is something to move), and the vertices moved since at their new
+  /// positions. Both are leveled by the vertices' rho, in cells of half the
+  /// median reach over rho of the first candidates times the level's scale,
+  /// so that a query reads cells of its own scale: one uniform cell size
+  /// made a candidate of large reach read (reach / cell)³ cells when the
+  /// median candidate sat at a thin neck (a ring whose hole closes to 1e-6
+  /// Å: 3 s for 10 moves). The first holds indices only and reads the mesh's
+  /// positions: a vertex that never moved is where it was, and a moved one
+  /// is skipped there (moved_), so it visits what a grid of copied positions
+  /// visits, with 4 bytes an entry instead of 16 (on a 66-million-triangle
+  /// mesh the angle improvement's peak). The mesh gains no vertex here, so
+  /// the positions stay where the grid reads them.
+  std::optional<geometry::LeveledIndexGrid> grid_;
+  std::optional<geometry::LeveledPointGrid> moved_grid_;
   std::vector<std::uint8_t> moved_;  ///< per vertex: 1 once it has moved
   std::vector<Face> touched_;        ///< the stars of the moved vertices
   /// Per-attempt marks (attempt number) of the neighbourhood's vertices and
@@ -289,14 +298,19 @@ std::vector<Vertex> AngleImprover::neighbourhood(const Bounds& b) const {
   std::vector<Vertex> out;
   const Vec3 p0 = pos(b.v);
   const double r = reach(b);
-  grid_->for_each_near(p0, r, [&](Index id, const Vec3& p) {
+  // rho is 1-Lipschitz on the skin: the vertices within r have rho within r
+  // of rho(v) (padded for rounding).
+  const double rho_v = rho_[b.v], slack = 1e-9 * (rho_v + r);
+  const double lo = rho_v - r - slack, hi = rho_v + r + slack;
+  const auto& positions = mesh_.positions().vector();
+  grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
     const Vertex x(id);
-    if (x == b.v || mesh_.is_deleted(x) || moved_[id]) return;
+    if (x == b.v || moved_[id]) return;
     if (relevant(b, (p - p0).norm(), rho_[x])) out.push_back(x);
   });
-  moved_grid_->for_each_near(p0, r, [&](Index id, const Vec3& p) {
+  moved_grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
     const Vertex x(id);
-    if (x == b.v || p != pos(x)) return;  // stale: moved again since
+    if (x == b.v) return;
     if (relevant(b, (p - p0).norm(), rho_[x])) out.push_back(x);
   });
   return out;
@@ -592,8 +606,9 @@ bool AngleImprover::try_improve(Vertex v) {
     const Refusal why = admissible(v, t, ring, nearby, faces);
     if (why == Refusal::None) {
       mesh_.position(v) = t.p;
-      cell_[v] = t.s.cell;  // and with it t.s's normal and rho
-      moved_grid_->insert(v.idx(), t.p);
+      cell_[v] = t.s.cell;          // and with it t.s's normal and rho
+      moved_grid_->erase(v.idx());  // moved before: its entry is at its last position
+      moved_grid_->insert(v.idx(), t.p, rho_[v]);
       moved_[v.idx()] = 1;
       for (Face f : mesh_.faces(v)) touched_.push_back(f);
       ++stats_.moves;
@@ -650,7 +665,8 @@ AngleImprovementStats AngleImprover::run() {
     ++stats_.passes;
     std::sort(cands.begin(), cands.end());
     if (!grid_) {
-      // Cells of half the median reach of the first candidates.
+      // Cells of half the median reach over rho of the first candidates,
+      // times the scale of each level.
       std::vector<double> r;
       for (const auto& [q, v] : cands) {
         ring_of(v, ring);
@@ -659,11 +675,14 @@ AngleImprovementStats AngleImprover::run() {
           const double d = (pos(u) - pos(v)).norm();
           shortest = std::min(shortest, d), S = std::max(S, d);
         }
-        r.push_back(reach({v, opt_.max_move_factor * shortest, S}));
+        r.push_back(reach({v, opt_.max_move_factor * shortest, S}) / std::max(rho_[v], kMinScale));
       }
       std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-      grid_.emplace(mesh_.positions().vector(), 0.5 * r[r.size() / 2]);
-      moved_grid_.emplace(0.5 * r[r.size() / 2]);
+      const double cell_per_scale = 0.5 * r[r.size() / 2];
+      grid_.emplace(cell_per_scale, kGridOctaves, /*erasable=*/false);
+      for (Vertex x : mesh_.vertices())
+        if (!mesh_.is_deleted(x)) grid_->insert(x.idx(), pos(x), rho_[x]);
+      moved_grid_.emplace(cell_per_scale, kGridOctaves);
       moved_.assign(mesh_.vertices_size(), 0);
     }
     std::vector<Vertex> next;
