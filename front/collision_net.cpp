@@ -99,6 +99,28 @@ bool contact_with(FrontState& fs, Vertex v, const Corner& k, Vertex best) {
   return true;
 }
 
+Vertex covered_front_vertex(const FrontState& fs, Vertex v, Vertex w, Vertex u) {
+  const Vec3 &pv = fs.mesh.position(v), &pw = fs.mesh.position(w), &pu = fs.mesh.position(u);
+  const Vec3 n = fs.normal[v];
+  // The triangle lies within max(|w - v|, |u - v|) of v; so does every point
+  // that projects into it along n and lies within that distance of v.
+  const double reach = std::max((pw - pv).norm(), (pu - pv).norm());
+  const auto [lo, hi] = FrontState::local_scales(fs.rho[v], reach);
+  // Orientation of x against the directed edge a -> b, seen along n.
+  auto left_of = [&n](const Vec3& a, const Vec3& b, const Vec3& x) { return (b - a).cross(x - a).dot(n) > 0; };
+  Vertex best;
+  double best_d = std::numeric_limits<double>::infinity();
+  fs.front_grid->for_each_near(pv, reach, lo, hi, fs.mesh.positions().vector(), [&](Index xi, const Vec3& px) {
+    const Vertex x(xi);
+    if (x == v || x == w || x == u || fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x)) return;
+    if (fs.normal[x].dot(n) <= fs.opt.min_normal_cosine) return;
+    if (!left_of(pv, pw, px) || !left_of(pw, pu, px) || !left_of(pu, pv, px)) return;
+    const double d = (px - pv).squaredNorm();
+    if (d < best_d || (d == best_d && x.idx() < best.idx())) best_d = d, best = x;
+  });
+  return best;
+}
+
 bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
   // A new point within collision_radius · r of a vertex x other than u, v, w
   // would come too close to another part of the front
@@ -125,8 +147,12 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
                                        if (d < hit_d || (d == hit_d && xi < hit.idx())) hit_d = d, hit = x;
                                      });
   }
+  // A fan of one triangle has no new point; the triangle (v, w, u) itself
+  // must not cover a front vertex.
+  const bool covers = m == 1 && (hit = covered_front_vertex(fs, v, k.w, k.u)).is_valid();
   if (!hit.is_valid()) return false;
   ++fs.stats.collisions;
+  if (covers) ++fs.stats.covered_triangles;
   if (fs.tracing) fs.tracef("collision: fan of v%u reaches v%u\n", v.idx(), hit.idx());
   if (fs.holder_of(hit) != kInvalidIndex) {
     hold(fs, v, fs.holder_of(hit));
@@ -142,9 +168,10 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
   // meet there and the small holes close what is left between them. A fan
   // reaching an interior vertex would lay triangles over meshed surface, and
   // every later fan of that front would do the same: one front passing
-  // through another is how a component comes out swept twice. With the
-  // fallback, v is left for the seal instead (papers/front/collision_net.md).
-  if (fs.opt.patch_fallback && fs.state[hit] == VState::Interior) {
+  // through another is how a component comes out swept twice. A triangle
+  // covering a front vertex would fold the mesh there. With the fallback, v
+  // is left for the seal instead (papers/front/collision_net.md).
+  if (fs.opt.patch_fallback && (covers || fs.state[hit] == VState::Interior)) {
     if (fs.tracing)
       fs.tracef("collision: v%u would cover meshed surface at v%u: left for the seal\n", v.idx(), hit.idx());
     leave_hole_for_seal(fs, {v});

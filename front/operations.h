@@ -123,6 +123,11 @@ void sweep_and_seal(FrontState& fs);
 /// Removes the sweep's own vertex properties and grids; the mesh keeps
 /// those of SweepResult::mesh.
 void drop_sweep_properties(FrontState& fs);
+/// The progress guarantee, not in the paper: counts a departure of v and
+/// returns false while v has departed fewer than max_departures times;
+/// otherwise v is left for the seal (leave_hole_for_seal, counted in
+/// spent_vertices) and true is returned (papers/front/sweep.md, "Progress").
+bool departure_spent(FrontState& fs, Vertex v);
 /// Parks departure vertex v below a slab's upper cut (front/slab.h): held by
 /// no critical point, marked parked, so that it never departs and its loop is
 /// left open for the band.
@@ -178,6 +183,16 @@ bool contact_with(FrontState& fs, Vertex v, const Corner& k, Vertex x);
 /// for the seal if x is an interior vertex and the fallback is on (true);
 /// false if the fan is clear or is built anyway.
 bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m);
+/// The free or held front vertex x (not v, w or u, on v's sheet: normals
+/// within acos(min_normal_cosine)) that the triangle (v, w, u) would cover:
+/// x lies within max(|w - v|, |u - v|) of v and projects along v's normal
+/// strictly inside the triangle's three edges.
+/// The nearest to v, ties to the lower index; invalid if there is none. Cost:
+/// one front_grid query of radius max(|w - v|, |u - v|) around v.
+/// Not in the paper: there, fronts meet only inside protecting spheres, and a
+/// triangle over a front angle is empty (papers/front/collision_net.md, "A
+/// triangle over another front").
+Vertex covered_front_vertex(const FrontState& fs, Vertex v, Vertex w, Vertex u);
 /// The mesh folds at departure vertex v (its tangent angles and hole angle do
 /// not make 360°, or its front angle is undefined), and the fallback is on:
 /// the faces around v are re-opened (reopen_hole; verdict Reopened), or, if

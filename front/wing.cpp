@@ -8,9 +8,15 @@
 
 namespace skinmesh::front::detail {
 
+namespace {
+/// wing_refusal's reason when the triangle would cover a front vertex (compared by address in wing()).
+constexpr const char* kCoversFrontVertex = "it would cover a front vertex";
+}  // namespace
+
 bool wing(FrontState& fs, Vertex v, bool force) {
   const char* why = wing_refusal(fs, v, force);
   if (force && why && fs.tracing) fs.tracef("wing v%u refused: %s\n", v.idx(), why);
+  if (why == kCoversFrontVertex) ++fs.stats.covered_triangles;
   if (why) return false;
   // The front neighbours (the hole angle is not needed here).
   const Halfedge out = fs.mesh.halfedge(v);
@@ -24,7 +30,9 @@ bool wing(FrontState& fs, Vertex v, bool force) {
 }
 
 const char* wing_refusal(const FrontState& fs, Vertex v, bool force) {
-  if (fs.state[v] != VState::Front || !fs.mesh.is_boundary(v)) return "not a free front vertex";
+  // A vertex on the worklist may have lost its faces since (a re-opened region).
+  if (fs.mesh.is_deleted(v) || fs.mesh.is_isolated(v) || fs.state[v] != VState::Front || !fs.mesh.is_boundary(v))
+    return "not a free front vertex";
   const double max_angle = (force ? fs.opt.forced_wing_angle_deg : fs.opt.wing_angle_deg) * kDegree;
   if (clearly_not_below(fs, v, max_angle)) return "front angle too large";
   const Corner k = corner(fs, v);
@@ -43,6 +51,9 @@ const char* wing_refusal(const FrontState& fs, Vertex v, bool force) {
   // Triangle (v, w, u): at w it spans from u to v, at u from v to w.
   if (!fits_at(fs, k.w, k.u, v)) return "it does not fit at w";
   if (!fits_at(fs, k.u, v, k.w)) return "it does not fit at u";
+  // Where fronts meet outside a protecting sphere, a front vertex of another
+  // part can lie inside the triangle: it would cover it.
+  if (covered_front_vertex(fs, v, k.w, k.u).is_valid()) return kCoversFrontVertex;
   return nullptr;
 }
 
