@@ -139,6 +139,9 @@ void add_stats(SweepStats& a, const SweepStats& b) {
   a.reopened_holes += b.reopened_holes, a.collisions += b.collisions, a.released += b.released;
   a.merged_minima += b.merged_minima, a.left_holes += b.left_holes, a.folds += b.folds;
   a.patched_holes += b.patched_holes, a.patch_faces += b.patch_faces, a.parked += b.parked;
+  a.departures += b.departures, a.spent_vertices += b.spent_vertices, a.reopened_faces += b.reopened_faces;
+  a.covered_triangles += b.covered_triangles, a.swept_faces += b.swept_faces,
+      a.most_departures = std::max(a.most_departures, b.most_departures);
 }
 
 /// One slab's sweep: its mesh, or why it failed.

@@ -30,8 +30,10 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
     throw std::invalid_argument(os.str());
   }
   // The per-vertex counters are 8 bits wide.
-  if (!(opt.max_deferrals >= 0 && opt.max_deferrals <= 255) || !(opt.max_reopenings >= 0 && opt.max_reopenings <= 255))
-    throw std::invalid_argument("sweep: max_deferrals and max_reopenings must lie in [0, 255]");
+  if (!(opt.max_deferrals >= 0 && opt.max_deferrals <= 255) ||
+      !(opt.max_reopenings >= 0 && opt.max_reopenings <= 255) ||
+      !(opt.max_departures >= 0 && opt.max_departures <= 255))
+    throw std::invalid_argument("sweep: max_deferrals, max_reopenings and max_departures must lie in [0, 255]");
   normal = mesh.add_vertex_property(kVertexFrontNormal, Vec3::Zero());
   rho = mesh.add_vertex_property(kVertexFrontRho, 0.0);
   cell = mesh.add_vertex_property(skin::kVertexCell, kInvalidIndex);
@@ -40,6 +42,7 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   stamp = mesh.add_vertex_property(kVertexStamp, 0);
   deferrals = mesh.add_vertex_property(kVertexDeferrals, 0);
   reopenings = mesh.add_vertex_property(kVertexReopenings, 0);
+  departures = mesh.add_vertex_property(kVertexDepartures, 0);
   const std::size_t nc = ms.critical.size();
   resolved.assign(nc, 0);
   held.resize(nc);

@@ -88,6 +88,7 @@ inline constexpr geometry::VertexPropertyKey<Index> kVertexHeldBy{"v:held_by"};
 inline constexpr geometry::VertexPropertyKey<std::uint32_t> kVertexStamp{"v:stamp"};
 inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexDeferrals{"v:deferrals"};
 inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexReopenings{"v:reopenings"};
+inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexDepartures{"v:departures"};
 
 /// Front geometry at a boundary vertex v: u -> v -> w with the hole on the left.
 struct Corner {
@@ -142,6 +143,7 @@ struct FrontState {
   geometry::VertexProperty<std::uint32_t> stamp;      ///< queue stamp (lazy deletion)
   geometry::VertexProperty<std::uint8_t> deferrals;   ///< creeps postponed at the vertex
   geometry::VertexProperty<std::uint8_t> reopenings;  ///< re-opened regions whose rim held the vertex
+  geometry::VertexProperty<std::uint8_t> departures;  ///< departures of the vertex (max_departures)
 
   // The departure queue, the wings to try, the holds.
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue;

@@ -187,7 +187,16 @@ bool reopen_hole(FrontState& fs, const std::vector<Vertex>& poly) {
     for (Vertex x : pinched) add_faces_around(x);
     std::sort(region.begin(), region.end());
   }
+  // A region with a corner on the rim of earlier re-opened regions is where
+  // the sweep tangles again: re-meshed from the same rim, it would tangle
+  // the same way. And the faces ever deleted stay at most the faces standing,
+  // so that the sweep makes at most twice the faces it keeps (the progress
+  // guarantee, papers/front/sweep.md).
+  for (Vertex x : rim)
+    if (fs.reopenings[x] >= fs.opt.max_reopenings) return false;
+  if (fs.stats.reopened_faces + 2 * region.size() > fs.mesh.n_faces()) return false;
   for (Face f : region) fs.mesh.delete_face(f);
+  fs.stats.reopened_faces += region.size();
   ++fs.stats.reopened_holes;
   for (Vertex x : rim) {
     if (fs.mesh.is_deleted(x) || fs.mesh.is_isolated(x)) continue;

@@ -85,6 +85,8 @@ bool departure_step(FrontState& fs) {
       throw TopologyError("stopped after " + std::to_string(fs.opt.max_steps) + " departures (max_steps)");
     }
     report_progress(fs, top.h);
+    // Not in the paper: the progress guarantee (papers/front/sweep.md, "Progress").
+    if (departure_spent(fs, v)) return true;
     // In a slab, a vertex within about park_factor · r of the upper cut,
     // measured along the skin, stops there: the band above it is the strip's
     // (front/slab.h). The skin rises by sin(theta) per unit length along its
@@ -181,6 +183,18 @@ void park(FrontState& fs, Vertex v) {
   if (fs.tracing) fs.tracef("park v%u at height %.4f\n", v.idx(), fs.height(v));
 }
 
+bool departure_spent(FrontState& fs, Vertex v) {
+  ++fs.stats.departures;
+  if (fs.departures[v] < fs.opt.max_departures) {
+    fs.stats.most_departures = std::max<std::size_t>(fs.stats.most_departures, ++fs.departures[v]);
+    return false;
+  }
+  ++fs.stats.spent_vertices;
+  if (fs.tracing) fs.tracef("v%u has departed %d times: left for the seal\n", v.idx(), fs.opt.max_departures);
+  leave_hole_for_seal(fs, {v});
+  return true;
+}
+
 void sweep_and_seal(FrontState& fs) {
   // Creeping triangles: Algorithm 1 until the queue is empty, then release the
   // saddles never bridged and go on while that frees any vertex.
@@ -188,6 +202,7 @@ void sweep_and_seal(FrontState& fs) {
     while (departure_step(fs)) {
     }
   } while (release_saddles(fs));
+  fs.stats.swept_faces = fs.mesh.n_faces();
   if (fs.opt.progress) fs.opt.progress("sweep", 1.0);
   // Sealing holes.
   if (!fs.opt.dump_path.empty()) geometry::write_mesh(fs.opt.dump_path, fs.mesh.to_indexed_mesh());
@@ -203,6 +218,7 @@ void drop_sweep_properties(FrontState& fs) {
   fs.mesh.remove_vertex_property(fs.stamp);
   fs.mesh.remove_vertex_property(fs.deferrals);
   fs.mesh.remove_vertex_property(fs.reopenings);
+  fs.mesh.remove_vertex_property(fs.departures);
   fs.mesh.remove_vertex_property(fs.normal);
   fs.mesh.remove_vertex_property(fs.rho);
 }
@@ -239,6 +255,18 @@ const char* operation_name(SweepOperation op) {
       return "patch";
   }
   return "?";
+}
+
+std::size_t departure_bound(const SweepStats& s, int max_departures) {
+  // Every vertex departs at most B + 1 times until it is spent; a spent
+  // vertex departs once more each time it is put back on the front: by a
+  // re-opening (at most 3 rim vertices per deleted face, D <= F of them) or
+  // as a rail vertex of a ladder (2 (k + 1) <= 2 · 2k per ladder of k rows
+  // and 2k faces, at most 2 per face ever made). A bowl brings 7 vertices,
+  // every other vertex comes with a face, and the faces ever made are the F
+  // standing plus the D <= F that re-openings deleted.
+  const std::size_t b = static_cast<std::size_t>(std::max(max_departures, 0)) + 1;
+  return b * (7 * s.creations + 2 * s.swept_faces) + 7 * s.swept_faces;
 }
 
 SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt) {

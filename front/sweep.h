@@ -143,11 +143,20 @@ struct SweepOptions {
   /// A hole tangled in every projection is enlarged (its faces deleted) at
   /// most this many times. [measured]
   int max_hole_enlargements = 2;
-  /// A small hole tangled in every projection during the sweep is re-opened
-  /// (the faces around it deleted, their corners back on the front); each
-  /// vertex may be on the rim of at most this many re-opened regions.
-  /// [measured]
-  int max_reopenings = 3;
+  /// A small hole tangled in every projection during the sweep (or a fold at
+  /// a departure vertex) is re-opened: the faces around it deleted, their
+  /// corners back on the front. A region is re-opened only if none of its
+  /// corners has been on the rim of this many re-opened regions already: the
+  /// sweep is deterministic, so a region re-meshed from the same rim tangles
+  /// the same way again, and then goes to the seal and the fallback instead.
+  /// [derived] 1 (papers/front/hole_filling.md, "Re-opening").
+  int max_reopenings = 1;
+  /// A vertex departs at most this many times (a departure: a valid entry
+  /// taken from the queue, whatever it then does); one more and it is left
+  /// for the seal. With the cap on re-opened faces this bounds the departures
+  /// by the size of the swept mesh (departure_bound()). [measured] far above
+  /// what any input needs (papers/front/sweep.md, "Progress").
+  int max_departures = 32;
   /// Rounds of deleting the faces at pinched vertices while enlarging a hole.
   /// [measured]
   int max_pinch_rounds = 4;
@@ -212,8 +221,11 @@ struct SweepStats {
   std::size_t enlarged_holes = 0;  ///< tangled holes at the seal enlarged by deleting the faces around them
   std::size_t reopened_holes = 0;  ///< tangled small holes during the sweep whose region went back to the front
   std::size_t collisions = 0;      ///< fans that would have come within collision_radius · r of another vertex
-  std::size_t released = 0;        ///< saddles whose holds were released unbridged
-  std::size_t merged_minima = 0;   ///< minima left without a bowl: it would have overlapped a neighbouring bowl
+  /// Wings and one-triangle fans refused because their triangle would cover a
+  /// front vertex of another front part (covered_front_vertex).
+  std::size_t covered_triangles = 0;
+  std::size_t released = 0;       ///< saddles whose holds were released unbridged
+  std::size_t merged_minima = 0;  ///< minima left without a bowl: it would have overlapped a neighbouring bowl
   /// Openings the sweep left for the seal (fallback): tangled small holes that
   /// could not be re-opened, folds at a departure vertex, fans that would
   /// have covered meshed surface.
@@ -226,7 +238,25 @@ struct SweepStats {
   /// Departure vertices parked below a slab's upper cut (front/slab.h); 0
   /// outside a slab.
   std::size_t parked = 0;
+  /// Departures: valid entries taken from the queue (Algorithm 1, line 2).
+  std::size_t departures = 0;
+  /// Vertices left for the seal because they had departed max_departures
+  /// times (the progress guarantee; 0 on every input met so far).
+  std::size_t spent_vertices = 0;
+  /// The most departures of one vertex (at most max_departures).
+  std::size_t most_departures = 0;
+  /// Faces deleted by re-opened regions (never more than the faces left).
+  std::size_t reopened_faces = 0;
+  /// Faces of the partial mesh when the departures ended (before the seal).
+  std::size_t swept_faces = 0;
 };
+
+/// The progress guarantee (papers/front/sweep.md, "Progress"): an upper
+/// bound on `s.departures` for a sweep run with `max_departures`
+/// (SweepOptions), from its size alone: with F = s.swept_faces and B =
+/// max_departures, (B + 1) (7 s.creations + 2 F) + 7 F. Holds for a sweep and,
+/// the bound being linear, for the sums of add_stats.
+std::size_t departure_bound(const SweepStats& s, int max_departures);
 
 /// The closed mesh produced by the sweep, before the local refinement.
 struct SweepResult {

@@ -355,6 +355,32 @@ TEST_CASE("reopen_hole: the region around a hole goes back to the front, and the
   check_partial_mesh(s, t.fx.skin);
   check_front_is_boundary(s);
 
+  // A region with a corner on that rim is where the sweep would tangle again:
+  // refused while a corner has been on max_reopenings rims, though the hole's
+  // own vertex never was. And the faces a re-opening deletes never exceed
+  // the faces left standing.
+  {
+    Vertex inner;  // a vertex off the rim with a rim vertex among its faces' corners
+    for (Vertex y : s.mesh.vertices()) {
+      if (!live_vertex(s, y) || s.reopenings[y] != 0) continue;
+      for (Vertex x : s.mesh.vertices(y))
+        if (s.reopenings[x] > 0) inner = y;
+      if (inner.is_valid()) break;
+    }
+    REQUIRE(inner.is_valid());
+    const std::size_t nf1 = s.mesh.n_faces();
+    t.fx.opt.max_reopenings = 1;
+    CHECK_FALSE(reopen_hole(s, {inner}));
+    t.fx.opt.max_reopenings = 3;
+    const std::size_t deleted = s.stats.reopened_faces;
+    CHECK(deleted > 0);
+    s.stats.reopened_faces = nf1;  // as if as many faces had been deleted as stand
+    CHECK_FALSE(reopen_hole(s, {inner}));
+    s.stats.reopened_faces = deleted;
+    CHECK(s.mesh.n_faces() == nf1);
+    CHECK(s.stats.reopened_holes == 1);
+  }
+
   // The rim is queued: the sweep re-meshes the region and closes it.
   for (int step = 0; step < 500 && departure_step(s); ++step) {
   }
