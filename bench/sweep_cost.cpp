@@ -100,6 +100,15 @@ void BM_SweepCostDimer(benchmark::State& state, double probe) {
   run_sweep_cost(state, bench::weighted_points(skin::read_molecule(SKINMESH_BENCH_DIMER), probe));
 }
 
+/// A regression input of tests/data/regression: PDB 3P3W, a 4.2 Å structure of
+/// 11,484 atoms whose sweep at probe 0 once never ended (papers/front/
+/// collision_net.md, "A triangle over another front"). One iteration: its
+/// sweep at probe 0 makes 14 M triangles.
+void BM_SweepCostRegression(benchmark::State& state, const char* file, double probe) {
+  run_sweep_cost(state, bench::weighted_points(
+                            skin::read_molecule(std::string(SKINMESH_TEST_DATA) + "/regression/" + file), probe));
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_SweepCost, ligand_probe1 .4, "ligand_1hpv_amprenavir.pdb", 1.4, 0.0)
@@ -125,6 +134,10 @@ BENCHMARK_CAPTURE(BM_SweepCost, hivprotease_probe0, "hivprotease_xk263_1hvr.pdb"
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepCostDimer, lowres_dimer_probe1 .4, 1.4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepCostDimer, lowres_dimer_probe0, 0.0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_SweepCostRegression, pdb3p3w_probe0, "pdb3p3w.pdb.gz", 0.0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweepCostLattice, fcc2_gap1e - 3, 1e-3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_SweepCostLattice, fcc2_gap1e - 4, 1e-4)->Unit(benchmark::kMillisecond)->UseRealTime();
 

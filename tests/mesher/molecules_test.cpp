@@ -162,6 +162,27 @@ TEST_CASE("regression: a dense low-resolution-like dimer, clashes kept, at probe
     mesh_and_check(path, probe);
   }
 }
+#ifdef SKINMESH_SANITIZED
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+TEST_CASE("regression: a 4.2 Å structure whose sweep never ended, PDB 3P3W at probe 0" * doctest::skip(kSanitized)) {
+  // Four chains, 11,484 atoms with the close contacts of a low-resolution
+  // model (tests/data/regression/README.md). A wing covered a front vertex of
+  // another front part; the tangled hole it left was re-opened and re-made
+  // the same way, without end. Now the wing is refused, a re-opened region
+  // that tangles again goes to the seal, and no vertex departs more than
+  // max_departures times: the sweep ends, within its departure bound.
+  const skin::Molecule mol = skin::read_molecule(kRegression + "pdb3p3w.pdb.gz");
+  REQUIRE(mol.atoms.size() == 11484);
+  mesher::MeshOptions options;
+  options.probe_radius = 0;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+  CHECK(res.sweep.departures <= front::departure_bound(res.sweep, options.sweep.max_departures));
+}
 TEST_CASE("regression: cocircular slivers of a rotated cubic lattice, vertices off the skin") {
   // The computed foci of sliver tetrahedra on the square faces broke the
   // order of their Voronoi edges; the mixed cells around them overlapped and
