@@ -12,6 +12,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::stress {
@@ -754,10 +755,10 @@ void duplicates(Suite& s) {
 /// in one direction may tangle in another.
 constexpr int kDirectionsPerGeometry = 6;
 
-/// Adds `c` swept in kDirectionsPerGeometry random directions ("/dK"); every
-/// third of them is also rotated and translated.
-void add_directions(Suite& s, const StressCase& base) {
-  for (int k = 0; k < kDirectionsPerGeometry; ++k) {
+/// Adds `c` swept in `count` random directions ("/dK"); every third of them
+/// is also rotated and translated.
+void add_directions(Suite& s, const StressCase& base, int count = kDirectionsPerGeometry) {
+  for (int k = 0; k < count; ++k) {
     StressCase c = base;
     c.name += "/d" + std::to_string(k);
     c.seed = case_seed(s.seed, c.name);
@@ -936,6 +937,121 @@ void channels(Suite& s) {
     }
 }
 
+// The low-resolution class: all-atom models with the clashes of 4 Å structures --------------------
+
+/// Height directions per low-resolution geometry: the front meets itself
+/// where the direction puts the fronts, so each model is swept in many.
+constexpr int kLowResDirections = 20;
+
+/// The protein atoms of a bundled molecule (data/`file`), hydrogens and
+/// waters dropped by the reader, with the residue each atom belongs to and
+/// whether it is a side-chain atom (not N, CA, C, O or OXT).
+struct ModelAtoms {
+  std::vector<StressAtom> atoms;
+  std::vector<int> residue;
+  std::vector<bool> side_chain;
+};
+
+ModelAtoms bundled_model(const std::string& file) {
+  skin::ReadOptions ro;
+  ro.keep_hydrogens = false;
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + file, ro);
+  ModelAtoms m;
+  int residue = -1;
+  std::string last;
+  for (const skin::Atom& a : mol.atoms) {
+    const std::string key = a.chain + "/" + std::to_string(a.residue_number) + a.insertion_code;
+    if (key != last) ++residue, last = key;
+    m.atoms.push_back({a.centre, a.radius});
+    m.residue.push_back(residue);
+    m.side_chain.push_back(a.name != "N" && a.name != "CA" && a.name != "C" && a.name != "O" && a.name != "OXT");
+  }
+  return m;
+}
+
+/// Misplaced side chains, as a model built into 4 Å density has them: each
+/// residue's side chain moved rigidly by a random vector of length uniform in
+/// [0.5, 1.5] Å, then every atom by Gaussian noise of 0.2 Å; clashes kept.
+std::vector<StressAtom> displaced_side_chains(const ModelAtoms& m, Rng& rng) {
+  std::vector<Vec3> shift;
+  for (std::size_t i = 0; i < m.atoms.size(); ++i)
+    if (static_cast<std::size_t>(m.residue[i]) >= shift.size())
+      shift.push_back(rng.uniform(0.5, 1.5) * rng.unit_vector());
+  std::vector<StressAtom> atoms = m.atoms;
+  for (std::size_t i = 0; i < atoms.size(); ++i) {
+    if (m.side_chain[i]) atoms[i].centre += shift[m.residue[i]];
+    atoms[i].centre += 0.2 * Vec3(rng.normal(), rng.normal(), rng.normal());
+  }
+  return atoms;
+}
+
+/// Two copies of `a` packed tighter than van der Waals contact: the second is
+/// the first turned half a turn about a random axis, pushed into the first
+/// until the closest pair of atoms of the two copies is `closest` Å apart
+/// (contact is about 3.4 Å), then every atom moved by Gaussian noise of 0.3 Å.
+std::vector<StressAtom> packed_dimer(const std::vector<StressAtom>& a, double closest, Rng& rng) {
+  Vec3 centre = Vec3::Zero();
+  for (const StressAtom& x : a) centre += x.centre;
+  centre /= static_cast<double>(a.size());
+  const Vec3 u = rng.unit_vector();
+  const Vec3 axis = u.unitOrthogonal();
+  auto partner = [&](double offset) {
+    const Vec3 point = centre + offset * u;
+    std::vector<StressAtom> b = a;
+    for (StressAtom& x : b) {
+      const Vec3 d = x.centre - point;
+      x.centre = point + 2 * d.dot(axis) * axis - d;  // half a turn about the line through `point`
+    }
+    return b;
+  };
+  auto min_distance = [&](const std::vector<StressAtom>& b) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const StressAtom& x : a)
+      for (const StressAtom& y : b) best = std::min(best, (x.centre - y.centre).norm());
+    return best;
+  };
+  double lo = 0, hi = 0;
+  for (const StressAtom& x : a) hi = std::max(hi, (x.centre - centre).norm());
+  hi += 4;
+  for (int i = 0; i < 40; ++i) {  // the copies' closest pair grows with the offset
+    const double mid = 0.5 * (lo + hi);
+    (min_distance(partner(mid)) < closest ? lo : hi) = mid;
+  }
+  std::vector<StressAtom> atoms = a;
+  for (const StressAtom& x : partner(hi)) atoms.push_back(x);
+  for (StressAtom& x : atoms) x.centre += 0.3 * Vec3(rng.normal(), rng.normal(), rng.normal());
+  return atoms;
+}
+
+/// The class of the 4.2 Å crystal structure 3P3W whose sweep once ran away at
+/// probe 0 (tests/data/regression/README.md): bundled proteins with their side
+/// chains misplaced, and dimers packed tighter than contact, at probes 0,
+/// 0.5 and 1.4, each swept in kLowResDirections directions.
+void lowres_models(Suite& s) {
+  const ModelAtoms crambin = bundled_model("crambin_1crn.pdb");
+  const ModelAtoms gramicidin = bundled_model("gramicidinA_1grm_model1.pdb");
+  for (const double p : {0.0, 0.5, 1.4}) {
+    {
+      StressCase c = s.begin("lowres", "crambin-side-chains");
+      Rng rng(c.seed);
+      c.probe = p;
+      c.atoms = displaced_side_chains(crambin, rng);
+      c.note = "crambin with each side chain moved 0.5-1.5 Å and 0.2 Å noise, clashes kept";
+      c.name += "/p" + num(p);
+      add_directions(s, c, kLowResDirections);
+    }
+    {
+      StressCase c = s.begin("lowres", "gramicidin-packed-dimer");
+      Rng rng(c.seed);
+      c.probe = p;
+      c.atoms = packed_dimer(displaced_side_chains(gramicidin, rng), 2.0, rng);
+      c.note = "two gramicidin A chains (side chains moved) packed to a closest pair of 2 Å, 0.3 Å noise";
+      c.name += "/p" + num(p);
+      add_directions(s, c, kLowResDirections);
+    }
+  }
+}
+
 void add_twins(Suite& s) {
   const std::size_t n = s.cases.size();
   std::string family;
@@ -972,10 +1088,12 @@ std::vector<StressCase> generate_suite(std::uint64_t suite_seed) {
   cages(s);
   packings(s);
   channels(s);
+  lowres_models(s);
   // Keep each family together: twins after their family's base cases.
   std::stable_sort(s.cases.begin(), s.cases.end(), [](const StressCase& a, const StressCase& b) {
-    static const std::vector<std::string> order = {"cluster",   "protein",   "lattice",  "shell", "ring",    "helix",
-                                                   "threshold", "duplicate", "membrane", "cage",  "packing", "channel"};
+    static const std::vector<std::string> order = {"cluster", "protein",   "lattice",   "shell",    "ring",
+                                                   "helix",   "threshold", "duplicate", "membrane", "cage",
+                                                   "packing", "channel",   "lowres"};
     auto rank = [](const std::string& f) { return std::find(order.begin(), order.end(), f) - order.begin(); };
     return rank(a.family) < rank(b.family);
   });

@@ -7,7 +7,9 @@
 // Families (names start with the family): random clusters, pseudo-proteins,
 // simple cubic / fcc / bcc lattices, nested shells ("onions"), rings, helices
 // and a trefoil knot, near-threshold pairs / triangles / tetrahedra
-// (thin necks, gaps, closing holes and voids), duplicate and nested atoms;
+// (thin necks, gaps, closing holes and voids), duplicate and nested atoms,
+// and the fallback's and the low-resolution classes (membranes, cages,
+// dense packings, channels, all-atom models with clashes);
 // about one case in two also appears rotated and translated by up to 1e6 Å
 // (name suffix "/rt").
 //
@@ -74,7 +76,7 @@ struct StressCase {
   /// Unique name, "family/parameters/pPROBE[/rt]".
   std::string name;
   /// The family: cluster, protein, lattice, shell, ring, helix, threshold, duplicate,
-  /// membrane, cage, packing, channel.
+  /// membrane, cage, packing, channel, lowres.
   std::string family;
   /// Seed of the case's own generator (see case_seed()); with the suite seed
   /// and the name it reproduces the case.

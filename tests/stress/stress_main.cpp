@@ -184,7 +184,10 @@ struct RunResult {
   std::string crash;  ///< Crash: how the process ended
   double seconds = 0;
   std::size_t patched = 0, left = 0, folds = 0;  ///< the fallback's patches, openings left for the seal, folds
-  std::size_t slabs = 0, dropped_cuts = 0;       ///< slabs of the mesh, cuts the decomposed sweep gave up
+  /// Departures of the sweep and their bound (front::departure_bound: the
+  /// progress guarantee, papers/front/sweep.md), vertices whose budget ran out.
+  std::size_t departures = 0, departure_bound = 0, spent = 0;
+  std::size_t slabs = 0, dropped_cuts = 0;  ///< slabs of the mesh, cuts the decomposed sweep gave up
 };
 
 /// Escapes newlines and tabs so that a message fits one protocol line.
@@ -240,6 +243,9 @@ void run_case(const StressCase& c, int slabs, bool cut_detours, bool component_s
     emit("patched", std::to_string(res.sweep.patched_holes));
     emit("left", std::to_string(res.sweep.left_holes));
     emit("folds", std::to_string(res.sweep.folds));
+    emit("departures", std::to_string(res.sweep.departures));
+    emit("departure_bound", std::to_string(front::departure_bound(res.sweep, options.sweep.max_departures)));
+    emit("spent", std::to_string(res.sweep.spent_vertices));
     emit("slabs", std::to_string(res.slabs));
     emit("dropped_cuts", std::to_string(res.dropped_cuts.size()));
     emit("triangles", std::to_string(res.mesh.triangles.size()));
@@ -299,6 +305,12 @@ void absorb(RunResult& r, const std::string& key, const std::string& value) {
     r.left = std::stoull(value);
   else if (key == "folds")
     r.folds = std::stoull(value);
+  else if (key == "departures")
+    r.departures = std::stoull(value);
+  else if (key == "departure_bound")
+    r.departure_bound = std::stoull(value);
+  else if (key == "spent")
+    r.spent = std::stoull(value);
   else if (key == "slabs")
     r.slabs = std::stoull(value);
   else if (key == "dropped_cuts")
@@ -475,7 +487,11 @@ void judge(CaseReport& rep, double cost_bound_us) {
       const auto [comps, chi] = measured(r);
       const bool topo_ok = !rep.admissible.empty() && admissible(comps, chi);
       const double bound = kCostFloorSeconds + cost_bound_us * 1e-6 * static_cast<double>(r.triangles);
-      if (r.check_ok && topo_ok && cost_bound_us > 0 && r.seconds > bound) {
+      if (r.departures > r.departure_bound) {
+        // The progress guarantee broken: a bug in the sweep's budgets, whatever the mesh.
+        rep.outcome = "departures: " + std::to_string(r.departures) + ", above the bound of " +
+                      std::to_string(r.departure_bound) + " (front::departure_bound)";
+      } else if (r.check_ok && topo_ok && cost_bound_us > 0 && r.seconds > bound) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "cost: %.2f s for %zu triangles, above the bound of %.2f s", r.seconds,
                       r.triangles, bound);
@@ -712,9 +728,15 @@ int main(int argc, char** argv) {
       near_compared, near_other);
   for (const std::string& d : near_notes) std::printf("  near %s\n", d.c_str());
   std::size_t fallback_cases = 0, patches = 0, left_holes = 0, folds = 0;
-  double worst_us = 0;
-  std::string worst_case;
+  double worst_us = 0, worst_share = 0;
+  std::string worst_case, worst_share_case;
+  std::size_t spent_cases = 0;
   for (const CaseReport& rep : reports) {
+    spent_cases += rep.run.spent > 0;
+    if (rep.run.departure_bound > 0) {
+      const double share = static_cast<double>(rep.run.departures) / static_cast<double>(rep.run.departure_bound);
+      if (share > worst_share) worst_share = share, worst_share_case = rep.c->name;
+    }
     fallback_cases += rep.run.patched + rep.run.left + rep.run.folds > 0;
     patches += rep.run.patched, left_holes += rep.run.left, folds += rep.run.folds;
     if (rep.run.triangles == 0) continue;
@@ -746,6 +768,10 @@ int main(int argc, char** argv) {
   }
   std::printf("cost: at most %.1f µs per triangle (%s), bound %g µs + %g s\n", worst_us, worst_case.c_str(),
               opt.cost_bound_us, kCostFloorSeconds);
+  std::printf(
+      "departures (papers/front/sweep.md, \"Progress\"): at most %.4f of the bound (%s); "
+      "a vertex's budget ran out in %zu cases\n",
+      worst_share, worst_share_case.c_str(), spent_cases);
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf(
       "\nstress: %zu/%zu passed (%zu singular: %zu meshed and checked, %zu refused as singular, %zu failed); "
