@@ -216,13 +216,11 @@ TEST_CASE("every creep of a sweep builds a fan of equal apex angles and keeps ch
 TEST_CASE("plan_creep: a front angle below wing_angle_deg gives the verdict Wing") {
   // As in wing_test.cpp: sweep without wings until some free front vertex has
   // a front angle below 85° that wing() would close.
-  Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}});
-  fx.opt.wing_angle_deg = 0;
-  fx.opt.forced_wing_angle_deg = 0;
-  FrontState s(fx.skin, fx.ms, fx.opt);
-  const Vertex target = sweep_to_narrow_corner(fx, s);
-  REQUIRE(target.is_valid());
-  fx.opt.wing_angle_deg = 90;
+  NarrowCorner nc;
+  REQUIRE(nc.v.is_valid());
+  Fixture& fx = nc.fx;
+  FrontState& s = nc.s;
+  const Vertex target = nc.v;
   const Corner k = corner(s, target);
   const std::size_t faces = s.mesh.n_faces(), nv = s.mesh.vertices_size(), loops = front_loops(s);
   const long chi = euler(s);

@@ -94,4 +94,24 @@ inline Vertex sweep_to_narrow_corner(Fixture& fx, FrontState& s) {
   return Vertex();
 }
 
+/// Two overlapping atoms swept with the wings off until a free front vertex
+/// `v` has a narrow corner that wing() would close (sweep_to_narrow_corner;
+/// `v` invalid if none came), then the paper's wing threshold (90°) set
+/// again; forced wings stay off.
+struct NarrowCorner {
+  Fixture fx{{{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}}};
+  FrontState s;
+  Vertex v;
+  NarrowCorner() : s(fx.skin, fx.ms, wings_off(fx.opt)), v(sweep_to_narrow_corner(fx, s)) {
+    fx.opt.wing_angle_deg = 90;
+  }
+
+ private:
+  static const front::SweepOptions& wings_off(front::SweepOptions& opt) {
+    opt.wing_angle_deg = 0;
+    opt.forced_wing_angle_deg = 0;
+    return opt;
+  }
+};
+
 }  // namespace skinmesh::test

@@ -30,13 +30,11 @@ TEST_SUITE("front operations") {
 TEST_CASE("wing closes a front angle below 90°") {
   // Sweep with wings switched off until some free front vertex has a front
   // angle below 90°, then wing it with the paper's threshold.
-  Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}});
-  fx.opt.wing_angle_deg = 0;
-  fx.opt.forced_wing_angle_deg = 0;
-  FrontState s(fx.skin, fx.ms, fx.opt);
-  const Vertex target = sweep_to_narrow_corner(fx, s);
-  REQUIRE(target.is_valid());
-  fx.opt.wing_angle_deg = 90;
+  NarrowCorner nc;
+  REQUIRE(nc.v.is_valid());
+  Fixture& fx = nc.fx;
+  FrontState& s = nc.s;
+  const Vertex target = nc.v;
   const front::detail::Corner k = corner(s, target);
   // The new edge u-w is bounded by wing_max_edge_factor times the larger disc
   // radius of u and w: with the bound set just below its length the wing is
@@ -70,14 +68,11 @@ TEST_CASE("a wing over a front vertex of another front part is refused, and so i
   // front inside the triangle (v, w, u) over another's narrow corner (PDB
   // 3P3W at probe 0: 0.008 Å off its plane, just inside its new edge). Here a
   // small separate triangle is planted inside a narrow corner's triangle.
-  Fixture fx({{Vec3(0, 0, 0), w_of(1.6, 1.4)}, {Vec3(2.4, 0.3, 0.2), w_of(1.7, 1.4)}});
-  fx.opt.wing_angle_deg = 0;
-  fx.opt.forced_wing_angle_deg = 0;
-  FrontState s(fx.skin, fx.ms, fx.opt);
-  const Vertex v = sweep_to_narrow_corner(fx, s);
-  REQUIRE(v.is_valid());
-  fx.opt.wing_angle_deg = 90;
-  fx.opt.forced_wing_angle_deg = 180;
+  NarrowCorner nc;
+  REQUIRE(nc.v.is_valid());
+  FrontState& s = nc.s;
+  const Vertex v = nc.v;
+  nc.fx.opt.forced_wing_angle_deg = 180;
   const Corner k = corner(s, v);
   REQUIRE(!covered_front_vertex(s, v, k.w, k.u).is_valid());
   const Vec3 pv = s.mesh.position(v), n = s.normal[v];
