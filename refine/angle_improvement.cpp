@@ -169,17 +169,14 @@ class AngleImprover {
   skin::VertexRhos rho_;        ///< from the cell
   /// Every vertex at its position when the pass started (built when there
   /// is something to move), and the vertices moved since at their new
-  /// positions. Both are leveled by the vertices' rho, in cells of half the
-  /// median reach over rho of the first candidates times the level's scale,
-  /// so that a query reads cells of its own scale: one uniform cell size
-  /// made a candidate of large reach read (reach / cell)³ cells when the
-  /// median candidate sat at a thin neck (a ring whose hole closes to 1e-6
-  /// Å: 3 s for 10 moves). The first holds indices only and reads the mesh's
-  /// positions: a vertex that never moved is where it was, and a moved one
-  /// is skipped there (moved_), so it visits what a grid of copied positions
-  /// visits, with 4 bytes an entry instead of 16 (on a 66-million-triangle
-  /// mesh the angle improvement's peak). The mesh gains no vertex here, so
-  /// the positions stay where the grid reads them.
+  /// positions. Both are leveled by the vertices' rho, a level's cells half
+  /// the median reach over rho of the first candidates times the level's
+  /// scale: a query reads cells of its own scale, whatever the scales of the
+  /// other candidates (papers/refine/angle_improvement.md). The first holds
+  /// indices only (4 bytes an entry) and reads the mesh's positions: a vertex
+  /// that never moved is where it was, and a moved one is skipped there
+  /// (moved_) and found in the second. The mesh gains no vertex here, so the
+  /// positions stay where the grid reads them.
   std::optional<geometry::LeveledIndexGrid> grid_;
   std::optional<geometry::LeveledPointGrid> moved_grid_;
   std::vector<std::uint8_t> moved_;  ///< per vertex: 1 once it has moved
