@@ -158,8 +158,8 @@ bool fan_collision(FrontState& fs, Vertex v, const Corner& k, int m) {
     hold(fs, v, fs.holder_of(hit));
     return true;
   }
-  // A ghost below a slab's lower cut (front/slab.h) is no front to join.
-  if (fs.mesh.is_boundary(hit) && !fs.is_ghost(hit) && contact_with(fs, v, k, hit)) return true;
+  // A ghost below a region's lower cut (front/region.h) is no front to join.
+  if (fs.mesh.is_boundary(hit) && !fs.region.is_ghost(hit) && contact_with(fs, v, k, hit)) return true;
   if (fs.deferrals[v] < fs.opt.max_deferrals) {
     defer(fs, v, r);
     return true;

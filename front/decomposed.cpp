@@ -146,10 +146,10 @@ void add_stats(SweepStats& a, const SweepStats& b) {
 
 /// One slab's sweep: its mesh, or why it failed.
 struct SlabOutcome {
-  std::optional<SlabResult> result;
+  std::optional<RegionResult> result;
   std::string error;
   bool at_lower_cut = false;  // the failure was the lower cut's (LowerCutError)
-  double seconds = 0;         // wall clock of the sweep_slab() call
+  double seconds = 0;         // wall clock of the sweep_region() call
 };
 
 /// Wall-clock seconds since `start`.
@@ -157,15 +157,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// sweep_slab(), with the failures the decomposition answers by merging
+/// sweep_region(), with the failures the decomposition answers by merging
 /// the slab with a neighbour (a front the slab's bounds disturb, a
 /// construction near them that fails, a slab too thin) caught.
-SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
+SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& slab,
                       const SweepOptions& sweep) {
   SlabOutcome o;
   const auto start = std::chrono::steady_clock::now();
   try {
-    o.result = sweep_slab(skin, ms, slab, sweep);
+    o.result = sweep_region(skin, ms, slab, sweep);
   } catch (const LowerCutError& e) {
     o.error = e.what();
     o.at_lower_cut = true;
@@ -224,9 +224,10 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
     SweepOptions part = sweep;
     part.progress = nullptr;
     try {
-      detail::FrontState fs(skin, ms, part);
-      fs.slab_owns.assign(ms.critical.size(), 0);
-      for (std::size_t p = 0; p < ms.critical.size(); ++p) fs.slab_owns[p] = groups.group[p] == g;
+      Region group;
+      group.owns.assign(ms.critical.size(), 0);
+      for (std::size_t p = 0; p < ms.critical.size(); ++p) group.owns[p] = groups.group[p] == g;
+      detail::FrontState fs(skin, ms, part, std::move(group));
       parts[g] = detail::run_sweep(fs);
       parts[g]->mesh.garbage_collection();
     } catch (const TopologyError& e) {
@@ -306,7 +307,7 @@ struct Band {
 /// which are the vertices of `above`'s lower loop of that curve (both
 /// meshes of the skin whose mixed complex is `mc`). Throws TopologyError if a
 /// band has no outward strip.
-std::vector<Band> close_bands(const skin::MixedComplex& mc, const SlabResult& below, const SlabResult& above,
+std::vector<Band> close_bands(const skin::MixedComplex& mc, const RegionResult& below, const RegionResult& above,
                               double height) {
   const skin::VertexNormals normal_below(mc, below.mesh), normal_above(mc, above.mesh);
   std::vector<Band> bands;
@@ -501,7 +502,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     std::mutex progress_mutex;
     std::size_t finished = 0;
     parallel_for(todo.size(), threads, 1, [&](std::size_t i) {
-      Slab slab;
+      Region slab;
       slab.park_factor = opt.park_factor;
       slab.holds_before_parking = opt.detours;
       const auto [lower, upper] = todo[i];
@@ -548,8 +549,8 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     std::vector<std::string> band_error(live.size());
     const auto bands_start = std::chrono::steady_clock::now();
     parallel_for(live.size(), threads, 1, [&](std::size_t k) {
-      const SlabResult& below = *swept.at(keys[k]).result;
-      const SlabResult& above = *swept.at(keys[k + 1]).result;
+      const RegionResult& below = *swept.at(keys[k]).result;
+      const RegionResult& above = *swept.at(keys[k + 1]).result;
       try {
         bands[k] = close_bands(skin.mixed_complex(), below, above, cuts[live[k]].height);
       } catch (const TopologyError& e) {
@@ -583,7 +584,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     {
       std::size_t nv = 0, nf = 0;
       for (const SlabKey& key : keys) {
-        const SlabResult& r = *swept.at(key).result;
+        const RegionResult& r = *swept.at(key).result;
         nv += r.mesh.vertices_size(), nf += r.mesh.faces_size();
       }
       for (const std::vector<Band>& cut_bands : bands)
@@ -598,14 +599,14 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     std::vector<Index> base(keys.size(), 0);
     for (std::size_t k = 1; k < keys.size(); ++k) {
       SlabOutcome& o = swept.at(keys[k]);
-      SlabResult& r = *o.result;
+      RegionResult& r = *o.result;
       out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
       add_stats(out.sweep.stats, r.stats);
       base[k] = append_with_vertex_data(mesh, r.mesh);
       swept.erase(keys[k]);
     }
     // Each slab's mesh is a surface whose boundary is its lower curves'
-    // samples and its rims, one rim per upper curve (sweep_slab), and every
+    // samples and its rims, one rim per upper curve (sweep_region), and every
     // band covers its rim's and its curve's edges: only the bands' corners
     // can be left open or pinched, so only they are tested (the check of
     // the whole mesh later tests every vertex).

@@ -1,5 +1,5 @@
 // front/decomposed.h: the decomposed sweep on one thread — the skin cut at
-// regular heights into slabs, each swept by sweep_slab() from its lower cut
+// regular heights into slabs, each swept by sweep_region() from its lower cut
 // curves, the band between each slab's parked rims and its upper cut curves
 // closed by strip_triangulation(), and the slabs glued along the shared cut
 // samples into one closed mesh (papers/mesher/decomposition.md, "The
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "front/slab.h"
+#include "front/region.h"
 #include "front/sweep.h"
 #include "morse/level_curves.h"
 
@@ -33,7 +33,7 @@ struct DecompositionOptions {
   double atoms_per_slab = 2500;
   /// With slabs = 0: at most this many slabs.
   int max_slabs = 256;
-  /// Slab::park_factor of every slab.
+  /// Region::park_factor of every slab.
   double park_factor = 2;
   /// A critical point p, live or cancelled, forbids the cut heights c with
   /// c - below · r_p <= h(p) <= c + above · r_p. [measured] 2 and 1: the
@@ -52,7 +52,7 @@ struct DecompositionOptions {
   /// and the strip lie within about park_factor + 1 disc radii of the curve.
   double sphere_margin = 3;
   /// Two consecutive cuts are at least min_thickness · r apart at every
-  /// sample of either (sweep_slab refuses a slab thinner than park_factor +
+  /// sample of either (sweep_region refuses a slab thinner than park_factor +
   /// 1). [derived] park_factor + 2: one row of fans between the lower
   /// curve and the parking height.
   double min_thickness = 4;
@@ -135,14 +135,14 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
                              const DecompositionOptions& opt, const SweepOptions& sweep);
 
 /// A cut the decomposed sweep gave up, and why: a slab next to it failed
-/// (the message of sweep_slab()'s error) or a band under it had no strip.
+/// (the message of sweep_region()'s error) or a band under it had no strip.
 struct DroppedCut {
   double height = 0;
   std::string why;
 };
 
 /// What one slab of the glued mesh cost: the wall-clock seconds of its
-/// sweep_slab() (on whichever thread ran it; with several threads these
+/// sweep_region() (on whichever thread ran it; with several threads these
 /// include the contention of the shared caches and memory) and its
 /// triangles. For the speed-up model of bench/speedup_model.py
 /// (papers/mesher/decomposition.md, "Beyond this machine").
@@ -194,7 +194,7 @@ struct DecomposedSweep {
 /// band below (the strip between the slab's parked rims and the cut's
 /// curves). The slabs, then the bands, are computed on up to opt.threads
 /// threads (one if `sweep` has an observer or a trace); the mesh does not
-/// depend on the count. Where a slab fails (sweep_slab() throws
+/// depend on the count. Where a slab fails (sweep_region() throws
 /// TopologyError, GeometryError or std::invalid_argument) the cut above it
 /// is dropped (below it for the top slab), and where a band has no outward
 /// strip the cut of the band: the two slabs become one, swept again, the

@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "core/errors.h"
 #include "front/operations.h"
@@ -20,8 +21,14 @@ namespace skinmesh::front::detail {
 
 using morse::CriticalKind;
 
-FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt)
-    : skin(skin), ms(ms), opt(opt), e(ms.height_direction) {
+SweptRegion::SweptRegion(Region r) : spec(std::move(r)) {
+  for (const morse::CutDetour& d : spec.upper_detours)
+    upper_balls.insert(upper_balls.end(), d.balls.begin(), d.balls.end());
+}
+
+FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,
+                       Region region)
+    : skin(skin), ms(ms), opt(opt), e(ms.height_direction), region(std::move(region)) {
   if (!(opt.disc_factor > opt.size.disc_factor_lower() && opt.disc_factor <= opt.size.disc_factor_upper())) {
     std::ostringstream os;
     os << "sweep: disc_factor " << opt.disc_factor << " is outside the tangent-disc window ("

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "front/region.h"
 #include "front/sweep.h"
 #include "geometry/kernel/tangent_angles.h"
 #include "geometry/mesh/surface_mesh.h"
@@ -105,6 +106,50 @@ struct Rails {
   std::vector<Index> left_cell, right_cell;
 };
 
+/// The role a region's boundary gives a vertex (front/region.h).
+enum class RegionRole : std::uint8_t {
+  Inside,  ///< a vertex of the region
+  Ghost,   ///< of the ghost strip below a lower cut curve: never departs, deleted at the end
+  Parked,  ///< stopped below the upper cut: its loop is left open for the band
+};
+
+/// The region a sweep meshes, as the sweep reads it: the value it was handed,
+/// the balls its upper cut passes around, and the role each vertex has on
+/// its boundary. For the whole skin (the default Region) every test here is
+/// false and every critical point is owned, so the sweep is Algorithm 1.
+struct SweptRegion {
+  explicit SweptRegion(Region r = {});
+  Region spec;
+  /// The balls of spec.upper_detours, one list (near_upper_detour).
+  std::vector<morse::DetourBall> upper_balls;
+  /// Per vertex index; shorter than the vertex count: the vertices past its
+  /// end are Inside.
+  std::vector<RegionRole> role;
+  /// True if the minimum c at height h gets a bowl: owned, or with level cuts
+  /// strictly between them.
+  bool has_bowl(Index c, double h) const {
+    return spec.owns.empty() ? h > spec.lower && h < spec.upper : spec.owns[c] != 0;
+  }
+  /// True if the saddle or maximum c holds the front (level cuts: every one).
+  bool holds(Index c) const { return spec.owns.empty() || spec.owns[c]; }
+  RegionRole role_of(Vertex v) const { return v.idx() < role.size() ? role[v.idx()] : RegionRole::Inside; }
+  bool is_ghost(Vertex v) const { return role_of(v) == RegionRole::Ghost; }
+  bool is_parked(Vertex v) const { return role_of(v) == RegionRole::Parked; }
+  /// Gives v the role r; `n_vertices` is the mesh's vertex count.
+  void mark(Vertex v, RegionRole r, std::size_t n_vertices) {
+    if (role.size() <= v.idx()) role.resize(n_vertices, RegionRole::Inside);
+    role[v.idx()] = r;
+  }
+  /// True if the boundary loop through h has a ghost or a parked vertex: the
+  /// region's boundary, which neither the seal nor a small hole may close.
+  bool on_boundary(const SurfaceMesh& mesh, Halfedge h) const {
+    if (role.empty()) return false;
+    for (Halfedge g : mesh.boundary_loop(h))
+      if (role_of(mesh.to_vertex(g)) != RegionRole::Inside) return true;
+    return false;
+  }
+};
+
 /// An entry of the departure queue: a min-heap on height with lazy deletion
 /// by stamp (papers/front/open_questions.md Q1.2 (the departure queue)).
 struct QueueEntry {
@@ -125,7 +170,9 @@ struct FrontState {
   /// tangent-disc window of opt.size (Cheng & Shi §4.2), or max_deferrals or
   /// max_reopenings outside [0, 255] (the width of their counters). `skin`, `ms` and
   /// `opt` must outlive the state.
-  FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt);
+  /// `region` is the part of the skin to mesh (the whole skin by default).
+  FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,
+             Region region = {});
 
   // What the sweep reads.
   const skin::SkinSurface& skin;
@@ -189,43 +236,9 @@ struct FrontState {
   double rho_min_seen = std::numeric_limits<double>::infinity();  ///< smallest rho of a vertex so far (Å)
   SweepStats stats;
 
-  // A slab of the decomposed sweep (front/slab.h; papers/mesher/decomposition.md).
-  // Outside a slab run the bounds are infinite and the marks empty, and the
-  // sweep is Algorithm 1 unchanged.
-  /// Heights (Å) of the lower and upper cut: minima get a bowl only strictly
-  /// between them, and a departure vertex above upper - park_factor · r ·
-  /// sin(theta) (theta between its normal and e) is parked.
-  double slab_lower = -std::numeric_limits<double>::infinity();
-  double slab_upper = std::numeric_limits<double>::infinity();
-  double park_factor = 0;
-  /// With cuts that detour (morse::cut_curves): per critical point, 1 if the
-  /// slab owns it (its minima get bowls, its saddles and maxima hold); empty:
-  /// by height, strictly between the cuts.
-  std::vector<char> slab_owns;
-  bool owns(Index c) const { return slab_owns.empty() || slab_owns[c]; }
-  /// Slab::holds_before_parking: a departure vertex in the hold region of a
-  /// critical point the slab owns is held, never parked.
-  bool holds_before_parking = false;
-  /// The balls the upper cut detours around, and its curves: a departure
-  /// vertex near a ball parks by its distance to the cut's polyline instead
-  /// of its height.
-  std::vector<morse::DetourBall> upper_balls;
-  std::vector<morse::LevelCurve> upper_cut;
-  /// Per vertex index: 1 for a vertex of the ghost strip below a lower cut
-  /// curve (never departs, deleted at the end), 2 for a parked vertex (on an
-  /// upper rim, left open for the band). Shorter than the vertex count: the
-  /// vertices past its end are neither.
-  std::vector<std::uint8_t> slab_mark;
-  bool is_ghost(Vertex v) const { return v.idx() < slab_mark.size() && slab_mark[v.idx()] == 1; }
-  bool is_parked(Vertex v) const { return v.idx() < slab_mark.size() && slab_mark[v.idx()] == 2; }
-  /// True if the boundary loop through h has a ghost or a parked vertex: a
-  /// slab's boundary, which neither the seal nor a small hole may close.
-  bool on_slab_boundary(Halfedge h) const {
-    if (slab_mark.empty()) return false;
-    for (Halfedge g : mesh.boundary_loop(h))
-      if (is_ghost(mesh.to_vertex(g)) || is_parked(mesh.to_vertex(g))) return true;
-    return false;
-  }
+  /// The part of the skin this sweep meshes (front/region.h): the whole skin
+  /// unless the sweep was handed a region.
+  SweptRegion region;
 
   /// Sets v's state, and keeps front_grid to the vertices not Interior.
   void set_state(Vertex v, VState s) {

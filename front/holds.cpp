@@ -23,7 +23,7 @@ Index hold_region(const FrontState& fs, Vertex v) {
   Index best = kInvalidIndex;
   double best_d = std::numeric_limits<double>::infinity();
   fs.for_each_hold_near(p, fs.rho[v], r, [&](Index c, const Vec3& q) {
-    if (fs.resolved[c] || !fs.owns(c)) return;
+    if (fs.resolved[c] || !fs.region.holds(c)) return;
     const double d = (p - q).norm();
     // The nearest, ties to the lower index (independent of the grid's order).
     if (d < fs.ms.protect_radius[c] + r && (d < best_d || (d == best_d && c < best))) best = c, best_d = d;

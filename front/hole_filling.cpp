@@ -31,8 +31,8 @@ bool small_hole(const FrontState& fs, Vertex v) {
     const Vertex x = fs.mesh.to_vertex(h);
     if (x == v) break;
     if ((fs.mesh.position(x) - fs.mesh.position(v)).norm() > reach) return false;
-    // A slab's boundary (a ghost strip's top, a parked rim) is no hole.
-    if (fs.is_ghost(x) || fs.is_parked(x)) return false;
+    // A region's boundary (a ghost strip's top, a parked rim) is no hole.
+    if (fs.region.role_of(x) != RegionRole::Inside) return false;
     h = fs.mesh.next(h);
   }
   // A loop of k vertices bounds a small hole iff its hole angles add up to

@@ -118,7 +118,7 @@ void create_initial_front(FrontState& fs);
 /// queue was empty.
 bool departure_step(FrontState& fs);
 /// The departures until the queue is empty (releasing unbridged saddles),
-/// then the seal: run_sweep after its initial front (sweep_slab's too).
+/// then the seal: run_sweep after its initial front (sweep_region's too).
 void sweep_and_seal(FrontState& fs);
 /// Removes the sweep's own vertex properties and grids; the mesh keeps
 /// those of SweepResult::mesh.
@@ -128,9 +128,14 @@ void drop_sweep_properties(FrontState& fs);
 /// otherwise v is left for the seal (leave_hole_for_seal, counted in
 /// spent_vertices) and true is returned (papers/front/sweep.md, "Progress").
 bool departure_spent(FrontState& fs, Vertex v);
-/// Parks departure vertex v below a slab's upper cut (front/slab.h): held by
-/// no critical point, marked parked, so that it never departs and its loop is
-/// left open for the band.
+/// Not in the paper: true (and v parked) if departure vertex v has come
+/// within about park_factor · r of the upper cut of the region being swept
+/// (front/region.h; never for the whole skin). With
+/// Region::holds_before_parking, a v that a critical point holds never parks.
+bool parks(FrontState& fs, Vertex v);
+/// Parks departure vertex v below the region's upper cut: held by no
+/// critical point, given the role Parked, so that it never departs and its
+/// loop is left open for the band.
 void park(FrontState& fs, Vertex v);
 /// Releases the vertices held by unresolved saddles (the queue ran dry before
 /// both sides arrived); returns true if any was released (holds.cpp).
@@ -153,7 +158,7 @@ Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index*
 /// The unresolved live saddle or maximum whose protecting sphere v's tangent
 /// disc meets (the nearest), or kInvalidIndex.
 Index hold_region(const FrontState& fs, Vertex v);
-/// In a slab whose upper cut detours (front/slab.h): 0 if v lies away from
+/// In a region whose upper cut detours (front/region.h): 0 if v lies away from
 /// the balls of the detours (the height rule applies), else +1 if v lies
 /// within park_factor · r of the cut's polyline (it parks), -1 if not.
 int near_upper_detour(const FrontState& fs, Vertex v);

@@ -68,8 +68,8 @@ void seal_all(FrontState& fs) {
   // by one more pass from the start.
   std::size_t cursor = 0;
   bool rescanned = false;
-  // In a slab (front/slab.h), the loops of the ghost strips and the parked
-  // rims are the slab's boundary: they stay open. Their vertices are marked
+  // In a region (front/region.h), the loops of the ghost strips and the
+  // parked rims are the region's boundary: they stay open. Their vertices are marked
   // once, so that the scan skips them without walking the loop again.
   std::vector<char> kept_open;
   for (std::size_t iter = 0;; ++iter) {
@@ -80,7 +80,7 @@ void seal_all(FrontState& fs) {
       const Vertex v(static_cast<Index>(cursor));
       if (fs.mesh.is_deleted(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
       if (cursor < kept_open.size() && kept_open[cursor]) continue;
-      if (fs.on_slab_boundary(fs.mesh.halfedge(v))) {
+      if (fs.region.on_boundary(fs.mesh, fs.mesh.halfedge(v))) {
         kept_open.resize(n, 0);
         for (Halfedge g : fs.mesh.boundary_loop(fs.mesh.halfedge(v))) kept_open[fs.mesh.to_vertex(g).idx()] = 1;
         continue;

@@ -29,13 +29,11 @@ void create_initial_front(FrontState& fs) {
   // front sweeps its basin, and the saddles the missing bowl would have
   // touched are resolved with it (papers/front/creation.md, "Overlapping bowls").
   std::vector<Index> minima;
-  // In a slab (front/slab.h), only the minima strictly between its cuts: the
-  // others are in the slabs below and above.
+  // In a region (front/region.h), only the minima it owns: the others are
+  // in the regions below and above.
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Minimum) continue;
-    const double h = fs.ms.critical[c].height;
-    if (fs.slab_owns.empty() ? h > fs.slab_lower && h < fs.slab_upper : fs.slab_owns[c] != 0)
-      minima.push_back(static_cast<Index>(c));
+    if (fs.region.has_bowl(static_cast<Index>(c), fs.ms.critical[c].height)) minima.push_back(static_cast<Index>(c));
   }
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return fs.ms.critical[a].position.dot(fs.e) < fs.ms.critical[b].position.dot(fs.e);
@@ -85,38 +83,9 @@ bool departure_step(FrontState& fs) {
       throw TopologyError("stopped after " + std::to_string(fs.opt.max_steps) + " departures (max_steps)");
     }
     report_progress(fs, top.h);
-    // Not in the paper: the progress guarantee (papers/front/sweep.md, "Progress").
-    if (departure_spent(fs, v)) return true;
-    // In a slab, a vertex within about park_factor · r of the upper cut,
-    // measured along the skin, stops there: the band above it is the strip's
-    // (front/slab.h). The skin rises by sin(theta) per unit length along its
-    // slope (theta the angle between n and e), so the height gap is scaled
-    // by it: on a gentle slope a height bound alone would leave a band many
-    // edges wide, which one strip of triangles cannot fill. Outside a slab
-    // the bound is +infinity.
-    // Near a ball the upper cut passes around, the cut is no level curve:
-    // the vertex parks within park_factor · r of the cut's polyline.
-    // Where the slab must first resolve a critical point it owns under the
-    // cut, the hold comes first (Slab::holds_before_parking).
-    if (fs.holds_before_parking) {
-      if (const Index c = hold_region(fs, v); c != kInvalidIndex) {
-        hold(fs, v, c);
-        return true;
-      }
-    }
-    if (const int near = near_upper_detour(fs, v); near != 0) {
-      if (near > 0) {
-        park(fs, v);
-        return true;
-      }
-    } else if (const double gap = fs.slab_upper - fs.height(v); gap < fs.park_factor * fs.disc_radius(v)) {
-      const double cos_theta = fs.e.dot(fs.normal[v]);
-      const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-      if (gap < fs.park_factor * fs.disc_radius(v) * sin_theta) {
-        park(fs, v);
-        return true;
-      }
-    }
+    // Not in the paper: the progress guarantee (papers/front/sweep.md,
+    // "Progress"), and the upper boundary of the region being swept.
+    if (departure_spent(fs, v) || parks(fs, v)) return true;
     // Lines 3–10: in the protecting sphere of a saddle (bridged when ready)
     // or of a maximum: the vertex is held.
     if (const Index c = hold_region(fs, v); c != kInvalidIndex) {
@@ -149,19 +118,45 @@ bool departure_step(FrontState& fs) {
   return false;
 }
 
+bool parks(FrontState& fs, Vertex v) {
+  // A vertex within about park_factor · r of the upper cut, measured along
+  // the skin, stops there: the band above it is the strip's (front/band.h).
+  // The skin rises by sin(theta) per unit length along its slope (theta the
+  // angle between n and e), so the height gap is scaled by it: on a gentle
+  // slope a height bound alone would leave a band many edges wide, which one
+  // strip of triangles cannot fill. Near a ball the upper cut passes around,
+  // the cut is no level curve: the vertex parks within park_factor · r of
+  // the cut's polyline. For the whole skin the cut is at +infinity.
+  const Region& region = fs.region.spec;
+  // Where the region must first resolve a critical point it owns under the
+  // cut, the hold comes first (Region::holds_before_parking).
+  if (region.holds_before_parking && hold_region(fs, v) != kInvalidIndex) return false;
+  bool stop = false;
+  if (const int near = near_upper_detour(fs, v); near != 0) {
+    stop = near > 0;
+  } else if (const double gap = region.upper - fs.height(v); gap < region.park_factor * fs.disc_radius(v)) {
+    const double cos_theta = fs.e.dot(fs.normal[v]);
+    const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+    stop = gap < region.park_factor * fs.disc_radius(v) * sin_theta;
+  }
+  if (stop) park(fs, v);
+  return stop;
+}
+
 int near_upper_detour(const FrontState& fs, Vertex v) {
-  if (fs.upper_balls.empty()) return 0;
+  if (fs.region.upper_balls.empty()) return 0;
   const Vec3& p = fs.mesh.position(v);
-  const double r = fs.disc_radius(v), reach = 2 * fs.park_factor * r;
+  const double park_factor = fs.region.spec.park_factor;
+  const double r = fs.disc_radius(v), reach = 2 * park_factor * r;
   bool near = false;
-  for (const morse::DetourBall& b : fs.upper_balls)
+  for (const morse::DetourBall& b : fs.region.upper_balls)
     if ((p - b.center).norm() < b.radius + reach) near = true;
   if (!near) return 0;
   // The distance to the cut's polyline, over all its edges: linear in the
   // cut's length per vertex near a ball (a grid of the edges is the next
   // step for large inputs).
   double best = std::numeric_limits<double>::infinity();
-  for (const morse::LevelCurve& curve : fs.upper_cut) {
+  for (const morse::LevelCurve& curve : fs.region.spec.upper_curves) {
     const std::size_t n = curve.points.size();
     for (std::size_t j = 0; j < n; ++j) {
       const Vec3& a = curve.points[j];
@@ -171,14 +166,13 @@ int near_upper_detour(const FrontState& fs, Vertex v) {
       best = std::min(best, (p - (a + t * ab)).norm());
     }
   }
-  return best < fs.park_factor * r ? 1 : -1;
+  return best < park_factor * r ? 1 : -1;
 }
 
 void park(FrontState& fs, Vertex v) {
   fs.set_state(v, VState::Held);
   fs.held_by[v] = kInvalidIndex;
-  if (fs.slab_mark.size() <= v.idx()) fs.slab_mark.resize(fs.mesh.vertices_size(), 0);
-  fs.slab_mark[v.idx()] = 2;
+  fs.region.mark(v, RegionRole::Parked, fs.mesh.vertices_size());
   ++fs.stats.parked;
   if (fs.tracing) fs.tracef("park v%u at height %.4f\n", v.idx(), fs.height(v));
 }

@@ -235,8 +235,8 @@ struct SweepStats {
   std::size_t folds = 0;
   std::size_t patched_holes = 0;  ///< holes whose region the fallback re-meshed (papers/front/patch.md)
   std::size_t patch_faces = 0;    ///< faces the fallback's patches added
-  /// Departure vertices parked below a slab's upper cut (front/slab.h); 0
-  /// outside a slab.
+  /// Departure vertices parked below a region's upper cut (front/region.h); 0
+  /// for the whole skin.
   std::size_t parked = 0;
   /// Departures: valid entries taken from the queue (Algorithm 1, line 2).
   std::size_t departures = 0;

@@ -136,7 +136,7 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
   // on the thread count.
   // Crambin at probe 0 dropped a cut when its slab parked around a live
   // saddle 0.05 Å under it instead of bridging it (two curves, one rim:
-  // Slab::holds_before_parking); gramicidin A at probe 0 dropped two, one
+  // Region::holds_before_parking); gramicidin A at probe 0 dropped two, one
   // where the cut ran along the arcs of a cluster that went down (now up:
   // front::choose_cuts). Neither may drop a cut now.
   std::size_t detoured_cuts = 0, most_balls = 0;

@@ -1,12 +1,12 @@
-// front/slab.cpp: the sweep of one slab (front/slab.h). The sweep's front is
+// front/region.cpp: the sweep of one region (front/region.h). The sweep's front is
 // the boundary of its partial mesh, so a bare loop of cut-curve samples is no
 // front: below each lower curve goes a ghost strip of triangles, which makes
 // the curve the rim of a meshed part exactly like a bowl's. The ghosts are
 // interior vertices (they never depart) that the collision net still sees;
 // the strip is deleted at the end. Near the upper cut departure vertices are
 // parked (sweep.cpp), and the seal leaves the parked rims open.
-// Notes: papers/mesher/decomposition.md ("Increments", 3)
-#include "front/slab.h"
+// Notes: papers/mesher/decomposition.md
+#include "front/region.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ constexpr double kGhostDepth = 0.25;
 /// (p_j, p_j+1, g_j+1), (p_j, g_j+1, g_j). A curve oriented by n × e has
 /// the skin below it on its left seen from outside, so these faces are
 /// counter-clockwise and the half-edges p_j+1 -> p_j are the front's, with
-/// the slab on their left. Returns the ghost faces.
+/// the region on their left. Returns the ghost faces.
 std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::LevelCurve>& curves) {
   std::vector<std::vector<Vertex>> samples;
   for (const morse::LevelCurve& curve : curves) {
@@ -53,7 +53,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
     for (std::size_t j = 0; j < p.size(); ++j) {
       const Vertex x = p[j];
       // Down the slope: the tangent-plane direction of -e. A regular cut
-      // (Slab's precondition) keeps the skin's normal away from ±e there.
+      // (Region's precondition) keeps the skin's normal away from ±e there.
       // Next to a detour (an edge on a ball's circle) the cut is no level
       // curve: the ghost goes to the cut's left, n × t for its tangent t,
       // which is down the slope on a level curve.
@@ -78,8 +78,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
       fs.set_state(gx, VState::Interior);
       g.push_back(gx);
     }
-    if (fs.slab_mark.size() < fs.mesh.vertices_size()) fs.slab_mark.resize(fs.mesh.vertices_size(), 0);
-    for (Vertex gx : g) fs.slab_mark[gx.idx()] = 1;
+    for (Vertex gx : g) fs.region.mark(gx, RegionRole::Ghost, fs.mesh.vertices_size());
     const std::size_t k = p.size();
     for (std::size_t j = 0; j < k; ++j) {
       const std::size_t j1 = (j + 1) % k;
@@ -163,13 +162,13 @@ std::vector<std::vector<Vertex>> parked_loops(const FrontState& fs) {
   std::vector<std::vector<Vertex>> loops;
   std::vector<char> seen(fs.mesh.vertices_size(), 0);
   for (Vertex v : fs.mesh.vertices()) {
-    if (seen[v.idx()] || !fs.is_parked(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
+    if (seen[v.idx()] || !fs.region.is_parked(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
     std::vector<Vertex> loop;
     bool ghost = false;
     for (Halfedge g : fs.mesh.boundary_loop(fs.mesh.halfedge(v))) {
       const Vertex x = fs.mesh.to_vertex(g);
       seen[x.idx()] = 1;
-      ghost = ghost || fs.is_ghost(x);
+      ghost = ghost || fs.region.is_ghost(x);
       loop.push_back(x);
     }
     if (!ghost) loops.push_back(std::move(loop));
@@ -222,74 +221,66 @@ void wing_rims(FrontState& fs) {
 }  // namespace
 }  // namespace detail
 
-SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
-                      const SweepOptions& opt) {
+RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
+                          const SweepOptions& opt) {
   using namespace detail;
-  if (!(slab.lower < slab.upper)) throw std::invalid_argument("sweep_slab: the lower cut must lie below the upper cut");
-  if (!(slab.park_factor >= 1)) throw std::invalid_argument("sweep_slab: park_factor must be at least 1");
+  if (!(region.lower < region.upper))
+    throw std::invalid_argument("sweep_region: the lower cut must lie below the upper cut");
+  if (!(region.park_factor >= 1)) throw std::invalid_argument("sweep_region: park_factor must be at least 1");
   std::size_t n_samples = 0;
-  for (const morse::LevelCurve& c : slab.lower_curves) {
+  for (const morse::LevelCurve& c : region.lower_curves) {
     if (c.points.size() < 3 || c.cells.size() != c.points.size() || c.rho.size() != c.points.size())
-      throw std::invalid_argument("sweep_slab: a lower curve needs at least three samples, each with its cell and rho");
+      throw std::invalid_argument(
+          "sweep_region: a lower curve needs at least three samples, each with its cell and rho");
     // A sample within park_factor · r of the upper cut would be parked at
-    // once: the slab would have no triangle there, only the band.
+    // once: the region would have no triangle there, only the band.
     for (double rho : c.rho)
-      if (slab.lower + (slab.park_factor + 1) * opt.disc_factor * rho > slab.upper) {
+      if (region.lower + (region.park_factor + 1) * opt.disc_factor * rho > region.upper) {
         std::ostringstream os;
-        os << "sweep_slab: the slab [" << slab.lower << ", " << slab.upper
-           << "] is thinner than park_factor + 1 = " << slab.park_factor + 1 << " disc radii ("
-           << (slab.park_factor + 1) * opt.disc_factor * rho << " A) at a sample of its lower curves";
+        os << "sweep_region: the slab [" << region.lower << ", " << region.upper
+           << "] is thinner than park_factor + 1 = " << region.park_factor + 1 << " disc radii ("
+           << (region.park_factor + 1) * opt.disc_factor * rho << " A) at a sample of its lower curves";
         throw std::invalid_argument(os.str());
       }
     n_samples += c.points.size();
   }
-  FrontState fs(skin, ms, opt);
-  fs.slab_lower = slab.lower;
-  fs.slab_upper = slab.upper;
-  fs.park_factor = slab.park_factor;
-  fs.holds_before_parking = slab.holds_before_parking;
-  if (!slab.owns.empty()) {
-    if (slab.owns.size() != ms.critical.size())
-      throw std::invalid_argument("sweep_slab: `owns` needs one entry per critical point");
-    fs.slab_owns = slab.owns;
-  }
-  for (const morse::CutDetour& d : slab.upper_detours)
-    fs.upper_balls.insert(fs.upper_balls.end(), d.balls.begin(), d.balls.end());
-  if (!fs.upper_balls.empty()) {
-    if (slab.upper_curves.empty())
-      throw std::invalid_argument("sweep_slab: an upper cut with detours needs its curves");
-    fs.upper_cut = slab.upper_curves;
-  }
-  const std::vector<Face> ghost_faces = attach_lower_curves(fs, slab.lower_curves);
+  if (!region.owns.empty() && region.owns.size() != ms.critical.size())
+    throw std::invalid_argument("sweep_region: `owns` needs one entry per critical point");
+  const bool detours = std::any_of(region.upper_detours.begin(), region.upper_detours.end(),
+                                   [](const morse::CutDetour& d) { return !d.balls.empty(); });
+  if (detours && region.upper_curves.empty())
+    throw std::invalid_argument("sweep_region: an upper cut with detours needs its curves");
+  FrontState fs(skin, ms, opt, region);
+  const std::vector<Face> ghost_faces = attach_lower_curves(fs, region.lower_curves);
   create_initial_front(fs);
   sweep_and_seal(fs);
   std::optional<CurveLocator> locator;
-  if (!slab.upper_curves.empty()) {
-    locator.emplace(slab.upper_curves, opt.disc_factor);
-    seal_stray_rims(fs, *locator, slab.upper_curves.size());
+  if (!region.upper_curves.empty()) {
+    locator.emplace(region.upper_curves, opt.disc_factor);
+    seal_stray_rims(fs, *locator, region.upper_curves.size());
   }
   wing_rims(fs);
 
   // The ghost strips must have survived the repairs of the front: a
   // re-opened, enlarged or patched region that reached below the lower cut
-  // would have changed the slab's boundary.
+  // would have changed the region's boundary.
   for (Face f : ghost_faces)
     if (fs.mesh.is_deleted(f))
       throw LowerCutError("slab: a repair of the front reached below the lower cut (a ghost face was deleted)");
   for (Face f : ghost_faces) fs.mesh.delete_face(f);
 
   // The boundary: each lower curve one loop, every other loop a parked rim.
-  SlabResult res;
+  RegionResult res;
   std::vector<Index> curve_of(n_samples, kInvalidIndex);
   {
     Index next = 0;
-    for (std::size_t k = 0; k < slab.lower_curves.size(); ++k) {
+    for (std::size_t k = 0; k < region.lower_curves.size(); ++k) {
       std::vector<Index>& loop = res.lower_loops.emplace_back();
-      for (std::size_t j = 0; j < slab.lower_curves[k].points.size(); ++j, ++next)
+      for (std::size_t j = 0; j < region.lower_curves[k].points.size(); ++j, ++next)
         loop.push_back(next), curve_of[next] = static_cast<Index>(k);
     }
   }
-  std::vector<char> curve_seen(slab.lower_curves.size(), 0);
+  std::vector<char> curve_seen(region.lower_curves.size(), 0);
   std::vector<std::vector<Vertex>> rims;
   for (const std::vector<Halfedge>& loop : fs.mesh.boundary_loops()) {
     const Index k0 = fs.mesh.to_vertex(loop.front()).idx() < n_samples ? curve_of[fs.mesh.to_vertex(loop.front()).idx()]
@@ -299,7 +290,7 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
     for (Halfedge h : loop) {
       const Vertex x = fs.mesh.to_vertex(h);
       if (x.idx() >= n_samples || curve_of[x.idx()] != k0) whole_curve = false;
-      if (fs.is_parked(x)) parked = true;
+      if (fs.region.is_parked(x)) parked = true;
     }
     if (whole_curve) {
       curve_seen[k0] = 1;
@@ -319,12 +310,12 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
     if (!curve_seen[k])
       throw LowerCutError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
   if (locator) {
-    std::vector<int> rims_of(slab.upper_curves.size(), 0);
+    std::vector<int> rims_of(region.upper_curves.size(), 0);
     for (const std::vector<Vertex>& rim : rims) ++rims_of[res.rim_curve.emplace_back(locator->vote(fs, rim))];
     for (std::size_t k = 0; k < rims_of.size(); ++k)
       if (rims_of[k] != 1) {
         std::ostringstream os;
-        const morse::LevelCurve& c = slab.upper_curves[k];
+        const morse::LevelCurve& c = region.upper_curves[k];
         const bool island = !c.detour.empty() &&
                             std::all_of(c.detour.begin(), c.detour.end(), [](Index d) { return d != kInvalidIndex; });
         os << "slab: the upper cut curve through (" << c.points.front().transpose() << ") has " << rims_of[k]
@@ -347,8 +338,8 @@ SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComp
     std::vector<Index>& out = res.upper_rims.emplace_back();
     for (Vertex x : rim) out.push_back(new_index[x.idx()]);
   }
-  for (std::size_t i = 0; i < fs.slab_mark.size(); ++i)
-    if (fs.slab_mark[i] == 2 && !fs.mesh.is_deleted(Vertex(static_cast<Index>(i)))) ++res.parked;
+  for (std::size_t i = 0; i < fs.region.role.size(); ++i)
+    if (fs.region.role[i] == RegionRole::Parked && !fs.mesh.is_deleted(Vertex(static_cast<Index>(i)))) ++res.parked;
   drop_sweep_properties(fs);
   fs.mesh.garbage_collection();
   res.mesh = std::move(fs.mesh);

@@ -1,11 +1,11 @@
-// front/slab.h: the sweep of one slab of the decomposed sweep — Algorithm 1
-// of Cheng & Shi 2004 §4.1 restricted to the part of the skin between two
-// cut heights: it starts from the sampled level curves of the lower cut (the
-// slab's initial front, beside the bowls at the minima inside the slab) and
-// parks the front below the upper cut, leaving the thin band up to the upper
-// cut curves open (the band is closed by a strip triangulation, a later
-// increment of papers/mesher/decomposition.md).
-// Notes: papers/mesher/decomposition.md ("Increments", 3)
+// front/region.h: the part of the skin one sweep meshes, as a value the sweep
+// is handed — where its front starts (the lower cut curves, beside the bowls
+// at the minima it owns), which critical points it owns, and where its front
+// stops (parked below an upper cut, level or detoured). The whole skin is the
+// default region, and its sweep is Algorithm 1 of Cheng & Shi 2004 §4.1
+// unchanged. The band left open between a region's parked rims and its upper
+// cut is closed by the strip of front/band.h.
+// Notes: papers/mesher/decomposition.md
 #pragma once
 
 #include <limits>
@@ -17,24 +17,27 @@
 
 namespace skinmesh::front {
 
-/// One slab S = F ∩ {lower <= e·x <= upper} of the skin F (e the complex's
-/// height direction), given by its cut heights and its lower cut curves.
-struct Slab {
-  /// Height of the lower cut (Å); -infinity: the slab starts below the skin
+/// One region of the skin F for one sweep: with level cuts the region
+/// F ∩ {lower <= e·x <= upper} (e the complex's height direction); with
+/// detoured cuts, the part between the cut curves, its critical points given
+/// by `owns`; with `owns` alone, a group of components. Default-constructed,
+/// the whole skin.
+struct Region {
+  /// Height of the lower cut (Å); -infinity: the region starts below the skin
   /// (no lower cut, no lower curves).
   double lower = -std::numeric_limits<double>::infinity();
   /// The closed curves of F ∩ {e·x = lower}, as morse::level_curves() returns
   /// them (oriented by n × e, at least three samples each). Every one becomes
-  /// a loop of the initial front; their samples are the slab's lower boundary
+  /// a loop of the initial front; their samples are the region's lower boundary
   /// vertices, in this order.
   std::vector<morse::LevelCurve> lower_curves;
-  /// Height of the upper cut (Å); +infinity: the slab goes over the skin's top
+  /// Height of the upper cut (Å); +infinity: the region goes over the skin's top
   /// (no parking; every hole is sealed).
   double upper = std::numeric_limits<double>::infinity();
   /// The closed curves of F ∩ {e·x = upper}, as morse::level_curves()
   /// returns them; may be left empty. Given, they tell the parked rims from
   /// stray holes: each curve keeps the open loop with parked vertices that
-  /// lies nearest to it (SlabResult::rim_curve), and every other such loop
+  /// lies nearest to it (RegionResult::rim_curve), and every other such loop
   /// (a hole the front pinched off in the band, no critical point inside) is
   /// sealed like any hole.
   std::vector<morse::LevelCurve> upper_curves;
@@ -47,15 +50,15 @@ struct Slab {
   /// wide along the skin, the width of one strip of triangles.
   double park_factor = 2;
   /// With cuts that detour around critical points (morse::cut_curves): per
-  /// critical point, 1 if it lies in this slab's part of the skin (between
-  /// the cuts, or in a cluster of balls a cut gives to this slab); empty for
+  /// critical point, 1 if it lies in this region's part of the skin (between
+  /// the cuts, or in a cluster of balls a cut gives to this region); empty for
   /// level cuts (by height).
   std::vector<char> owns;
   /// The clusters of balls the upper cut passes around (empty for a level
   /// cut): near them a departure vertex parks by its distance to
   /// upper_curves, which must then be given.
   std::vector<morse::CutDetour> upper_detours;
-  /// A departure vertex in the hold region of a live critical point the slab
+  /// A departure vertex in the hold region of a live critical point the region
   /// owns is held (and the saddle bridged, the maximum sealed) before the
   /// parking test. Needed where the cuts detour: no height window keeps the
   /// critical points away from such a cut, and a saddle whose ball misses
@@ -67,41 +70,41 @@ struct Slab {
   bool holds_before_parking = false;
 };
 
-/// The mesh of one slab: a compact triangulated surface whose boundary is the
-/// lower cut curves' samples and the parked rims below the upper cut.
-struct SlabResult {
-  /// The slab's triangles, counter-clockwise about the outward normal, every
+/// The mesh of one region: a compact triangulated surface whose boundary is
+/// the lower cut curves' samples and the parked rims below the upper cut.
+struct RegionResult {
+  /// The region's triangles, counter-clockwise about the outward normal, every
   /// vertex on the skin, garbage-collected, with the vertex properties of
   /// SweepResult::mesh. Vertices 0 .. (the samples' total) - 1 are the lower
-  /// curves' samples in Slab::lower_curves' order.
+  /// curves' samples in Region::lower_curves' order.
   geometry::SurfaceMesh mesh;
   SweepStats stats;
   /// Per lower curve, its sample vertices in curve order: one boundary loop of
   /// the mesh each, traversed in that order (the part below the cut, meshed
-  /// by the slab below, on its left).
+  /// by the region below, on its left).
   std::vector<std::vector<Index>> lower_loops;
   /// The boundary loops that reach the upper cut's band (each has a parked
   /// vertex), in boundary order (the band on their left, seen from outside).
   std::vector<std::vector<Index>> upper_rims;
-  /// With Slab::upper_curves: for each rim, the index of its upper curve
+  /// With Region::upper_curves: for each rim, the index of its upper curve
   /// (one rim per curve); empty otherwise.
   std::vector<std::size_t> rim_curve;
   /// How many of the mesh's vertices were parked.
   std::size_t parked = 0;
 };
 
-/// A failure of sweep_slab() at the slab's lower cut: the ghost strip below a
+/// A failure of sweep_region() at the region's lower cut: the ghost strip below a
 /// lower curve folds or meets a critical point, a repair of the front
 /// reached below the cut, or a lower curve is no longer one boundary loop.
-/// The decomposed sweep drops that cut, not the upper one: merging the slab
+/// The decomposed sweep drops that cut, not the upper one: merging the region
 /// with the one above would meet the same lower cut again.
 class LowerCutError : public TopologyError {
  public:
   using TopologyError::TopologyError;
 };
 
-/// Meshes the slab by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
-/// the slab's lower cut curves and of bowls at the minima strictly inside
+/// Meshes the region by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
+/// the region's lower cut curves and of bowls at the minima strictly inside
 /// (lower, upper); a ghost strip of triangles below each lower curve (deleted
 /// at the end) makes the curve a front like a bowl's rim. Departure vertices
 /// near the upper cut are parked; the seal closes every hole but the parked
@@ -109,13 +112,13 @@ class LowerCutError : public TopologyError {
 /// clear of every protecting sphere by a few disc radii
 /// (papers/mesher/decomposition.md, "Cuts"). Throws std::invalid_argument for
 /// lower >= upper, park_factor < 1, a curve of fewer than three samples or
-/// without rho and cells per sample, a slab thinner than (park_factor + 1) r
-/// at a lower sample (r its disc radius: the slab would be all band there);
+/// without rho and cells per sample, a region thinner than (park_factor + 1) r
+/// at a lower sample (r its disc radius: the region would be all band there);
 /// LowerCutError where the lower cut fails (above); TopologyError (besides
 /// sweep_mesh's) if a hole without a parked vertex was left open, or (with
 /// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
 /// cannot be projected.
-SlabResult sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Slab& slab,
-                      const SweepOptions& opt = {});
+RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
+                          const SweepOptions& opt = {});
 
 }  // namespace skinmesh::front

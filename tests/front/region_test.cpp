@@ -1,5 +1,5 @@
-// tests/front/slab_test.cpp: the sweep of one slab of the decomposed sweep
-// (front/slab.h, papers/mesher/decomposition.md increment 3) against what the
+// tests/front/region_test.cpp: the sweep of one region of the decomposed sweep
+// (front/region.h, papers/mesher/decomposition.md) against what the
 // slab must be: its mesh lies on the skin between the cuts, its boundary is
 // exactly the lower cut curves' samples (in their order) plus one parked rim
 // per upper cut curve, its Euler characteristic is the alternating count of the critical
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "front/slab.h"
+#include "front/region.h"
 #include "morse/critical_points.h"
 #include "morse/level_curves.h"
 #include "morse/morse_smale_complex.h"
@@ -29,8 +29,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The slab between the cuts at heights lower and upper (±infinity: none).
-front::Slab make_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, double lower, double upper) {
-  front::Slab slab;
+front::Region make_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, double lower, double upper) {
+  front::Region slab;
   slab.lower = lower;
   slab.upper = upper;
   if (std::isfinite(lower)) slab.lower_curves = morse::level_curves(skin, ms, lower);
@@ -69,8 +69,8 @@ double mesh_area(const geometry::SurfaceMesh& m) {
 /// other boundary loop a rim, one rim per upper cut curve, and the Euler
 /// characteristic of Morse theory. The lower loops are traversed in the
 /// curves' order: a curve oriented by n × e has the part below on its left.
-void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const front::Slab& slab,
-                const front::SlabResult& res) {
+void check_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const front::Region& slab,
+                const front::RegionResult& res) {
   const geometry::SurfaceMesh& m = res.mesh;
   const Vec3 e = ms.height_direction;
   REQUIRE(m.has_vertex_property(skin::kVertexCell));
@@ -163,9 +163,9 @@ TEST_CASE("slab of one ball: annulus, cap and bowl, each with the analytic zone'
   const double two_pi_r = 2 * kPi * R;
 
   SUBCASE("through the middle: an annulus between the lower curve and one rim") {
-    const front::Slab slab = make_slab(skin, ms, h0 - 0.4 * R, h0 + 0.5 * R);
+    const front::Region slab = make_slab(skin, ms, h0 - 0.4 * R, h0 + 0.5 * R);
     REQUIRE(slab.lower_curves.size() == 1);
-    const front::SlabResult res = front::sweep_slab(skin, ms, slab);
+    const front::RegionResult res = front::sweep_region(skin, ms, slab);
     check_slab(skin, ms, slab, res);
     CHECK(euler_characteristic(res.mesh) == 0);
     REQUIRE(res.upper_rims.size() == 1);
@@ -183,8 +183,8 @@ TEST_CASE("slab of one ball: annulus, cap and bowl, each with the analytic zone'
     CHECK(area < two_pi_r * (rim_hi - slab.lower));
   }
   SUBCASE("over the top: a cap sealed at the maximum") {
-    const front::Slab slab = make_slab(skin, ms, h0 + 0.2 * R, kInf);
-    const front::SlabResult res = front::sweep_slab(skin, ms, slab);
+    const front::Region slab = make_slab(skin, ms, h0 + 0.2 * R, kInf);
+    const front::RegionResult res = front::sweep_region(skin, ms, slab);
     check_slab(skin, ms, slab, res);
     CHECK(euler_characteristic(res.mesh) == 1);
     const double area = mesh_area(res.mesh);
@@ -192,22 +192,35 @@ TEST_CASE("slab of one ball: annulus, cap and bowl, each with the analytic zone'
     CHECK(area < two_pi_r * (h0 + R - slab.lower));
   }
   SUBCASE("from the bottom: a bowl grown from the minimum up to one rim") {
-    const front::Slab slab = make_slab(skin, ms, -kInf, h0 - 0.1 * R);
-    const front::SlabResult res = front::sweep_slab(skin, ms, slab);
+    const front::Region slab = make_slab(skin, ms, -kInf, h0 - 0.1 * R);
+    const front::RegionResult res = front::sweep_region(skin, ms, slab);
     check_slab(skin, ms, slab, res);
     CHECK(euler_characteristic(res.mesh) == 1);
     CHECK(res.upper_rims.size() == 1);
     CHECK(res.stats.creations == 1);
   }
+  SUBCASE("the default region is the whole skin: a closed sphere, nothing parked") {
+    const front::RegionResult res = front::sweep_region(skin, ms, front::Region{});
+    CHECK(euler_characteristic(res.mesh) == 2);
+    CHECK(res.mesh.boundary_loops().empty());
+    CHECK(res.parked == 0);
+    CHECK(res.upper_rims.empty());
+    CHECK(res.lower_loops.empty());
+    CHECK(mesh_area(res.mesh) > 0.97 * 4 * kPi * R * R);
+    CHECK(mesh_area(res.mesh) < 4 * kPi * R * R);
+  }
   SUBCASE("bad slabs are refused") {
-    front::Slab slab = make_slab(skin, ms, h0, h0 - 0.1);
-    CHECK_THROWS_AS(front::sweep_slab(skin, ms, slab), std::invalid_argument);
+    front::Region slab = make_slab(skin, ms, h0, h0 - 0.1);
+    CHECK_THROWS_AS(front::sweep_region(skin, ms, slab), std::invalid_argument);
     slab = make_slab(skin, ms, h0 - 0.5, h0 + 0.5);
     slab.park_factor = 0.5;
-    CHECK_THROWS_AS(front::sweep_slab(skin, ms, slab), std::invalid_argument);
+    CHECK_THROWS_AS(front::sweep_region(skin, ms, slab), std::invalid_argument);
     slab.park_factor = 2;
     std::reverse(slab.lower_curves[0].points.begin(), slab.lower_curves[0].points.end());
-    CHECK_THROWS_AS(front::sweep_slab(skin, ms, slab), TopologyError);
+    CHECK_THROWS_AS(front::sweep_region(skin, ms, slab), TopologyError);
+    slab = make_slab(skin, ms, h0 - 0.5, h0 + 0.5);
+    slab.owns.assign(ms.critical.size() + 1, 1);
+    CHECK_THROWS_AS(front::sweep_region(skin, ms, slab), std::invalid_argument);
   }
 }
 
@@ -238,7 +251,7 @@ TEST_CASE("slabs of a standing ring and of crambin: Morse theory's Euler charact
     const std::vector<double> heights = clear_heights(ms, 200, 0.3);
     // Cuts at the clear heights, each the first at least 0.6 rho_max above
     // the last (a slab must be thicker than three disc radii, 0.555 rho:
-    // sweep_slab), and the slabs they make.
+    // sweep_region), and the slabs they make.
     double rho_max = 0;
     for (const auto& p : skin.points()) rho_max = std::max(rho_max, std::sqrt(p.w / 2));
     std::vector<double> cuts{-kInf};
@@ -250,8 +263,8 @@ TEST_CASE("slabs of a standing ring and of crambin: Morse theory's Euler charact
     long chi = 0;
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
       CAPTURE(i);
-      const front::Slab slab = make_slab(skin, ms, cuts[i], cuts[i + 1]);
-      const front::SlabResult res = front::sweep_slab(skin, ms, slab);
+      const front::Region slab = make_slab(skin, ms, cuts[i], cuts[i + 1]);
+      const front::RegionResult res = front::sweep_region(skin, ms, slab);
       check_slab(skin, ms, slab, res);
       chi += euler_characteristic(res.mesh);
     }
