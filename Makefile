@@ -103,6 +103,7 @@ format-check:
 # (tests/layers/check_layers.py; also ctest 'layers').
 layers:
 	@python3 tests/layers/check_layers.py .
+	@python3 tests/layers/check_layout.py .
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)

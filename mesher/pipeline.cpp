@@ -14,9 +14,6 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#ifdef __GLIBC__
-#include <malloc.h>  // malloc_trim
-#endif
 
 #include "core/errors.h"
 #include "core/parallel.h"
@@ -106,15 +103,6 @@ void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, Outp
       break;
     }
   }
-}
-
-/// Gives the pages of the heap's free blocks back to the system (glibc:
-/// malloc_trim). What the skin and Morse stages freed (their work arrays,
-/// 4 MB on maltoporin) stays resident otherwise, under the sweep's peak.
-void return_freed_heap() {
-#ifdef __GLIBC__
-  malloc_trim(0);
-#endif
 }
 
 /// Gives back the cells and planes that the previous stage's walks made,
@@ -387,7 +375,10 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // of the cells (papers/mesher/decomposition.md, "Cells and planes made on
   // first use") and make theirs again, bit for bit the same.
   skin.mixed_complex().release_made();
-  return_freed_heap();
+  // What the skin and Morse stages freed (their work arrays, 4 MB on
+  // maltoporin) would stay resident under the sweep's peak: the program may
+  // give it back (the library makes no process-wide call).
+  if (options.observers.memory_released) options.observers.memory_released();
   clock.end("morse");
 
   // 3. The sweep (§4.1, §4.2).

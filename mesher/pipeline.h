@@ -70,10 +70,12 @@ struct PipelineObservers {
   /// ("sweep", "refine", "angles"), with the half-edge mesh before it is
   /// compacted (deleted elements still present, marked deleted).
   std::function<void(const char* stage, const skin::SkinSurface&, const geometry::SurfaceMesh&)> stage_end;
-  /// Called once the output mesh is made and the stages' working memory (the
-  /// half-edge mesh, the Morse–Smale complex, the sample) is freed, before the
-  /// check, the stage of the peak: a program may return the allocator's free
-  /// pages to the system there. The library makes no process-wide calls.
+  /// Called where a stage's working memory has just been freed: after the
+  /// Morse stage (its work arrays and the integral lines' polylines), before
+  /// the sweep, and once the output mesh is made (the half-edge mesh, the
+  /// Morse–Smale complex, the sample freed), before the check, the stage of
+  /// the peak. A program may return the allocator's free pages to the system
+  /// there; the library makes no process-wide calls.
   std::function<void()> memory_released;
 };
 
