@@ -125,9 +125,9 @@ struct SweptRegion {
   /// Per vertex index; shorter than the vertex count: the vertices past its
   /// end are Inside.
   std::vector<RegionRole> role;
-  /// True if the minimum c at height h gets a bowl: owned, or with level cuts
-  /// strictly between them.
-  bool has_bowl(Index c, double h) const {
+  /// True if the region owns critical point c at height h: given by `owns`,
+  /// or with level cuts strictly between them. A minimum it owns gets a bowl.
+  bool owns(Index c, double h) const {
     return spec.owns.empty() ? h > spec.lower && h < spec.upper : spec.owns[c] != 0;
   }
   /// True if the saddle or maximum c holds the front (level cuts: every one).

@@ -68,10 +68,15 @@ bool release_saddles(FrontState& fs) {
   // two sides met elsewhere by a contact): release their holds and go on
   // (papers/front/open_questions.md Q6.4 (one side arrived when the queue runs empty)); the final topology check
   // decides.
+  // In a region (front/region.h), another region's saddle that holds
+  // nothing here is resolved without a count: the count is of this region's
+  // releases (a group of components would otherwise count every saddle of
+  // the skin).
   bool any = false;
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Saddle || fs.resolved[c]) continue;
     fs.resolved[c] = 1;
+    if (fs.held[c].empty() && !fs.region.owns(static_cast<Index>(c), fs.ms.critical[c].height)) continue;
     ++fs.stats.released;
     if (fs.tracing) fs.tracef("release saddle %zu unbridged\n", c);
     if (release_holds(fs, static_cast<Index>(c), /*requeue=*/true)) any = true;

@@ -221,6 +221,17 @@ void wing_rims(FrontState& fs) {
 }  // namespace
 }  // namespace detail
 
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
+                       const SweepOptions& opt) {
+  if (std::isfinite(region.lower) || std::isfinite(region.upper) || !region.lower_curves.empty() ||
+      !region.upper_curves.empty() || !region.upper_detours.empty())
+    throw std::invalid_argument("sweep_mesh: a region with cuts is swept by sweep_region");
+  if (!region.owns.empty() && region.owns.size() != ms.critical.size())
+    throw std::invalid_argument("sweep_mesh: `owns` needs one entry per critical point");
+  detail::FrontState fs(skin, ms, opt, region);
+  return detail::run_sweep(fs);
+}
+
 RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
                           const SweepOptions& opt) {
   using namespace detail;

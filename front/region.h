@@ -4,7 +4,7 @@
 // stops (parked below an upper cut, level or detoured). The whole skin is the
 // default region, and its sweep is Algorithm 1 of Cheng & Shi 2004 §4.1
 // unchanged. The band left open between a region's parked rims and its upper
-// cut is closed by the strip of front/band.h.
+// cut is closed by the strip of decompose/band.h.
 // Notes: papers/mesher/decomposition.md
 #pragma once
 
@@ -118,6 +118,17 @@ class LowerCutError : public TopologyError {
 /// sweep_mesh's) if a hole without a parked vertex was left open, or (with
 /// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
 /// cannot be projected.
+/// Algorithm 1 (Cheng & Shi §4.1) over a region without cuts: the critical
+/// points `region.owns` gives (a group of whole components of the skin) get
+/// their bowls and holds, the others nothing, and the seal closes every
+/// hole. With an empty `owns` this is sweep_mesh() of the whole skin. The
+/// result is sweep_mesh()'s (not garbage-collected). Throws
+/// std::invalid_argument if the region has a cut (a finite lower or upper
+/// height, or curves) or an `owns` of the wrong length; otherwise as
+/// sweep_mesh().
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
+                       const SweepOptions& opt = {});
+
 RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
                           const SweepOptions& opt = {});
 

@@ -33,7 +33,7 @@ void create_initial_front(FrontState& fs) {
   // in the regions below and above.
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Minimum) continue;
-    if (fs.region.has_bowl(static_cast<Index>(c), fs.ms.critical[c].height)) minima.push_back(static_cast<Index>(c));
+    if (fs.region.owns(static_cast<Index>(c), fs.ms.critical[c].height)) minima.push_back(static_cast<Index>(c));
   }
   std::stable_sort(minima.begin(), minima.end(), [&](Index a, Index b) {
     return fs.ms.critical[a].position.dot(fs.e) < fs.ms.critical[b].position.dot(fs.e);
@@ -120,7 +120,7 @@ bool departure_step(FrontState& fs) {
 
 bool parks(FrontState& fs, Vertex v) {
   // A vertex within about park_factor · r of the upper cut, measured along
-  // the skin, stops there: the band above it is the strip's (front/band.h).
+  // the skin, stops there: the band above it is the strip's (decompose/band.h).
   // The skin rises by sin(theta) per unit length along its slope (theta the
   // angle between n and e), so the height gap is scaled by it: on a gentle
   // slope a height bound alone would leave a band many edges wide, which one

@@ -207,7 +207,7 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& input_points, c
     res.static_fallback = in_frame(res.static_fallback, centre);
     for (Vec3& p : res.mesh.positions) p += centre;
     for (double& c : res.cut_heights) c += options.height_direction.normalized().dot(centre);
-    for (front::DroppedCut& d : res.dropped_cuts) {
+    for (decompose::DroppedCut& d : res.dropped_cuts) {
       d.height += options.height_direction.normalized().dot(centre);
       d.why = in_frame(d.why, centre);
     }
@@ -281,7 +281,7 @@ Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, A
 }
 
 /// Stages 4, 4b and the output for groups of whole skin components swept on
-/// their own (front::DecomposedSweep::groups): each group's mesh is refined
+/// their own (decompose::DecomposedSweep::groups): each group's mesh is refined
 /// and angle-improved on its own, and the output meshes are joined in group
 /// order, each written straight into its place in res.mesh and its half-edge
 /// mesh freed at once. No step reads another group's mesh; the check, which
@@ -363,8 +363,8 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (options.observers.morse) options.observers.morse(skin, *ms);
   // The cut curves are traced from seeds on the integral lines: before
   // their polylines go.
-  const std::vector<front::Cut> cuts =
-      front::choose_cuts(skin, *ms, options.decomposition, with_size(options.sweep, options.size));
+  const std::vector<decompose::Cut> cuts =
+      decompose::choose_cuts(skin, *ms, options.decomposition, with_size(options.sweep, options.size));
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
@@ -385,13 +385,13 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   clock.begin("sweep");
   front::SweepOptions sweep_options = with_size(options.sweep, options.size);
   if (!sweep_options.progress) sweep_options.progress = options.progress;
-  front::DecompositionOptions decomposition = options.decomposition;
+  decompose::DecompositionOptions decomposition = options.decomposition;
   decomposition.threads = threads;
   // The groups of components are refined on their own unless someone
   // watches the whole mesh between the stages.
   decomposition.glue_groups = options.observers.stage_end || options.refinement.observer;
   decomposition.release_made_cells = true;  // the pipeline's own skin: no other thread reads it
-  front::DecomposedSweep decomposed = front::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
+  decompose::DecomposedSweep decomposed = decompose::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
   front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
   res.slabs = decomposed.cut_heights.size() + 1;

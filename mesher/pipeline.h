@@ -28,8 +28,8 @@
 #include <utility>
 #include <vector>
 
+#include "decompose/decomposed.h"
 #include "dynamic/dynamic_skin.h"
-#include "front/decomposed.h"
 #include "front/sweep.h"
 #include "geometry/io/mesh_io.h"
 #include "geometry/kernel/weighted_point.h"
@@ -99,11 +99,11 @@ struct MeshOptions {
   front::SweepOptions sweep;
   /// Stage 3 decomposed (papers/mesher/decomposition.md): with
   /// decomposition.slabs > 1 the skin is cut at regular heights chosen in
-  /// stage 2 (front::choose_cuts) and swept slab by slab, the slabs glued
-  /// along the shared cut samples (front::sweep_decomposed); the stages
+  /// stage 2 (decompose::choose_cuts) and swept slab by slab, the slabs glued
+  /// along the shared cut samples (decompose::sweep_decomposed); the stages
   /// after the sweep see one closed mesh as before. Default 0: automatic
-  /// (front::automatic_slabs: one sweep below 3,750 atoms).
-  front::DecompositionOptions decomposition;
+  /// (decompose::automatic_slabs: one sweep below 3,750 atoms).
+  decompose::DecompositionOptions decomposition;
   /// Stage 4: run the local refinement (default). Without it the mesh is
   /// closed, embedded and of the right topology but [L], [U] and the
   /// restricted Delaunay property may fail.
@@ -207,15 +207,15 @@ struct MeshResult {
   /// level cut; MeshOptions' decomposition.detours).
   std::vector<std::size_t> cut_balls;
   /// The cuts chosen but given up by the decomposed sweep (a slab next to it
-  /// or its band failed; front::sweep_decomposed), heights as cut_heights',
+  /// or its band failed; decompose::sweep_decomposed), heights as cut_heights',
   /// messages with positions in the input's coordinates frame noted.
-  std::vector<front::DroppedCut> dropped_cuts;
+  std::vector<decompose::DroppedCut> dropped_cuts;
   /// Where the decomposed sweep's time went (per slab, bands, glue, lost to
   /// dropped cuts; wall-clock seconds) and each slab's triangles; empty for
   /// one sweep.
-  front::DecompositionCosts decomposition_costs;
+  decompose::DecompositionCosts decomposition_costs;
   /// Why the skin's groups of components were swept as one after all (a
-  /// group's sweep failed), or empty (front::DecomposedSweep).
+  /// group's sweep failed), or empty (decompose::DecomposedSweep).
   std::string components_fallback;
   refine::RefineStats refinement;
   /// What stage 4b did (all zero if it did not run).

@@ -101,9 +101,9 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
   // keeps its keys.
   if (res.slabs > 1 || !res.dropped_cuts.empty()) {
     json dropped = json::array();
-    for (const front::DroppedCut& d : res.dropped_cuts) dropped.push_back({{"height", d.height}, {"why", d.why}});
+    for (const decompose::DroppedCut& d : res.dropped_cuts) dropped.push_back({{"height", d.height}, {"why", d.why}});
     std::vector<std::size_t> slab_triangles;
-    for (const front::SlabCost& c : res.decomposition_costs.slabs) slab_triangles.push_back(c.triangles);
+    for (const decompose::SlabCost& c : res.decomposition_costs.slabs) slab_triangles.push_back(c.triangles);
     j["decomposition"] = {{"slabs", res.slabs},
                           {"cut_heights", res.cut_heights},
                           {"parked", s.parked},
@@ -115,7 +115,7 @@ void add_sweep_counts(const MeshOptions& options, const MeshResult& res, json& j
   // Without cuts, the groups of skin components swept on their own.
   if (!res.decomposition_costs.components.empty() || !res.components_fallback.empty()) {
     std::vector<std::size_t> triangles;
-    for (const front::SlabCost& c : res.decomposition_costs.components) triangles.push_back(c.triangles);
+    for (const decompose::SlabCost& c : res.decomposition_costs.components) triangles.push_back(c.triangles);
     j["component_sweeps"] = {{"groups", triangles.size()}, {"triangles", triangles}};
     if (!res.components_fallback.empty()) j["component_sweeps"]["fallback"] = res.components_fallback;
   }
@@ -231,14 +231,14 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   // The decomposed sweep's parts (inside "sweep"): per slab, bottom to top,
   // then the bands, the glue and the slabs lost to dropped cuts.
   if (!res.decomposition_costs.slabs.empty()) {
-    const front::DecompositionCosts& c = res.decomposition_costs;
+    const decompose::DecompositionCosts& c = res.decomposition_costs;
     std::vector<double> per_slab;
-    for (const front::SlabCost& slab : c.slabs) per_slab.push_back(slab.seconds);
+    for (const decompose::SlabCost& slab : c.slabs) per_slab.push_back(slab.seconds);
     seconds["sweep_parts"] = {{"slabs", per_slab}, {"bands", c.bands}, {"glue", c.glue}, {"retried", c.retried}};
   } else if (!res.decomposition_costs.components.empty()) {
-    const front::DecompositionCosts& c = res.decomposition_costs;
+    const decompose::DecompositionCosts& c = res.decomposition_costs;
     std::vector<double> per_group;
-    for (const front::SlabCost& group : c.components) per_group.push_back(group.seconds);
+    for (const decompose::SlabCost& group : c.components) per_group.push_back(group.seconds);
     seconds["sweep_parts"] = {{"components", per_group}, {"glue", c.glue}};
   }
   if (context.write_seconds >= 0) seconds["write"] = context.write_seconds;

@@ -127,7 +127,7 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
 /// cancelled) whose ball of radius (1 + margin) s_p meets the plane, in
 /// clusters of overlapping balls together with every ball (meeting the
 /// plane or not) that overlaps one of theirs. A cluster goes up if the mean
-/// height of its critical points is above c (front::choose_cuts then sends
+/// height of its critical points is above c (decompose::choose_cuts then sends
 /// up every cluster whose union the level set enters as well).
 /// Deterministic: clusters in the order of their first critical point, balls
 /// in the critical points' order.

@@ -224,6 +224,29 @@ TEST_CASE("slab of one ball: annulus, cap and bowl, each with the analytic zone'
   }
 }
 
+TEST_CASE("a region given by owns alone (a group of components): the owned ball's closed sphere, nothing else") {
+  const double R = 1.3;
+  const skin::SkinSurface skin({{Vec3(0, 0, 0), 2 * R * R}, {Vec3(9, 0.5, -0.3), 2 * R * R}});
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  front::Region group;
+  group.owns.assign(ms.critical.size(), 0);
+  for (std::size_t c = 0; c < ms.critical.size(); ++c) group.owns[c] = ms.critical[c].position.x() < 4.5;
+  front::SweepResult res = front::sweep_mesh(skin, ms, group);
+  res.mesh.garbage_collection();
+  CHECK(euler_characteristic(res.mesh) == 2);
+  CHECK(res.mesh.boundary_loops().empty());
+  CHECK(res.stats.creations == 1);
+  for (geometry::Vertex v : res.mesh.vertices()) CHECK(res.mesh.position(v).norm() == doctest::Approx(R).epsilon(1e-6));
+  CHECK(mesh_area(res.mesh) > 0.97 * 4 * kPi * R * R);
+  // The whole skin: both spheres.
+  front::SweepResult whole = front::sweep_mesh(skin, ms, front::Region{});
+  whole.mesh.garbage_collection();
+  CHECK(euler_characteristic(whole.mesh) == 4);
+  // A region with a cut is sweep_region's.
+  group.upper = 0.5;
+  CHECK_THROWS_AS(front::sweep_mesh(skin, ms, group), std::invalid_argument);
+}
+
 TEST_CASE("slabs of a standing ring and of crambin: Morse theory's Euler characteristic, one rim per upper curve") {
   struct Case {
     std::string name;

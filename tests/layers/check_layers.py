@@ -4,7 +4,7 @@
     python3 tests/layers/check_layers.py SOURCE_DIR [--cmake CMAKE]
 
 Configures the project in a scratch folder with `cmake --graphviz`, reads the link graph of the module libraries
-(skinmesh_<module>, one per folder: core, geometry/<layer>, skin, morse, front, refine, verify, dynamic, mesher,
+(skinmesh_<module>, one per folder: core, geometry/<layer>, skin, morse, front, decompose, refine, verify, dynamic, mesher,
 trace), prints each module with the modules it links directly, and fails (exit 1) if
   - the graph has a cycle, or
   - a module's sources include a header of a module it does not link, directly or through the modules it links
@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 MODULE_DIRS = ["core", "geometry/kernel", "geometry/triangulation", "geometry/mesh", "geometry/io", "geometry/check",
-               "skin", "morse", "front", "refine", "verify", "dynamic", "mesher", "trace"]
+               "skin", "morse", "front", "decompose", "refine", "verify", "dynamic", "mesher", "trace"]
 
 
 def target_of(folder):

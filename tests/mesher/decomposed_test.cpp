@@ -1,5 +1,5 @@
 // tests/mesher/decomposed_test.cpp: the decomposed sweep end to end
-// (front/decomposed.h, papers/mesher/decomposition.md): bundled molecules cut
+// (decompose/decomposed.h, papers/mesher/decomposition.md): bundled molecules cut
 // into many forced slabs, each slab swept from its lower cut curves, the bands
 // under the cuts closed by strips and the slabs glued along the shared
 // samples, then refined and checked like one sweep's mesh. The seams get no
@@ -106,7 +106,7 @@ TEST_CASE("decomposed sweep: bundled molecules in 8 forced slabs pass every chec
     // hold most of its triangles (the bands and the refinement add the rest).
     REQUIRE(res.decomposition_costs.slabs.size() == res.slabs);
     std::size_t slab_triangles = 0;
-    for (const front::SlabCost& cost : res.decomposition_costs.slabs) {
+    for (const decompose::SlabCost& cost : res.decomposition_costs.slabs) {
       CHECK(cost.triangles > 0);
       CHECK(cost.seconds >= 0);
       slab_triangles += cost.triangles;
@@ -138,7 +138,7 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
   // saddle 0.05 Å under it instead of bridging it (two curves, one rim:
   // Region::holds_before_parking); gramicidin A at probe 0 dropped two, one
   // where the cut ran along the arcs of a cluster that went down (now up:
-  // front::choose_cuts). Neither may drop a cut now.
+  // decompose::choose_cuts). Neither may drop a cut now.
   std::size_t detoured_cuts = 0, most_balls = 0;
   for (const Case& c :
        {Case{"crambin_1crn.pdb", 1.4, 8}, Case{"crambin_1crn.pdb", 0.0, 8}, Case{"gramicidinA_1grm_model1.pdb", 0.0, 8},
@@ -171,14 +171,14 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
 }
 
 TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within its bounds") {
-  front::DecompositionOptions opt;
-  CHECK(front::automatic_slabs(0, opt) == 1);
-  CHECK(front::automatic_slabs(327, opt) == 1);      // crambin: one sweep
-  CHECK(front::automatic_slabs(10123, opt) == 4);    // maltoporin
-  CHECK(front::automatic_slabs(101230, opt) == 40);  // ten maltoporins
-  CHECK(front::automatic_slabs(100000000, opt) == opt.max_slabs);
+  decompose::DecompositionOptions opt;
+  CHECK(decompose::automatic_slabs(0, opt) == 1);
+  CHECK(decompose::automatic_slabs(327, opt) == 1);      // crambin: one sweep
+  CHECK(decompose::automatic_slabs(10123, opt) == 4);    // maltoporin
+  CHECK(decompose::automatic_slabs(101230, opt) == 40);  // ten maltoporins
+  CHECK(decompose::automatic_slabs(100000000, opt) == opt.max_slabs);
   opt.atoms_per_slab = 100;
-  CHECK(front::automatic_slabs(327, opt) == 3);
+  CHECK(decompose::automatic_slabs(327, opt) == 3);
 }
 
 TEST_CASE("decomposed sweep: groups of whole skin components are swept on their own") {
@@ -212,7 +212,7 @@ TEST_CASE("decomposed sweep: groups of whole skin components are swept on their 
     CHECK(groups >= 2);
     CHECK(groups <= res.check.mesh.components.size());
     std::size_t group_triangles = 0;
-    for (const front::SlabCost& g : res.decomposition_costs.components) {
+    for (const decompose::SlabCost& g : res.decomposition_costs.components) {
       CHECK(g.triangles > 0);
       group_triangles += g.triangles;
     }
@@ -307,7 +307,7 @@ TEST_CASE("decomposed sweep: the default slab count follows the largest group of
     return morse::build_morse_smale_complex(skin, morse::default_height_direction());
   };
   CHECK(mesher::MeshOptions{}.decomposition.slabs == 0);  // automatic unless asked
-  front::DecompositionOptions opt;
+  decompose::DecompositionOptions opt;
   opt.atoms_per_slab = 1;  // a slab per atom: small inputs tell the rule
   const front::SweepOptions sweep;
   // A dumbbell (6 critical points, linked by its saddles' lines) and two
@@ -317,28 +317,28 @@ TEST_CASE("decomposed sweep: the default slab count follows the largest group of
       complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(3.5, 0, 0), 4.0}, {Vec3(40, 0, 0), 4.0}, {Vec3(60, 0, 0), 4.0}});
   REQUIRE(uneven.critical.size() == 10);
   REQUIRE(morse::component_groups(uneven).count == 2);
-  CHECK(front::automatic_slabs(6, uneven, opt, sweep) == 4);
-  CHECK(front::automatic_slabs(6000, uneven, front::DecompositionOptions{}, sweep) == 1);  // 3,600 atoms: 1
-  CHECK(front::automatic_slabs(6500, uneven, front::DecompositionOptions{}, sweep) == 2);  // 3,900 atoms: 2
+  CHECK(decompose::automatic_slabs(6, uneven, opt, sweep) == 4);
+  CHECK(decompose::automatic_slabs(6000, uneven, decompose::DecompositionOptions{}, sweep) == 1);  // 3,600 atoms: 1
+  CHECK(decompose::automatic_slabs(6500, uneven, decompose::DecompositionOptions{}, sweep) == 2);  // 3,900 atoms: 2
   // Two equal dumbbells: no group holds more than half; the groups share the threads.
   const morse::MorseSmaleComplex even =
       complex_of({{Vec3(0, 0, 0), 4.0}, {Vec3(3.5, 0, 0), 4.0}, {Vec3(40, 0, 0), 4.0}, {Vec3(43.5, 0, 0), 4.0}});
   REQUIRE(morse::component_groups(even).count == 2);
-  CHECK(front::automatic_slabs(4, even, opt, sweep) == 1);
+  CHECK(decompose::automatic_slabs(4, even, opt, sweep) == 1);
   // One group (here a refused partition): every atom counts.
   const morse::MorseSmaleComplex broken = with_an_open_line(even);
   REQUIRE(morse::component_groups(broken).count == 1);
-  CHECK(front::automatic_slabs(4, broken, opt, sweep) == 4);
+  CHECK(decompose::automatic_slabs(4, broken, opt, sweep) == 4);
   // One front where groups are off or someone follows the sweep.
-  front::DecompositionOptions one_front = opt;
+  decompose::DecompositionOptions one_front = opt;
   one_front.components = false;
-  CHECK(front::automatic_slabs(6, uneven, one_front, sweep) == 1);
+  CHECK(decompose::automatic_slabs(6, uneven, one_front, sweep) == 1);
   front::SweepOptions traced;
   traced.trace = [](const std::string&) {};
-  CHECK(front::automatic_slabs(6, uneven, opt, traced) == 1);
+  CHECK(decompose::automatic_slabs(6, uneven, opt, traced) == 1);
   front::SweepOptions observed;
   observed.observer = [](const front::SweepEvent&) {};
-  CHECK(front::automatic_slabs(4, broken, opt, observed) == 1);
+  CHECK(decompose::automatic_slabs(4, broken, opt, observed) == 1);
 }
 
 TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
@@ -373,7 +373,7 @@ TEST_CASE("regression: a band with no outward strip drops its cut, random atoms 
   CHECK(res.dropped_cuts.front().why.find("no outward strip") != std::string::npos);
   CHECK(res.slabs > 1);
   REQUIRE(res.cut_heights.size() + 1 == res.slabs);
-  for (const front::DroppedCut& d : res.dropped_cuts)
+  for (const decompose::DroppedCut& d : res.dropped_cuts)
     for (double h : res.cut_heights) CHECK(d.height != h);
   REQUIRE(res.checked);
   test::check_every_property(res.check);

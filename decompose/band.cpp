@@ -1,5 +1,5 @@
-// front/band.cpp: the max-min-angle strip between two closed polylines
-// (front/band.h). A strip is a monotone path through the grid of states
+// decompose/band.cpp: the max-min-angle strip between two closed polylines
+// (decompose/band.h). A strip is a monotone path through the grid of states
 // (i, j): the triangle fan so far ends at the connecting edge from rim vertex
 // i to the j-th curve vertex met walking the curve backwards from the start.
 // Each step adds one triangle (a rim edge or a curve edge with the current
@@ -7,7 +7,7 @@
 // is a bottleneck recurrence over its two predecessors, and the least sum
 // above a floor a shortest-path one: two passes per start.
 // Notes: papers/mesher/decomposition.md ("Increments", 4)
-#include "front/band.h"
+#include "decompose/band.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@
 
 #include "geometry/check/mesh_checks.h"
 
-namespace skinmesh::front {
+namespace skinmesh::decompose {
 namespace {
 
 /// Curve vertices tried on each side of the one nearest to rim vertex 0 as
@@ -281,4 +281,4 @@ std::vector<StripTriangle> strip_triangulation(const std::vector<Vec3>& rim, con
   return best_strip(rim, rim_normals, curve, curve_normals, nearest, shifts, 1.0);
 }
 
-}  // namespace skinmesh::front
+}  // namespace skinmesh::decompose

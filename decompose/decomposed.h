@@ -1,4 +1,4 @@
-// front/decomposed.h: the decomposed sweep on one thread — the skin cut at
+// decompose/decomposed.h: the decomposed sweep on one thread — the skin cut at
 // regular heights into slabs, each swept by sweep_region() from its lower cut
 // curves, the band between each slab's parked rims and its upper cut curves
 // closed by strip_triangulation(), and the slabs glued along the shared cut
@@ -15,7 +15,7 @@
 #include "front/sweep.h"
 #include "morse/level_curves.h"
 
-namespace skinmesh::front {
+namespace skinmesh::decompose {
 
 /// Tuning of the cut choice and of the glue. Lengths are multiples of the
 /// disc radius r = disc_factor · rho of the point concerned.
@@ -110,7 +110,7 @@ int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt);
 /// an observer or a trace (they follow one front, as the paper's Algorithm 1).
 /// Depends on the input only, never on the thread count.
 int automatic_slabs(std::size_t atoms, const morse::MorseSmaleComplex& ms, const DecompositionOptions& opt,
-                    const SweepOptions& sweep);
+                    const front::SweepOptions& sweep);
 
 /// One cut of the decomposition: its height (Å) and its sampled level
 /// curves (morse::level_curves(), oriented by n × e).
@@ -132,7 +132,7 @@ struct Cut {
 /// decomposition.md, "The drops"). Throws std::invalid_argument if
 /// opt.slabs < 0.
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const DecompositionOptions& opt, const SweepOptions& sweep);
+                             const DecompositionOptions& opt, const front::SweepOptions& sweep);
 
 /// A cut the decomposed sweep gave up, and why: a slab next to it failed
 /// (the message of sweep_region()'s error) or a band under it had no strip.
@@ -168,7 +168,7 @@ struct DecompositionCosts {
 struct DecomposedSweep {
   /// The glued mesh, with the vertex properties and the meaning of
   /// sweep_mesh()'s; its stats the sum over the slabs of the mesh.
-  SweepResult sweep;
+  front::SweepResult sweep;
   /// The heights (Å, along the complex's height direction) of the cuts the
   /// mesh was glued along, increasing.
   std::vector<double> cut_heights;
@@ -185,7 +185,7 @@ struct DecomposedSweep {
   /// swept: each group's mesh (garbage-collected, with sweep_mesh()'s vertex
   /// properties), in group order; `sweep` then holds the summed stats and
   /// an empty mesh. Empty otherwise (the mesh is in `sweep`).
-  std::vector<SweepResult> groups;
+  std::vector<front::SweepResult> groups;
 };
 
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as
@@ -205,6 +205,6 @@ struct DecomposedSweep {
 /// not a closed manifold.
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const SweepOptions& sweep = {});
+                                 const front::SweepOptions& sweep = {});
 
-}  // namespace skinmesh::front
+}  // namespace skinmesh::decompose

@@ -1,9 +1,9 @@
-// front/decomposed.cpp: the cut choice and the glue of the decomposed sweep
-// (front/decomposed.h). Every slab's mesh keeps its own vertices; the cut
+// decompose/decomposed.cpp: the cut choice and the glue of the decomposed sweep
+// (decompose/decomposed.h). Every slab's mesh keeps its own vertices; the cut
 // samples are vertices of the slab above (its first ones, in curve order),
 // which the band below reuses, so the glued mesh shares them exactly.
 // Notes: papers/mesher/decomposition.md ("Increments", 4)
-#include "front/decomposed.h"
+#include "decompose/decomposed.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,11 +21,18 @@
 
 #include "core/errors.h"
 #include "core/parallel.h"
-#include "front/band.h"
-#include "front/operations.h"
+#include "decompose/band.h"
 #include "skin/vertex_data.h"
 
-namespace skinmesh::front {
+namespace skinmesh::decompose {
+
+using front::LowerCutError;
+using front::Region;
+using front::RegionResult;
+using front::SweepOptions;
+using front::SweepResult;
+using front::SweepStats;
+
 namespace {
 
 /// The critical points sorted by height, with the bounds that let a cut's
@@ -227,8 +234,7 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
       Region group;
       group.owns.assign(ms.critical.size(), 0);
       for (std::size_t p = 0; p < ms.critical.size(); ++p) group.owns[p] = groups.group[p] == g;
-      detail::FrontState fs(skin, ms, part, std::move(group));
-      parts[g] = detail::run_sweep(fs);
+      parts[g] = sweep_mesh(skin, ms, group, part);
       parts[g]->mesh.garbage_collection();
     } catch (const TopologyError& e) {
       errors[g] = e.what();
@@ -642,4 +648,4 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
   }
 }
 
-}  // namespace skinmesh::front
+}  // namespace skinmesh::decompose

@@ -1,4 +1,4 @@
-// front/band.h: the strip of triangles that closes the band between a slab's
+// decompose/band.h: the strip of triangles that closes the band between a slab's
 // parked rim and its upper cut curve (papers/mesher/decomposition.md, "The
 // last band"): the triangulation of an annulus between two closed polylines
 // without new vertices that maximises the smallest angle, by dynamic
@@ -16,7 +16,7 @@
 
 #include "core/types.h"
 
-namespace skinmesh::front {
+namespace skinmesh::decompose {
 
 /// One triangle of a strip: indices into the concatenation of the two
 /// polylines (i < rim size: rim vertex i; else curve vertex i - rim size),
@@ -49,4 +49,4 @@ std::vector<StripTriangle> strip_triangulation(const std::vector<Vec3>& rim, con
                                                const std::vector<Vec3>& curve, const std::vector<Vec3>& curve_normals,
                                                double corridor = 1.0);
 
-}  // namespace skinmesh::front
+}  // namespace skinmesh::decompose

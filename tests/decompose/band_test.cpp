@@ -1,5 +1,5 @@
-// tests/front/band_test.cpp: the max-min-angle strip between a parked rim and
-// an upper cut curve (front/band.h) against an exhaustive search over every
+// tests/decompose/band_test.cpp: the max-min-angle strip between a parked rim and
+// an upper cut curve (decompose/band.h) against an exhaustive search over every
 // strip, and the structure every strip must have: each polyline edge in
 // exactly one triangle in its own direction, each connecting edge in two
 // with opposite directions (a triangulated annulus), every triangle outward.
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "front/band.h"
+#include "decompose/band.h"
 #include "geometry/check/mesh_checks.h"
 
 using namespace skinmesh;
@@ -43,7 +43,7 @@ Band sphere_band(int n, int m, double za, double zb, double jitter, std::mt19937
   return b;
 }
 
-double min_angle_of(const Band& b, const std::vector<front::StripTriangle>& tris) {
+double min_angle_of(const Band& b, const std::vector<decompose::StripTriangle>& tris) {
   auto pos = [&](Index k) { return k < b.rim.size() ? b.rim[k] : b.curve[k - b.rim.size()]; };
   double q = 1e9;
   for (const auto& t : tris) q = std::min(q, geometry::min_angle(pos(t[0]), pos(t[1]), pos(t[2])));
@@ -53,7 +53,7 @@ double min_angle_of(const Band& b, const std::vector<front::StripTriangle>& tris
 /// The structure of a strip: n + m triangles, outward, each rim edge i -> i+1
 /// and curve edge j -> j+1 once in its own direction, every other edge once
 /// each way.
-void check_strip(const Band& b, const std::vector<front::StripTriangle>& tris) {
+void check_strip(const Band& b, const std::vector<decompose::StripTriangle>& tris) {
   const Index n = static_cast<Index>(b.rim.size()), m = static_cast<Index>(b.curve.size());
   REQUIRE(tris.size() == static_cast<std::size_t>(n + m));
   auto pos = [&](Index k) { return k < n ? b.rim[k] : b.curve[k - n]; };
@@ -81,7 +81,7 @@ void check_strip(const Band& b, const std::vector<front::StripTriangle>& tris) {
 }
 
 /// The sum the strip minimises among those of the best smallest angle.
-double sum_of(const Band& b, const std::vector<front::StripTriangle>& tris) {
+double sum_of(const Band& b, const std::vector<decompose::StripTriangle>& tris) {
   auto pos = [&](Index k) { return k < b.rim.size() ? b.rim[k] : b.curve[k - b.rim.size()]; };
   double sum = 0;
   for (const auto& t : tris) {
@@ -143,7 +143,7 @@ TEST_CASE("strip triangulation: the best smallest angle and then the least sum o
     CAPTURE(trial);
     const int n = 3 + trial % 5, m = 3 + (trial / 5) % 5;
     const Band b = sphere_band(n, m, 0.1, 0.1 + 0.05 * (1 + trial % 3), 0.3, rng);
-    const auto tris = front::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n);
+    const auto tris = decompose::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n);
     const auto [brute, brute_sum] = brute_force_best(b);
     if (brute < 0) {
       CHECK(tris.empty());
@@ -160,8 +160,8 @@ TEST_CASE("strip triangulation: the best smallest angle and then the least sum o
 TEST_CASE("strip triangulation: long loops in a corridor, and refusals") {
   std::mt19937 rng(7);
   const Band b = sphere_band(180, 211, 0.2, 0.23, 0.25, rng);
-  const auto full = front::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n);
-  const auto narrow = front::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n, 0.05);
+  const auto full = decompose::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n);
+  const auto narrow = decompose::strip_triangulation(b.rim, b.rim_n, b.curve, b.curve_n, 0.05);
   check_strip(b, full);
   check_strip(b, narrow);
   // The corridor holds the best strip of a uniform band.
@@ -174,7 +174,7 @@ TEST_CASE("strip triangulation: long loops in a corridor, and refusals") {
   Band pinched = b;
   pinched.rim[1] = (pinched.rim[0] + 0.1 * (pinched.rim[1] - pinched.rim[0])).normalized();
   pinched.rim_n[1] = pinched.rim[1];
-  const auto tris = front::strip_triangulation(pinched.rim, pinched.rim_n, pinched.curve, pinched.curve_n, 0.05);
+  const auto tris = decompose::strip_triangulation(pinched.rim, pinched.rim_n, pinched.curve, pinched.curve_n, 0.05);
   check_strip(pinched, tris);
   CHECK(min_angle_of(pinched, tris) < 10 * kDegree);
   std::size_t poor = 0;
@@ -187,8 +187,8 @@ TEST_CASE("strip triangulation: long loops in a corridor, and refusals") {
   // Normals pointing inwards on the curve: no strip faces outwards.
   Band flipped = b;
   for (Vec3& x : flipped.curve_n) x = -x;
-  CHECK(front::strip_triangulation(flipped.rim, flipped.rim_n, flipped.curve, flipped.curve_n).empty());
+  CHECK(decompose::strip_triangulation(flipped.rim, flipped.rim_n, flipped.curve, flipped.curve_n).empty());
   CHECK_THROWS_AS(
-      front::strip_triangulation({Vec3::Zero(), Vec3::UnitX()}, {Vec3::UnitZ(), Vec3::UnitZ()}, b.curve, b.curve_n),
+      decompose::strip_triangulation({Vec3::Zero(), Vec3::UnitX()}, {Vec3::UnitZ(), Vec3::UnitZ()}, b.curve, b.curve_n),
       std::invalid_argument);
 }
