@@ -24,6 +24,22 @@ using morse::CriticalKind;
 SweptRegion::SweptRegion(Region r) : spec(std::move(r)) {
   for (const morse::CutDetour& d : spec.upper_detours)
     upper_balls.insert(upper_balls.end(), d.balls.begin(), d.balls.end());
+  if (upper_balls.empty()) return;
+  std::vector<Vec3> at;
+  std::vector<double> size;
+  for (const morse::DetourBall& b : upper_balls) at.push_back(b.center), size.push_back(b.radius);
+  ball_grid.build(at, size);
+  at.clear(), size.clear();
+  for (std::size_t k = 0; k < spec.upper_curves.size(); ++k) {
+    const std::vector<Vec3>& p = spec.upper_curves[k].points;
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const Vec3& a = p[j];
+      const Vec3& b = p[(j + 1) % p.size()];
+      at.push_back(0.5 * (a + b)), size.push_back(0.5 * (b - a).norm());
+      upper_edges.emplace_back(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j));
+    }
+  }
+  edge_grid.build(at, size);
 }
 
 FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,

@@ -149,23 +149,25 @@ int near_upper_detour(const FrontState& fs, Vertex v) {
   const double park_factor = fs.region.spec.park_factor;
   const double r = fs.disc_radius(v), reach = 2 * park_factor * r;
   bool near = false;
-  for (const morse::DetourBall& b : fs.region.upper_balls)
+  fs.region.ball_grid.for_each_near(p, reach, [&](Index i) {
+    const morse::DetourBall& b = fs.region.upper_balls[i];
     if ((p - b.center).norm() < b.radius + reach) near = true;
+  });
   if (!near) return 0;
-  // The distance to the cut's polyline, over all its edges: linear in the
-  // cut's length per vertex near a ball (a grid of the edges is the next
-  // step for large inputs).
+  // The distance to the cut's polyline, over the edges near v: an edge
+  // within park_factor · r of v has its midpoint within park_factor · r plus
+  // its half length (the grid's reach), so the test is the one over every
+  // edge.
   double best = std::numeric_limits<double>::infinity();
-  for (const morse::LevelCurve& curve : fs.region.spec.upper_curves) {
-    const std::size_t n = curve.points.size();
-    for (std::size_t j = 0; j < n; ++j) {
-      const Vec3& a = curve.points[j];
-      const Vec3& b = curve.points[(j + 1) % n];
-      const Vec3 ab = b - a;
-      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-      best = std::min(best, (p - (a + t * ab)).norm());
-    }
-  }
+  fs.region.edge_grid.for_each_near(p, park_factor * r, [&](Index i) {
+    const auto [k, j] = fs.region.upper_edges[i];
+    const std::vector<Vec3>& points = fs.region.spec.upper_curves[k].points;
+    const Vec3& a = points[j];
+    const Vec3& b = points[(j + 1) % points.size()];
+    const Vec3 ab = b - a;
+    const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (p - (a + t * ab)).norm());
+  });
   return best < park_factor * r ? 1 : -1;
 }
 
