@@ -390,19 +390,19 @@ Command add_mesh_command(CLI::App& app) {
   add_threads_option(*cmd, mesh.opt.threads, "0: every core", "mesh is, byte for byte,");
   cmd->add_option("--slabs", mesh.opt.decomposition.slabs,
                   "cut the skin at N - 1 heights and sweep the slabs on the threads, glued along the cut curves' "
-                  "shared samples (papers/mesher/decomposition.md); fewer slabs where no admissible cut height "
+                  "shared samples (papers/decompose/README.md); fewer slabs where no admissible cut height "
                   "exists; 1: one sweep; 0 (default): one slab per 2500 atoms of the largest group of components "
                   "if it holds most of the skin, else one sweep (the mesh depends on N, never on --threads)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
                 "with --slabs: cuts that pass around the critical points they meet, which large components need "
-                "(experimental; papers/mesher/decomposition.md, \"The detoured cut\")");
+                "(experimental; papers/decompose/README.md, \"Detoured cuts\")");
   cmd->add_flag(
       "--no-component-sweeps", mesh.no_component_sweeps,
       "sweep every skin component in one front, with no slab unless --slabs asks (default: each group of whole "
       "components is swept on its own, on the threads, and the meshes appended; "
-      "papers/mesher/decomposition.md, \"Components\")");
+      "papers/decompose/README.md, \"Groups of whole components\")");
   cmd->add_option("--timeout", mesh.timeout,
                   "stop with exit code 5 and a one-line message if reading and meshing one input take longer than "
                   "this many seconds (nothing is written; 0: no limit)")

@@ -14,7 +14,7 @@ measures, and then simulates:
      and the rest of the sweep stage stay serial. The other stages run with the parallelism they have today,
      mostly two tasks side by side, so for P >= 2 they are held at their measured 2-thread seconds (a
      lower bound of today's speed-up beyond two cores).
-   - "per region": the design of papers/mesher/decomposition.md carried through every stage (skin, Morse-Smale
+   - "per region": the design of papers/decompose/README.md carried through every stage (skin, Morse-Smale
      complex, refinement, angles, check per region, increment 6). Each of those stages' 1-thread seconds is
      split over the slabs in proportion to their triangles and list-scheduled with the slabs' sweeps;
      reading, the output conversion, writing, the bands and the glue stay serial. Where that is slower than

@@ -6,7 +6,7 @@
 // vertex of the other side), so the best smallest angle of a path to (i, j)
 // is a bottleneck recurrence over its two predecessors, and the least sum
 // above a floor a shortest-path one: two passes per start.
-// Notes: papers/mesher/decomposition.md ("Increments", 4)
+// Notes: papers/decompose/README.md ("The band's strip")
 #include "decompose/band.h"
 
 #include <algorithm>

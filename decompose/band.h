@@ -1,6 +1,6 @@
 // decompose/band.h: the strip of triangles that closes the band between a slab's
-// parked rim and its upper cut curve (papers/mesher/decomposition.md, "The
-// last band"): the triangulation of an annulus between two closed polylines
+// parked rim and its upper cut curve (papers/decompose/README.md, "The
+// band's strip"): the triangulation of an annulus between two closed polylines
 // without new vertices that maximises the smallest angle, by dynamic
 // programming over the two cyclic sequences (then the least sum of a
 // penalty of small angles among the strips of that smallest angle) — the
@@ -8,7 +8,7 @@
 // (Fuchs, Kedem & Uselton 1977; Christiansen & Sederberg 1978), here with
 // the smallest angle as the objective and outward orientation as a
 // constraint.
-// Notes: papers/mesher/decomposition.md ("Increments", 4)
+// Notes: papers/decompose/README.md ("The band's strip")
 #pragma once
 
 #include <array>

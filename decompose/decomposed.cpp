@@ -2,7 +2,7 @@
 // (decompose/decomposed.h). Every slab's mesh keeps its own vertices; the cut
 // samples are vertices of the slab above (its first ones, in curve order),
 // which the band below reuses, so the glued mesh shares them exactly.
-// Notes: papers/mesher/decomposition.md ("Increments", 4)
+// Notes: papers/decompose/README.md ("The cuts", "The glue")
 #include "decompose/decomposed.h"
 
 #include <algorithm>
@@ -202,7 +202,7 @@ Index append_with_vertex_data(geometry::SurfaceMesh& mesh, geometry::SurfaceMesh
 /// meshes appended in group order; one sweep of everything when the skin
 /// is one group, or when a group's sweep fails (its error in `why`). A
 /// group's fronts never meet another group's surface, so nothing else is
-/// shared (papers/mesher/decomposition.md, "Components"). With `unglued`,
+/// shared (papers/decompose/README.md, "Groups of whole components"). With `unglued`,
 /// two or more groups' meshes are moved there in group order instead of
 /// appended, and the result holds their summed stats only. With
 /// `release_made` (DecompositionOptions::release_made_cells) the groups go

@@ -2,10 +2,10 @@
 // regular heights into slabs, each swept by sweep_region() from its lower cut
 // curves, the band between each slab's parked rims and its upper cut curves
 // closed by strip_triangulation(), and the slabs glued along the shared cut
-// samples into one closed mesh (papers/mesher/decomposition.md, "The
-// decomposition" and "Increments", 4). The result goes to the local
-// refinement like sweep_mesh()'s.
-// Notes: papers/mesher/decomposition.md
+// samples into one closed mesh (papers/decompose/README.md, "The cuts", "The
+// sweep of a region", "The band's strip" and "The glue"). The result goes to
+// the local refinement like sweep_mesh()'s.
+// Notes: papers/decompose/README.md
 #pragma once
 
 #include <string>
@@ -29,7 +29,7 @@ struct DecompositionOptions {
   /// With slabs = 0: one slab per this many atoms. [measured] 2500: maltoporin
   /// (10,123 atoms) in 4 slabs, whose sweeps on two threads take 0.34 s
   /// against 0.58 s for one sweep, at a lower peak than one sweep's
-  /// (papers/mesher/decomposition.md, "Slabs by default").
+  /// (papers/decompose/history.md, "Slabs by default").
   double atoms_per_slab = 2500;
   /// With slabs = 0: at most this many slabs.
   int max_slabs = 256;
@@ -43,7 +43,7 @@ struct DecompositionOptions {
   /// height disturb the band; the live spheres near the curve are kept away
   /// by sphere_margin instead. Adding the protecting radius s_p to the
   /// window, as first designed, left no cut at probe 0
-  /// (papers/mesher/decomposition.md, increment 4).
+  /// (papers/decompose/history.md, "Increments", 4).
   double window_below = 2;
   /// See window_below.
   double window_above = 1;
@@ -66,7 +66,7 @@ struct DecompositionOptions {
   /// Cuts that pass around the critical points they meet (morse::cut_detours,
   /// morse::cut_curves) instead of level cuts clear of them: needed by large
   /// components, whose critical points leave no clear height. Experimental:
-  /// off by default (papers/mesher/decomposition.md, "The detoured cut").
+  /// off by default (papers/decompose/README.md, "Detoured cuts").
   bool detours = false;
   /// Threads for the slabs and the bands (at least 1; the pipeline passes
   /// its --threads). The cuts and the mesh do not depend on it.
@@ -80,8 +80,8 @@ struct DecompositionOptions {
   /// them back one by one in DecomposedSweep::groups (false), for a caller
   /// that refines each group on its own and joins the output meshes: no
   /// copy of the whole mesh, and each group's half-edge mesh can be freed
-  /// once its output is made (papers/mesher/decomposition.md, "Groups to the
-  /// end"). mesher::mesh_skin() sets it itself: false unless an observer
+  /// once its output is made (papers/decompose/README.md, "After the
+  /// sweep"). mesher::mesh_skin() sets it itself: false unless an observer
   /// watches the whole mesh between the stages.
   bool glue_groups = true;
   /// The caller lets the sweep give back the mixed complex's made cells and
@@ -91,7 +91,7 @@ struct DecompositionOptions {
   /// made goes back before the next, so the made cells of every group do
   /// not stay beside every group's mesh; with cuts, what the slabs made goes
   /// back before the glue. The mesh is the same either way.
-  /// mesher::mesh_skin() sets it (papers/mesher/decomposition.md, "The made
+  /// mesher::mesh_skin() sets it (papers/decompose/history.md, "The made
   /// cells between the stages").
   bool release_made_cells = false;
 };
@@ -128,8 +128,8 @@ struct Cut {
 /// level_curves()), so it runs before they are freed. A target without an
 /// admissible height nearby is skipped (fewer slabs). With opt.detours, a
 /// cluster of morse::cut_detours() that goes down but whose union the level
-/// set enters is sent up, and the cut traced again (papers/mesher/
-/// decomposition.md, "The drops"). Throws std::invalid_argument if
+/// set enters is sent up, and the cut traced again (papers/decompose/
+/// README.md, "Detoured cuts"). Throws std::invalid_argument if
 /// opt.slabs < 0.
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                              const DecompositionOptions& opt, const front::SweepOptions& sweep);
@@ -145,7 +145,7 @@ struct DroppedCut {
 /// sweep_region() (on whichever thread ran it; with several threads these
 /// include the contention of the shared caches and memory) and its
 /// triangles. For the speed-up model of bench/speedup_model.py
-/// (papers/mesher/decomposition.md, "Beyond this machine").
+/// (papers/decompose/README.md, "Measured costs and the predicted speed-up").
 struct SlabCost {
   double seconds = 0;
   std::size_t triangles = 0;

@@ -269,7 +269,7 @@ struct FrontState {
   std::unique_ptr<geometry::LeveledPointGrid> hold_grid;  ///< live saddles and maxima, by their rho
   std::vector<Vec3> critical_positions;                   ///< positions of the critical points (hold_grid's)
   /// Every vertex, for the fan-collision net: ids only (the sweep keeps it to
-  /// the end, one entry or two per vertex; papers/mesher/decomposition.md,
+  /// the end, one entry or two per vertex; papers/decompose/history.md,
   /// "The sweep's grids in one pool").
   std::unique_ptr<geometry::LeveledIndexGrid> vertex_grid;
   /// The vertices whose state is not Interior (the front, free or held): the

@@ -5,7 +5,7 @@
 // interior vertices (they never depart) that the collision net still sees;
 // the strip is deleted at the end. Near the upper cut departure vertices are
 // parked (sweep.cpp), and the seal leaves the parked rims open.
-// Notes: papers/mesher/decomposition.md
+// Notes: papers/decompose/README.md ("The sweep of a region")
 #include "front/region.h"
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 // default region, and its sweep is Algorithm 1 of Cheng & Shi 2004 §4.1
 // unchanged. The band left open between a region's parked rims and its upper
 // cut is closed by the strip of decompose/band.h.
-// Notes: papers/mesher/decomposition.md
+// Notes: papers/decompose/README.md ("Regions", "The sweep of a region")
 #pragma once
 
 #include <limits>
@@ -65,7 +65,7 @@ struct Region {
   /// the plane can lie in the band under it (crambin at probe 0: 0.05 Å
   /// below, 0.32 and 0.36 Å from two curves of the cut). Parked around, it
   /// joined the two curves' rims into one loop
-  /// (papers/mesher/decomposition.md, "The drops"). Off for level cuts, whose window keeps every critical point
+  /// (papers/decompose/README.md, "The sweep of a region"). Off for level cuts, whose window keeps every critical point
   /// two disc radii below them, so their meshes stay as they were.
   bool holds_before_parking = false;
 };
@@ -103,21 +103,6 @@ class LowerCutError : public TopologyError {
   using TopologyError::TopologyError;
 };
 
-/// Meshes the region by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
-/// the region's lower cut curves and of bowls at the minima strictly inside
-/// (lower, upper); a ghost strip of triangles below each lower curve (deleted
-/// at the end) makes the curve a front like a bowl's rim. Departure vertices
-/// near the upper cut are parked; the seal closes every hole but the parked
-/// rims. Pre: lower < upper are regular values of the height on the skin,
-/// clear of every protecting sphere by a few disc radii
-/// (papers/mesher/decomposition.md, "Cuts"). Throws std::invalid_argument for
-/// lower >= upper, park_factor < 1, a curve of fewer than three samples or
-/// without rho and cells per sample, a region thinner than (park_factor + 1) r
-/// at a lower sample (r its disc radius: the region would be all band there);
-/// LowerCutError where the lower cut fails (above); TopologyError (besides
-/// sweep_mesh's) if a hole without a parked vertex was left open, or (with
-/// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
-/// cannot be projected.
 /// Algorithm 1 (Cheng & Shi §4.1) over a region without cuts: the critical
 /// points `region.owns` gives (a group of whole components of the skin) get
 /// their bowls and holds, the others nothing, and the seal closes every
@@ -129,6 +114,22 @@ class LowerCutError : public TopologyError {
 SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
                        const SweepOptions& opt = {});
 
+/// Meshes the region by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
+/// the region's lower cut curves and of bowls at the minima strictly inside
+/// (lower, upper); a ghost strip of triangles below each lower curve (deleted
+/// at the end) makes the curve a front like a bowl's rim. Departure vertices
+/// near the upper cut are parked; the seal closes every hole but the parked
+/// rims. Pre: lower < upper are regular values of the height on the skin,
+/// clear of every protecting sphere by a few disc radii
+/// (papers/decompose/README.md, "The cuts"). Throws std::invalid_argument for
+/// lower >= upper, park_factor < 1, a curve of fewer than three samples or
+/// without rho and cells per sample, a region thinner than (park_factor + 1) r
+/// at a lower sample (r its disc radius: the region would be all band there),
+/// an `owns` of the wrong length or detours without upper curves;
+/// LowerCutError where the lower cut fails (above); TopologyError (besides
+/// sweep_mesh's) if a hole without a parked vertex was left open, or (with
+/// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
+/// cannot be projected.
 RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
                           const SweepOptions& opt = {});
 

@@ -109,7 +109,7 @@ void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, Outp
 /// between the stages after the sweep. Each stage makes again what it reads
 /// (bit for bit the same; the output reads the cells' simplices only), so
 /// what the sweep and the refinement only crossed does not stay beside every
-/// later stage's arrays (papers/mesher/decomposition.md, "The made cells
+/// later stage's arrays (papers/decompose/history.md, "The made cells
 /// between the stages").
 void release_made_cells(const skin::SkinSurface& skin) { skin.mixed_complex().release_made(); }
 
@@ -288,7 +288,7 @@ Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, A
 /// reads the whole mesh, still tests [L], [U], the restricted Delaunay
 /// property, the angles and the embedding across groups. On every input
 /// tried the result is the glued path's mesh in another order
-/// (papers/mesher/decomposition.md, "Groups to the end"). The groups run on
+/// (papers/decompose/history.md, "Groups to the end"). The groups run on
 /// the threads, one each, unless one holds more than half of the triangles:
 /// then one after the other, each with every thread for the refinement's
 /// scans. Neither choice changes the mesh, which depends on the groups only.
@@ -343,7 +343,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // The dual complex (for the Euler characteristic and the check) needs only
   // the skin: with two threads it is computed beside the Morse–Smale complex,
   // on every thread as well (alone on one it outlasted the Morse–Smale
-  // complex by half: papers/mesher/decomposition.md, "Groups to the end").
+  // complex by half: papers/decompose/history.md, "Groups to the end").
   const int threads = thread_count(options.threads);
   std::future<skin::SkinTopology> topology;
   if (threads >= 2)
@@ -372,7 +372,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
   // What the Morse stage made of the cells and planes (the integral lines'
   // walks, the cut curves) goes back: the mesher's walks need a few percent
-  // of the cells (papers/mesher/decomposition.md, "Cells and planes made on
+  // of the cells (papers/decompose/history.md, "Cells and planes made on
   // first use") and make theirs again, bit for bit the same.
   skin.mixed_complex().release_made();
   // What the skin and Morse stages freed (their work arrays, 4 MB on

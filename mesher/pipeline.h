@@ -97,7 +97,7 @@ struct MeshOptions {
   morse::MorseSmaleOptions morse;
   /// Stage 3: the sweep's tuning numbers and debugging aids.
   front::SweepOptions sweep;
-  /// Stage 3 decomposed (papers/mesher/decomposition.md): with
+  /// Stage 3 decomposed (papers/decompose/README.md): with
   /// decomposition.slabs > 1 the skin is cut at regular heights chosen in
   /// stage 2 (decompose::choose_cuts) and swept slab by slab, the slabs glued
   /// along the shared cut samples (decompose::sweep_decomposed); the stages

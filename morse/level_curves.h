@@ -1,6 +1,6 @@
 // morse/level_curves.h: the level curves of the height function on the skin —
-// the cut curves of the decomposed sweep (papers/mesher/decomposition.md,
-// "Cut curves"): every closed curve of F ∩ {e·x = c} at a regular value c,
+// the cut curves of the decomposed sweep (papers/decompose/README.md,
+// "The cuts"): every closed curve of F ∩ {e·x = c} at a regular value c,
 // found from seeds that the Morse–Smale complex's integral lines give, traced
 // by a predictor–corrector on the two equations f = 0 and e·x = c, and sampled
 // at spacings set by the local length scale rho.

@@ -104,8 +104,8 @@ struct ComponentGroups {
 };
 
 /// Groups the critical points of `ms` by the skin component they lie on, so
-/// that each group can be swept alone (papers/mesher/decomposition.md,
-/// "Components"). A saddle and the extrema its integral lines reach lie on
+/// that each group can be swept alone (papers/decompose/README.md,
+/// "Groups of whole components"). A saddle and the extrema its integral lines reach lie on
 /// one component, and on a connected surface with saddles these links join
 /// every critical point (the descending lines and the maxima's discs cover
 /// it); the extrema no line reaches belong to components without saddles

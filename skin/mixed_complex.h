@@ -93,7 +93,7 @@ static_assert(sizeof(CellSimplex) == 24, "CellSimplex: 24 bytes a cell");
 /// pages that never move (block << kShift | offset; a list of more values than
 /// a block holds gets a block of its own). A pointer per key would take 8
 /// bytes for every cell of the complex, most never read
-/// (papers/mesher/decomposition.md, "Normals and rho from the cell").
+/// (papers/decompose/history.md, "Normals and rho from the cell").
 /// Preconditions: at most `max_values` values are made between two
 /// release() calls (each key's list once), and release() runs while no other
 /// thread reads or makes.
@@ -209,7 +209,7 @@ class MadeStore {
 /// (CellSimplex) and the cells across its planes; a cell's geometry (focus,
 /// axis: MixedCell) and its bounding planes are made on first use and kept
 /// until release_made(): the mesher reads a few percent of the cells
-/// (papers/mesher/decomposition.md, "Cells and planes made on first use").
+/// (papers/decompose/history.md, "Cells and planes made on first use").
 /// Evaluation of f, grad f and rho at a point costs one point location (a
 /// walk from a nearby cell) plus O(1). Every const method may be called from
 /// several threads at once, except release_made().
@@ -357,7 +357,7 @@ class MixedComplex {
   /// Per cell, its planes once made: 4 bytes per cell, and 40 per plane only
   /// for the cells read. The blocks are pages mapped on their own:
   /// release_made() gives them back to the system, where freed heap blocks of
-  /// malloc would stay resident (papers/mesher/decomposition.md, "The made
+  /// malloc would stay resident (papers/decompose/history.md, "The made
   /// cells between the stages").
   mutable MadeStore<CellPlane> made_planes_;
   /// Per cell, its geometry once made: 4 bytes per cell, and 88 only for the

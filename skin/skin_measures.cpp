@@ -377,8 +377,8 @@ struct PatchSetup {
 PatchSetup patch_setup(const MixedComplex& mc, Index c) {
   // The cell and its planes made and not kept (bit for bit those of cell()
   // and planes()): the integration reads every cell once, and keeping them
-  // made the geometry of the whole complex at once (papers/mesher/
-  // decomposition.md, "The made cells between the stages").
+  // made the geometry of the whole complex at once (papers/decompose/
+  // history.md, "The made cells between the stages").
   PatchSetup s;
   s.m = mc.cell_value(c);
   if (s.m.bounding) return s;

@@ -29,7 +29,7 @@ inline constexpr geometry::VertexPropertyKey<std::uint8_t> kVertexInserted{"v:in
 /// MixedComplex member `Of`. Every stage places a vertex with a sample of the
 /// skin there (SkinSurface::sample) and stores that sample's cell, so the
 /// value read is bit for bit the sample's; keeping it would cost its bytes
-/// for every vertex through every stage (papers/mesher/decomposition.md,
+/// for every vertex through every stage (papers/decompose/history.md,
 /// "Normals and rho from the cell").
 /// Preconditions: `mc` and `mesh` outlive the view, `mesh` has the kVertexCell
 /// property, and every vertex read has a valid cell.

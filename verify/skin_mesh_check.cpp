@@ -174,8 +174,8 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
   // not the cell's patch at the point: f, grad f and rho are continuous
   // across faces.) The caller's cells matter for memory as well: walks
   // between neighbouring vertices cross about three cells each and make the
-  // planes of about a third of the mixed complex (papers/mesher/
-  // decomposition.md, "Planes made on first use").
+  // planes of about a third of the mixed complex (papers/decompose/
+  // history.md, "Cells and planes made on first use").
   const bool given_cells = opt.vertex_cells.size() == nv;
   std::vector<Index> order;
   std::vector<Index> order_hint;  // the position in `order` of v's hint vertex, or kInvalidIndex

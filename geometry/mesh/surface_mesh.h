@@ -95,7 +95,7 @@ namespace detail {
 /// map is per edge: half-edge i goes where its edge goes, times two, plus i's
 /// parity. Only the map is held (4 bytes per vertex, edge and face): a list of
 /// the kept elements beside it would double that at a slab's end, the sweep's
-/// peak (papers/mesher/decomposition.md, "Normals and rho from the cell").
+/// peak (papers/decompose/history.md, "Normals and rho from the cell").
 struct CompactionMap {
   std::span<const Index> map;
   std::size_t kept = 0;  ///< elements kept
@@ -585,7 +585,7 @@ class SurfaceMesh {
   /// others their initial value), and `other` emptied as it is read: its
   /// arrays go back to the system a chunk at a time once copied, so the two
   /// meshes together never hold much more than the result (the decomposed
-  /// sweep's glue, papers/mesher/decomposition.md). Afterwards `other` has no
+  /// sweep's glue, papers/decompose/README.md, "The glue"). Afterwards `other` has no
   /// element; its properties stay. O(size of `other`). Throws as append()
   /// does, before anything changes.
   void append_consuming(SurfaceMesh& other);

@@ -154,7 +154,7 @@ class PointGrid {
 /// emptied one is given back, so the grid needs no allocation of its own per
 /// cell (a std::vector per cell cost 24 bytes plus an allocation's header and
 /// rounding, on the sweep's vertex grid about as much as the points: papers/
-/// mesher/decomposition.md, "The sweep's grids in one pool"). An erasable grid finds a
+/// decompose/history.md, "The sweep's grids in one pool"). An erasable grid finds a
 /// point's place by its id in pages of 1024 ids, a page allocated on its first
 /// point and freed with its last: the sweep's front moves through the vertex
 /// ids, so the table holds the front's pages, not one entry per vertex. A query
@@ -441,7 +441,7 @@ using LeveledIndexGrid = BasicLeveledPointGrid<false>;
 /// offsets, not the (2R/h)³ offsets of a dense box, so the cell side stays
 /// the requested one (a dense box of at most 8 cells per point had to
 /// double it on the 1.2-million-atom shell until each cell held 16 times
-/// the points it should, papers/mesher/decomposition.md). The side is the
+/// the points it should, papers/decompose/history.md, "The top rung"). The side is the
 /// requested size, doubled only while there are more than kMaxCellsPerPoint
 /// columns per point (plus 4096). Queries report exactly the points a linear
 /// scan with the same distance test reports, in the order of increasing

@@ -1,5 +1,5 @@
 // tests/front/region_test.cpp: the sweep of one region of the decomposed sweep
-// (front/region.h, papers/mesher/decomposition.md) against what the
+// (front/region.h, papers/decompose/README.md) against what the
 // slab must be: its mesh lies on the skin between the cuts, its boundary is
 // exactly the lower cut curves' samples (in their order) plus one parked rim
 // per upper cut curve, its Euler characteristic is the alternating count of the critical

@@ -1,5 +1,5 @@
 // tests/mesher/decomposed_test.cpp: the decomposed sweep end to end
-// (decompose/decomposed.h, papers/mesher/decomposition.md): bundled molecules cut
+// (decompose/decomposed.h, papers/decompose/README.md): bundled molecules cut
 // into many forced slabs, each slab swept from its lower cut curves, the bands
 // under the cuts closed by strips and the slabs glued along the shared
 // samples, then refined and checked like one sweep's mesh. The seams get no

@@ -100,10 +100,10 @@ struct Options {
                "  --list           list the cases and exit\n"
                "  --no-fork        run the mesher in this process (for a debugger; a crash ends the run)\n"
                "  --slabs N        mesh every case decomposed into (up to) N slabs, 1: one sweep, 0: automatic\n"
-               "                   (default, as skinmesh mesh; papers/mesher/decomposition.md)\n"
+               "                   (default, as skinmesh mesh; papers/decompose/README.md)\n"
                "  --cut-detours    with --slabs: cuts that pass around the critical points they meet\n"
                "  --no-component-sweeps  every skin component in one sweep (default: one sweep per group of\n"
-               "                   whole components, papers/mesher/decomposition.md)\n",
+               "                   whole components, papers/decompose/README.md)\n",
                static_cast<unsigned long long>(kDefaultSeed));
   std::exit(problem.empty() ? 0 : 2);
 }
@@ -758,7 +758,7 @@ int main(int argc, char** argv) {
     }
     const std::string wanted = opt.slabs == 0 ? "automatic" : "up to " + std::to_string(opt.slabs) + " each";
     std::printf(
-        "decomposition (papers/mesher/decomposition.md): %zu slabs over %zu meshed cases (%s); cuts "
+        "decomposition (papers/decompose/README.md): %zu slabs over %zu meshed cases (%s); cuts "
         "dropped in %zu cases, %zu in all\n",
         slabs, meshed, wanted.c_str(), dropping, dropped);
     for (const CaseReport& rep : reports)
