@@ -280,58 +280,69 @@ Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, A
   return sum;
 }
 
-/// Stages 4, 4b and the output for groups of whole skin components swept on
-/// their own (decompose::DecomposedSweep::groups): each group's mesh is refined
-/// and angle-improved on its own, and the output meshes are joined in group
-/// order, each written straight into its place in res.mesh and its half-edge
-/// mesh freed at once. No step reads another group's mesh; the check, which
-/// reads the whole mesh, still tests [L], [U], the restricted Delaunay
-/// property, the angles and the embedding across groups. On every input
-/// tried the result is the glued path's mesh in another order
-/// (papers/decompose/history.md, "Groups to the end"). The groups run on
-/// the threads, one each, unless one holds more than half of the triangles:
-/// then one after the other, each with every thread for the refinement's
-/// scans. Neither choice changes the mesh, which depends on the groups only.
-void finish_groups(const skin::SkinSurface& skin, const MeshOptions& options, int threads, StageClock& clock,
-                   std::vector<front::SweepResult>& groups, MeshResult& res) {
-  const std::size_t n = groups.size();
+/// Stages 4, 4b and the output for the parts the sweep handed back: one
+/// closed mesh (one sweep, or the slabs glued), or the groups of whole skin
+/// components swept on their own (decompose::DecomposedSweep::groups). Each
+/// part is refined and angle-improved on its own, and the output meshes are
+/// joined in part order, each written straight into its place in res.mesh
+/// and its half-edge mesh freed at once. No step reads another part's mesh;
+/// the check, which reads the whole mesh, still tests [L], [U], the
+/// restricted Delaunay property, the angles and the embedding across parts.
+/// On every input tried the groups give the glued path's mesh in another
+/// order (papers/decompose/history.md, "Groups to the end"). The parts run
+/// on the threads, one each, unless one holds more than half of the
+/// triangles (always so for one part): then one after the other, each with
+/// every thread for the refinement's scans. Neither choice changes the mesh,
+/// which depends on the parts only. The observers of whole stages see the
+/// mesh when there is one part (they make the sweep glue its groups).
+void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, int threads, StageClock& clock,
+                  std::vector<geometry::SurfaceMesh*> parts, MeshResult& res) {
+  const std::size_t n = parts.size();
   std::size_t faces = 0, largest = 0;
-  for (const front::SweepResult& g : groups) {
-    faces += g.mesh.n_faces();
-    largest = std::max(largest, g.mesh.n_faces());
+  for (const geometry::SurfaceMesh* m : parts) {
+    faces += m->n_faces();
+    largest = std::max(largest, m->n_faces());
   }
   const bool one_large = 2 * largest > faces;
   const int outer = one_large ? 1 : threads, inner = one_large ? threads : 1;
-  // The groups in windows, largest first (ties in group order), the cells
+  // The parts in windows, largest first (ties in part order), the cells
   // made by a window given back before the next: the made cells of every
-  // group do not stay beside every group's mesh. The order and the windows
+  // part do not stay beside every part's mesh. The order and the windows
   // change no mesh.
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return groups[a].mesh.n_faces() > groups[b].mesh.n_faces(); });
+                   [&](std::size_t a, std::size_t b) { return parts[a]->n_faces() > parts[b]->n_faces(); });
   const auto release = [&skin] { release_made_cells(skin); };
+  const auto stage_end = [&](const char* stage) {
+    if (options.observers.stage_end && n == 1) options.observers.stage_end(stage, skin, *parts[0]);
+  };
   if (options.refine) {
     clock.begin("refine");
     refine::RefineOptions refinement = with_size(options.refinement, options.size);
     if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = inner;
     res.refinement = per_group<refine::RefineStats>(
-        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, groups[g].mesh, refinement); },
-        add_refine_stats, release);
+        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, *parts[g], refinement); }, add_refine_stats,
+        release);
+    stage_end("refine");
     clock.end("refine");
+    // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
     if (options.improve_angles) {
       clock.begin("angles");
       const refine::AngleImprovementOptions angles = with_size(options.angle_improvement, options.size);
       res.angle_improvement = per_group<refine::AngleImprovementStats>(
-          order, threads, [&](std::size_t g) { return refine::improve_angles(skin, groups[g].mesh, angles); },
+          order, threads, [&](std::size_t g) { return refine::improve_angles(skin, *parts[g], angles); },
           add_angle_stats, release);
+      stage_end("angles");
       clock.end("angles");
     }
   }
-  std::vector<geometry::SurfaceMesh*> meshes;
-  for (front::SweepResult& g : groups) meshes.push_back(&g.mesh);
+  // The check reads res.mesh: the half-edge meshes go back part by part as
+  // the output is written.
   release_made_cells(skin);  // the only release here when the refinement is off
-  write_output(skin, meshes, threads, res);
+  write_output(skin, parts, threads, res);
+  if (options.observers.memory_released) options.observers.memory_released();
+  clock.end("output");
 }
 
 /// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
@@ -403,40 +414,12 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (options.observers.stage_end) options.observers.stage_end("sweep", skin, swept.mesh);
   ms.reset();  // not needed any more: its memory goes back before the refinement and the check
   clock.end("sweep");
-  if (!decomposed.groups.empty()) {
-    finish_groups(skin, options, threads, clock, decomposed.groups, res);
-    if (options.observers.memory_released) options.observers.memory_released();
-    clock.end("output");
-    return;
-  }
-
-  // 4. The local refinement (§4.3).
-  if (options.refine) {
-    clock.begin("refine");
-    refine::RefineOptions refinement = with_size(options.refinement, options.size);
-    if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = threads;
-    res.refinement = refine::refine_mesh(skin, swept.mesh, refinement);
-    if (options.observers.stage_end) options.observers.stage_end("refine", skin, swept.mesh);
-    clock.end("refine");
-    // What the refinement made of the complex (5 MB on maltoporin) goes
-    // back: the angle improvement reads the cells of the vertices it moves,
-    // and of each vertex once for rho.
-    release_made_cells(skin);
-    // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
-    if (options.improve_angles) {
-      clock.begin("angles");
-      res.angle_improvement =
-          refine::improve_angles(skin, swept.mesh, with_size(options.angle_improvement, options.size));
-      if (options.observers.stage_end) options.observers.stage_end("angles", skin, swept.mesh);
-      clock.end("angles");
-    }
-  }
-  // The check reads res.mesh: the half-edge mesh goes back part by part as
-  // the output is written.
-  release_made_cells(skin);
-  write_output(skin, {&swept.mesh}, threads, res);
-  if (options.observers.memory_released) options.observers.memory_released();
-  clock.end("output");
+  // 4, 4b and the output (§4.3), over the parts: the glued mesh, or each
+  // group of components.
+  std::vector<geometry::SurfaceMesh*> parts;
+  if (decomposed.groups.empty()) parts.push_back(&swept.mesh);
+  for (front::SweepResult& g : decomposed.groups) parts.push_back(&g.mesh);
+  finish_parts(skin, options, threads, clock, std::move(parts), res);
 }
 
 /// Stage 5: the skin-aware check of res.mesh, timed on `clock`.
