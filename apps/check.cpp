@@ -23,6 +23,12 @@ struct CheckArgs {
   std::string mesh;
   std::string report;
   verify::SkinCheckOptions opt;
+  /// C and Q (--C, --Q) and the threads (--threads, 0: every core).
+  skin::RunContext run = [] {
+    skin::RunContext r;
+    r.threads = 0;
+    return r;
+  }();
   bool no_self_intersections = false, no_rdt = false;
   /// --max-vertex-distance: "auto" (the file's rounding, else 1e-9 Å) or a distance in Å.
   std::string max_vertex_distance = "auto";
@@ -64,11 +70,11 @@ int run_check(CheckArgs& a) {
   const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, a.mol.probe);
   const Vec3 centre = skin::local_frame_centre(points);
   for (Vec3& p : mesh.positions) p -= centre;
-  const skin::SkinSurface skin(skin::translated(points, centre), a.opt.threads);
+  const skin::SkinSurface skin(skin::translated(points, centre), a.run.threads);
   a.opt.check_self_intersections = !a.no_self_intersections;
   a.opt.check_restricted_delaunay = !a.no_rdt && (!rounded || a.strict);
   a.opt.check_size_conditions = !rounded || a.strict;
-  const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt);
+  const verify::SkinCheckReport rep = verify::check_skin_mesh(skin, mesh, a.opt, a.run);
   // Where the tolerance came from, after the tolerance itself.
   nlohmann::ordered_json report = nlohmann::ordered_json::parse(rep.to_json()), out;
   for (auto it = report.begin(); it != report.end(); ++it) {
@@ -100,10 +106,10 @@ Command add_check_command(CLI::App& app) {
   cmd->add_option("MESH", check.mesh, "mesh file (.ply, .off, .obj, .stl, .vtk, .vtp, .vtu, or .vert/.face for MSMS)")
       ->required();
   cmd->add_option("-o,--output", check.report, "also write the report to this file");
-  add_size_options(*cmd, check.opt.size);
+  add_size_options(*cmd, check.run.size);
   cmd->add_option("--min-angle", check.opt.min_angle_deg, "smallest admissible angle in degrees")
       ->capture_default_str();
-  add_threads_option(*cmd, check.opt.threads, "0: every core", "report is");
+  add_threads_option(*cmd, check.run.threads, "0: every core", "report is");
   add_shell_options(*cmd, check.opt.shells, "expect in MESH (as `skinmesh mesh` kept them)");
   cmd->add_flag("--no-self-intersections", check.no_self_intersections, "skip the exact self-intersection test");
   cmd->add_flag("--no-rdt", check.no_rdt, "skip the restricted Delaunay test");

@@ -80,7 +80,7 @@ int run_trace(TraceArgs& a) {
   o.mesh.dynamic.growth = !a.no_growth;
   o.mesh.observers.memory_released = release_free_memory;
   ProgressReporter progress(!a.mol.quiet);
-  o.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
+  o.mesh.progress = [&progress](const std::string& stage, double f) { progress.report(stage, f); };
   trace::TraceSummary summary;
   const nlohmann::json doc = trace::record_trace(skin::weighted_points(mol, a.mol.probe), o, &summary);
   progress.finish();

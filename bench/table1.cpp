@@ -77,7 +77,7 @@ void BM_SweepMesher(benchmark::State& state, Mesher mesh, const char* molecule_f
 /// skin, angles, [L], [U], restricted Delaunay) on the mesh of a bundled
 /// molecule at probe radius `probe` (Å), built once before the loop. Its time
 /// against BM_SweepMesher's on the same input is the check's share
-/// (issue #7 asks for at most half). `threads`: SkinCheckOptions::threads (1:
+/// (issue #7 asks for at most half). `threads`: skin::RunContext::threads (1:
 /// all on this thread; 2: the mesh-only checks on a second thread).
 /// Counters: triangles, triangles_per_s.
 void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double probe, int threads) {
@@ -91,10 +91,10 @@ void BM_SkinMeshCheck(benchmark::State& state, const char* molecule_file, double
   const skin::SkinSurface skin(skin::translated(points, centre));
   geometry::IndexedMesh local = res.mesh;
   for (Vec3& p : local.positions) p -= centre;
-  verify::SkinCheckOptions check_options;
-  check_options.threads = threads;
+  skin::RunContext run;
+  run.threads = threads;
   for (auto _ : state) {
-    const verify::SkinCheckReport report = verify::check_skin_mesh(skin, local, check_options);
+    const verify::SkinCheckReport report = verify::check_skin_mesh(skin, local, {}, run);
     if (!report.ok()) {
       state.SkipWithError(report.problems.front().c_str());
       return;

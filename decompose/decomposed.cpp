@@ -168,11 +168,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 /// the slab with a neighbour (a front the slab's bounds disturb, a
 /// construction near them that fails, a slab too thin) caught.
 SlabOutcome sweep_one(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& slab,
-                      const SweepOptions& sweep) {
+                      const SweepOptions& sweep, const skin::RunContext& run) {
   SlabOutcome o;
   const auto start = std::chrono::steady_clock::now();
   try {
-    o.result = sweep_region(skin, ms, slab, sweep);
+    o.result = sweep_region(skin, ms, slab, sweep, run);
   } catch (const LowerCutError& e) {
     o.error = e.what();
     o.at_lower_cut = true;
@@ -198,21 +198,24 @@ Index append_with_vertex_data(geometry::SurfaceMesh& mesh, geometry::SurfaceMesh
 }
 
 /// The sweep of the whole skin (no cut): one sweep per group of whole
-/// components (morse::component_groups()), on up to `threads` threads, their
+/// components (morse::component_groups()), on up to run.threads threads, their
 /// meshes appended in group order; one sweep of everything when the skin
 /// is one group, or when a group's sweep fails (its error in `why`). A
 /// group's fronts never meet another group's surface, so nothing else is
 /// shared (papers/decompose/README.md, "Groups of whole components"). With `unglued`,
 /// two or more groups' meshes are moved there in group order instead of
 /// appended, and the result holds their summed stats only. With
-/// `release_made` (DecompositionOptions::release_made_cells) the groups go
-/// in windows of `threads`, and the complex's made cells and planes go back
-/// after each window.
+/// run.release_made_cells the groups go in windows of run.threads, and the
+/// complex's made cells and planes go back after each window.
 SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const SweepOptions& sweep, int threads, bool release_made, DecompositionCosts& costs,
+                             const SweepOptions& sweep, const skin::RunContext& run, DecompositionCosts& costs,
                              std::string& why, std::vector<SweepResult>* unglued) {
   const morse::ComponentGroups groups = morse::component_groups(ms);
-  if (groups.count < 2) return sweep_mesh(skin, ms, sweep);
+  if (groups.count < 2) return sweep_mesh(skin, ms, sweep, run);
+  const int threads = run.threads;
+  const bool release_made = run.release_made_cells;
+  // Each group reports nothing: the progress is the groups done.
+  const skin::RunContext part_run = run.quiet();
   std::vector<std::optional<SweepResult>> parts(groups.count);
   std::vector<std::string> errors(groups.count);
   std::vector<double> seconds(groups.count, 0.0);
@@ -228,13 +231,11 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points[a] > points[b]; });
   auto sweep_group = [&](std::size_t g) {
     const auto start = std::chrono::steady_clock::now();
-    SweepOptions part = sweep;
-    part.progress = nullptr;
     try {
       Region group;
       group.owns.assign(ms.critical.size(), 0);
       for (std::size_t p = 0; p < ms.critical.size(); ++p) group.owns[p] = groups.group[p] == g;
-      parts[g] = sweep_mesh(skin, ms, group, part);
+      parts[g] = sweep_mesh(skin, ms, group, sweep, part_run);
       parts[g]->mesh.garbage_collection();
     } catch (const TopologyError& e) {
       errors[g] = e.what();
@@ -242,9 +243,9 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
       errors[g] = e.what();
     }
     seconds[g] = seconds_since(start);
-    if (sweep.progress) {
+    if (run.progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);
-      sweep.progress("sweep", static_cast<double>(++finished) / static_cast<double>(groups.count));
+      run.progress("sweep", static_cast<double>(++finished) / static_cast<double>(groups.count));
     }
   };
   const std::size_t window = release_made ? static_cast<std::size_t>(std::max(threads, 1)) : order.size();
@@ -256,7 +257,7 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
   for (Index g = 0; g < groups.count; ++g)
     if (!errors[g].empty()) {
       why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
-      return sweep_mesh(skin, ms, sweep);
+      return sweep_mesh(skin, ms, sweep, run);
     }
   if (unglued) {
     SweepResult out;
@@ -453,7 +454,7 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
 
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const SweepOptions& sweep) {
+                                 const SweepOptions& sweep, const skin::RunContext& context) {
   DecomposedSweep out;
   const std::size_t n_cuts = cuts.size();
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
@@ -469,7 +470,8 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
   if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.detours.empty(); }))
     for (std::size_t c = 0; c < n_cuts; ++c) below[c] = below_cut(cuts[c], ms);
   // The observers and the trace see one slab at a time, in order.
-  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, opt.threads);
+  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, context.threads);
+  const skin::RunContext run = context.with_threads(threads);
 
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
@@ -479,10 +481,10 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       // An observer or a trace replays one front in one mesh: they get the
       // one sweep of everything.
       if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
-        out.sweep = sweep_components(skin, ms, sweep, threads, opt.release_made_cells, out.costs,
-                                     out.components_fallback, opt.glue_groups ? nullptr : &out.groups);
+        out.sweep = sweep_components(skin, ms, sweep, run, out.costs, out.components_fallback,
+                                     opt.glue_groups ? nullptr : &out.groups);
       else
-        out.sweep = sweep_mesh(skin, ms, sweep);
+        out.sweep = sweep_mesh(skin, ms, sweep, run);
       return out;
     }
     std::vector<SlabKey> keys;
@@ -520,16 +522,15 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
           if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
         if (upper != kNone) slab.upper_detours = cuts[upper].detours;
       }
-      SweepOptions slab_sweep = sweep;
-      slab_sweep.progress = nullptr;
-      if (sweep.progress && threads == 1)
-        slab_sweep.progress = [&sweep, i, &todo](const std::string& stage, double f) {
-          sweep.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
+      skin::RunContext slab_run = run.quiet();
+      if (run.progress && threads == 1)
+        slab_run.progress = [&run, i, &todo](const std::string& stage, double f) {
+          run.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
         };
-      fresh[i] = sweep_one(skin, ms, slab, slab_sweep);
-      if (sweep.progress && threads > 1) {
+      fresh[i] = sweep_one(skin, ms, slab, sweep, slab_run);
+      if (run.progress && threads > 1) {
         const std::lock_guard<std::mutex> lock(progress_mutex);
-        sweep.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
+        run.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
       }
     });
     for (std::size_t i = 0; i < todo.size(); ++i) swept.emplace(todo[i], std::move(fresh[i]));
@@ -578,7 +579,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     // with it, then the bands' triangles on the shared vertices. What the
     // slabs' walks made of the complex goes back first (no thread reads it
     // now): the glue's copies are the sweep's peak.
-    if (opt.release_made_cells) skin.mixed_complex().release_made();
+    if (run.release_made_cells) skin.mixed_complex().release_made();
     const auto glue_start = std::chrono::steady_clock::now();
     out.costs.bands = bands_seconds;
     // The lowest slab's mesh is taken as it is (garbage-collected, with the

@@ -68,9 +68,6 @@ struct DecompositionOptions {
   /// components, whose critical points leave no clear height. Experimental:
   /// off by default (papers/decompose/README.md, "Detoured cuts").
   bool detours = false;
-  /// Threads for the slabs and the bands (at least 1; the pipeline passes
-  /// its --threads). The cuts and the mesh do not depend on it.
-  int threads = 1;
   /// Without a cut: one sweep per group of whole skin components
   /// (morse::component_groups()), on the threads, instead of one sweep of
   /// the whole skin. The groups depend on the input only. Off where the
@@ -84,16 +81,6 @@ struct DecompositionOptions {
   /// sweep"). mesher::mesh_skin() sets it itself: false unless an observer
   /// watches the whole mesh between the stages.
   bool glue_groups = true;
-  /// The caller lets the sweep give back the mixed complex's made cells and
-  /// planes (MixedComplex::release_made()) while it runs: no other thread
-  /// reads the complex during the sweep. The groups of components are then
-  /// swept in windows of `threads` groups, largest first, and what a window
-  /// made goes back before the next, so the made cells of every group do
-  /// not stay beside every group's mesh; with cuts, what the slabs made goes
-  /// back before the glue. The mesh is the same either way.
-  /// mesher::mesh_skin() sets it (papers/decompose/history.md, "The made
-  /// cells between the stages").
-  bool release_made_cells = false;
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
@@ -192,9 +179,16 @@ struct DecomposedSweep {
 /// choose_cuts() returns them) and glues the slabs into one closed mesh: the
 /// cut samples are shared by the slab above (its lower boundary) and the
 /// band below (the strip between the slab's parked rims and the cut's
-/// curves). The slabs, then the bands, are computed on up to opt.threads
+/// curves). The slabs, then the bands, are computed on up to run.threads
 /// threads (one if `sweep` has an observer or a trace); the mesh does not
-/// depend on the count. Where a slab fails (sweep_region() throws
+/// depend on the count. With run.release_made_cells (the caller owns the
+/// skin: no other thread reads the complex during the sweep) the groups of
+/// components are swept in windows of run.threads groups, largest first,
+/// and what a window made goes back before the next, so the made cells of
+/// every group do not stay beside every group's mesh; with cuts, what the
+/// slabs made goes back before the glue (papers/decompose/history.md, "The
+/// made cells between the stages"). C and Q and the progress reports come
+/// from `run`. Where a slab fails (sweep_region() throws
 /// TopologyError, GeometryError or std::invalid_argument) the cut above it
 /// is dropped (below it for the top slab), and where a band has no outward
 /// strip the cut of the band: the two slabs become one, swept again, the
@@ -205,6 +199,6 @@ struct DecomposedSweep {
 /// not a closed manifold.
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const front::SweepOptions& sweep = {});
+                                 const front::SweepOptions& sweep = {}, const skin::RunContext& run = {});
 
 }  // namespace skinmesh::decompose

@@ -43,13 +43,14 @@ SweptRegion::SweptRegion(Region r) : spec(std::move(r)) {
 }
 
 FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,
-                       Region region)
-    : skin(skin), ms(ms), opt(opt), e(ms.height_direction), region(std::move(region)) {
-  if (!(opt.disc_factor > opt.size.disc_factor_lower() && opt.disc_factor <= opt.size.disc_factor_upper())) {
+                       skin::RunContext run, Region region)
+    : skin(skin), ms(ms), opt(opt), run(std::move(run)), e(ms.height_direction), region(std::move(region)) {
+  const skin::SizeConstants& size = this->run.size;
+  if (!(opt.disc_factor > size.disc_factor_lower() && opt.disc_factor <= size.disc_factor_upper())) {
     std::ostringstream os;
     os << "sweep: disc_factor " << opt.disc_factor << " is outside the tangent-disc window ("
-       << opt.size.disc_factor_lower() << ", " << opt.size.disc_factor_upper() << "] of C = " << opt.size.C
-       << ", Q = " << opt.size.Q << " (Cheng & Shi §4.2)";
+       << size.disc_factor_lower() << ", " << size.disc_factor_upper() << "] of C = " << size.C << ", Q = " << size.Q
+       << " (Cheng & Shi §4.2)";
     throw std::invalid_argument(os.str());
   }
   // The per-vertex counters are 8 bits wide.
@@ -198,12 +199,12 @@ Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index*
 // Holds in Protecting Spheres (Algorithm 1, lines 3–10)
 
 void report_progress(FrontState& fs, double h) {
-  if (!fs.opt.progress) return;
+  if (!fs.run.progress) return;
   const double span = fs.h_max - fs.h_min;
   const double f = span > 0 ? std::clamp((h - fs.h_min) / span, 0.0, 1.0) : 0.0;
   if (f < fs.next_progress) return;
   fs.next_progress = f + kProgressStep;
-  fs.opt.progress("sweep", f);
+  fs.run.progress("sweep", f);
 }
 
 }  // namespace skinmesh::front::detail

@@ -229,18 +229,19 @@ struct QueueEntry {
 struct FrontState {
   /// An empty mesh, the grids of the protecting spheres and of the vertices.
   /// Throws std::invalid_argument if opt.disc_factor lies outside the
-  /// tangent-disc window of opt.size (Cheng & Shi §4.2), or max_deferrals or
+  /// tangent-disc window of run.size (Cheng & Shi §4.2), or max_deferrals or
   /// max_reopenings outside [0, 255] (the width of their counters). `skin`, `ms` and
   /// `opt` must outlive the state.
   /// `region` is the part of the skin to mesh (the whole skin by default).
   FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,
-             Region region = {});
+             skin::RunContext run = {}, Region region = {});
 
   // What the sweep reads.
   const skin::SkinSurface& skin;
   const morse::MorseSmaleComplex& ms;
   const SweepOptions& opt;
-  const Vec3 e;  ///< unit height direction (§3.1)
+  const skin::RunContext run;  ///< C and Q, the progress reports
+  const Vec3 e;                ///< unit height direction (§3.1)
 
   // The partial mesh and its per-vertex data.
   SurfaceMesh mesh;

@@ -411,7 +411,7 @@ bool Patcher::solve() {
   }
   const std::size_t budget = kInsertionFloor + kInsertionsPerSample * std::max<std::size_t>(free_count_, loop_.size());
   std::size_t inserted = 0;
-  const double CQ = fs_.opt.size.C * fs_.opt.size.Q;
+  const double CQ = fs_.run.size.C * fs_.run.size.Q;
   for (int round = 0; round < kMaxRounds; ++round) {
     classify();
     const bool closed = extract();

@@ -222,18 +222,18 @@ void wing_rims(FrontState& fs) {
 }  // namespace detail
 
 SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
-                       const SweepOptions& opt) {
+                       const SweepOptions& opt, const skin::RunContext& run) {
   if (std::isfinite(region.lower) || std::isfinite(region.upper) || !region.lower_curves.empty() ||
       !region.upper_curves.empty() || !region.upper_detours.empty())
     throw std::invalid_argument("sweep_mesh: a region with cuts is swept by sweep_region");
   if (!region.owns.empty() && region.owns.size() != ms.critical.size())
     throw std::invalid_argument("sweep_mesh: `owns` needs one entry per critical point");
-  detail::FrontState fs(skin, ms, opt, region);
+  detail::FrontState fs(skin, ms, opt, run, region);
   return detail::run_sweep(fs);
 }
 
 RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
-                          const SweepOptions& opt) {
+                          const SweepOptions& opt, const skin::RunContext& run) {
   using namespace detail;
   if (!(region.lower < region.upper))
     throw std::invalid_argument("sweep_region: the lower cut must lie below the upper cut");
@@ -261,7 +261,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
                                    [](const morse::CutDetour& d) { return !d.balls.empty(); });
   if (detours && region.upper_curves.empty())
     throw std::invalid_argument("sweep_region: an upper cut with detours needs its curves");
-  FrontState fs(skin, ms, opt, region);
+  FrontState fs(skin, ms, opt, run, region);
   const std::vector<Face> ghost_faces = attach_lower_curves(fs, region.lower_curves);
   create_initial_front(fs);
   sweep_and_seal(fs);

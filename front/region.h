@@ -112,7 +112,7 @@ class LowerCutError : public TopologyError {
 /// height, or curves) or an `owns` of the wrong length; otherwise as
 /// sweep_mesh().
 SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
-                       const SweepOptions& opt = {});
+                       const SweepOptions& opt = {}, const skin::RunContext& run = {});
 
 /// Meshes the region by Algorithm 1 (Cheng & Shi §4.1) from an initial front of
 /// the region's lower cut curves and of bowls at the minima strictly inside
@@ -131,6 +131,6 @@ SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleCom
 /// upper curves) an upper curve has no rim; GeometryError if a ghost vertex
 /// cannot be projected.
 RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const Region& region,
-                          const SweepOptions& opt = {});
+                          const SweepOptions& opt = {}, const skin::RunContext& run = {});
 
 }  // namespace skinmesh::front

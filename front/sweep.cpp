@@ -199,7 +199,7 @@ void sweep_and_seal(FrontState& fs) {
     }
   } while (release_saddles(fs));
   fs.stats.swept_faces = fs.mesh.n_faces();
-  if (fs.opt.progress) fs.opt.progress("sweep", 1.0);
+  if (fs.run.progress) fs.run.progress("sweep", 1.0);
   // Sealing holes.
   if (!fs.opt.dump_path.empty()) geometry::write_mesh(fs.opt.dump_path, fs.mesh.to_indexed_mesh());
   seal_all(fs);
@@ -265,8 +265,9 @@ std::size_t departure_bound(const SweepStats& s, int max_departures) {
   return b * (7 * s.creations + 2 * s.swept_faces) + 7 * s.swept_faces;
 }
 
-SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt) {
-  detail::FrontState fs(skin, ms, opt);
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt,
+                       const skin::RunContext& run) {
+  detail::FrontState fs(skin, ms, opt, run);
   return detail::run_sweep(fs);
 }
 

@@ -15,7 +15,7 @@
 
 #include "geometry/mesh/surface_mesh.h"
 #include "morse/morse_smale_complex.h"
-#include "skin/size_conditions.h"
+#include "skin/run_context.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::front {
@@ -63,9 +63,6 @@ struct SweepEvent {
 /// tangent-disc radius r = disc_factor · rho(v) of the vertex concerned.
 struct SweepOptions {
   // From the paper (Cheng & Shi 2004 §2.2, §4.1).
-  /// C and Q of conditions [L], [U] (Cheng & Shi §2.2); the window of
-  /// disc_factor is derived from them.
-  skin::SizeConstants size;
   /// Angle of one fan triangle at its apex (degrees): a bowl has 360/60 = 6
   /// triangles, a creep fan ceil(theta / 60°). [paper §4.1]
   double fan_angle_deg = 60;
@@ -183,9 +180,6 @@ struct SweepOptions {
   std::size_t force_patch_every = 0;
 
   // Reporting and debugging aids (papers/front/sweep.md, "Debugging aids").
-  /// Called now and then with the stage name "sweep" and the fraction of the
-  /// height range swept (0..1); empty: no progress reports.
-  std::function<void(const std::string& stage, double fraction)> progress;
   /// After every operation, check that the tangent angles around the vertices
   /// of the new triangles make 360° (no fold); throw TopologyError naming the
   /// operation otherwise.
@@ -274,10 +268,13 @@ struct SweepResult {
 /// minimum of `ms`, creeps from the lowest front vertex, holds in protecting
 /// spheres, bridges at saddles, seals at maxima. `ms` gives the critical
 /// points (live ones after simplification), their protecting spheres and the
-/// height direction. Throws std::invalid_argument if opt.disc_factor is
-/// outside opt.size's tangent-disc window, TopologyError when the front
+/// height direction. C and Q come from `run`, which also gets the progress
+/// ("sweep" and the fraction of the height range swept). Throws
+/// std::invalid_argument if opt.disc_factor is outside the tangent-disc
+/// window of run.size, TopologyError when the front
 /// cannot be closed consistently (a fold, a hole without an ear), GeometryError
 /// when a projection fails.
-SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt = {});
+SweepResult sweep_mesh(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const SweepOptions& opt = {},
+                       const skin::RunContext& run = {});
 
 }  // namespace skinmesh::front

@@ -156,11 +156,16 @@ std::string in_frame(const std::string& what, const Vec3& centre) {
   return what + buf;
 }
 
-/// A stage's options with the size constants every stage must share.
-template <class StageOptions>
-StageOptions with_size(StageOptions stage_options, const skin::SizeConstants& size) {
-  stage_options.size = size;
-  return stage_options;
+/// What every stage of the run agrees on, from `options`: C and Q, the
+/// threads, the progress reports; the pipeline owns its skin, so the stages
+/// may give back the complex's made cells.
+skin::RunContext run_context(const MeshOptions& options) {
+  skin::RunContext run;
+  run.size = options.size;
+  run.threads = thread_count(options.threads);
+  run.progress = options.progress;
+  run.release_made_cells = true;
+  return run;
 }
 
 }  // namespace
@@ -168,7 +173,8 @@ StageOptions with_size(StageOptions stage_options, const skin::SizeConstants& si
 verify::SkinCheckReport check_stored_positions(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
                                                const Vec3& to_input, const Vec3& centre,
                                                const geometry::PositionStorage& storage,
-                                               verify::SkinCheckOptions options, double& displacement) {
+                                               verify::SkinCheckOptions options, const skin::RunContext& run,
+                                               double& displacement) {
   geometry::IndexedMesh stored;
   stored.triangles = mesh.triangles;
   stored.positions.resize(mesh.positions.size());
@@ -186,7 +192,7 @@ verify::SkinCheckReport check_stored_positions(const skin::SkinSurface& skin, co
   options.check_size_conditions = false;
   options.check_restricted_delaunay = false;
   displacement = moved;
-  return verify::check_skin_mesh(skin, stored, options);
+  return verify::check_skin_mesh(skin, stored, options, run);
 }
 
 std::vector<std::string> MeshResult::problems() const {
@@ -295,8 +301,9 @@ Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, A
 /// every thread for the refinement's scans. Neither choice changes the mesh,
 /// which depends on the parts only. The observers of whole stages see the
 /// mesh when there is one part (they make the sweep glue its groups).
-void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, int threads, StageClock& clock,
-                  std::vector<geometry::SurfaceMesh*> parts, MeshResult& res) {
+void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+                  StageClock& clock, std::vector<geometry::SurfaceMesh*> parts, MeshResult& res) {
+  const int threads = run.threads;
   const std::size_t n = parts.size();
   std::size_t faces = 0, largest = 0;
   for (const geometry::SurfaceMesh* m : parts) {
@@ -319,19 +326,18 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, int
   };
   if (options.refine) {
     clock.begin("refine");
-    refine::RefineOptions refinement = with_size(options.refinement, options.size);
-    if (refinement.threads == refine::RefineOptions{}.threads) refinement.threads = inner;
+    const skin::RunContext part_run = run.with_threads(inner);
     res.refinement = per_group<refine::RefineStats>(
-        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, *parts[g], refinement); }, add_refine_stats,
-        release);
+        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, *parts[g], options.refinement, part_run); },
+        add_refine_stats, release);
     stage_end("refine");
     clock.end("refine");
     // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
     if (options.improve_angles) {
       clock.begin("angles");
-      const refine::AngleImprovementOptions angles = with_size(options.angle_improvement, options.size);
       res.angle_improvement = per_group<refine::AngleImprovementStats>(
-          order, threads, [&](std::size_t g) { return refine::improve_angles(skin, *parts[g], angles); },
+          order, threads,
+          [&](std::size_t g) { return refine::improve_angles(skin, *parts[g], options.angle_improvement, run); },
           add_angle_stats, release);
       stage_end("angles");
       clock.end("angles");
@@ -347,7 +353,8 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, int
 
 /// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
 /// refinement and the angle improvement; fills res.mesh.
-void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
+void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+               StageClock& clock, MeshResult& res) {
   // 2. Critical points and the Morse–Smale complex (§3), checked against the
   //    Euler characteristic of the skin from its dual complex.
   clock.begin("morse");
@@ -355,15 +362,13 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   // the skin: with two threads it is computed beside the Morse–Smale complex,
   // on every thread as well (alone on one it outlasted the Morse–Smale
   // complex by half: papers/decompose/history.md, "Groups to the end").
-  const int threads = thread_count(options.threads);
+  const int threads = run.threads;
   std::future<skin::SkinTopology> topology;
   if (threads >= 2)
     topology = std::async(std::launch::async,
                           [&skin, threads] { return skin::dual_complex_topology(skin.mixed_complex(), threads); });
-  morse::MorseSmaleOptions morse_options = options.morse;
-  if (morse_options.threads == morse::MorseSmaleOptions{}.threads) morse_options.threads = threads;
   auto ms = std::make_unique<morse::MorseSmaleComplex>(
-      morse::build_morse_smale_complex(skin, options.height_direction, morse_options));
+      morse::build_morse_smale_complex(skin, options.height_direction, options.morse, run));
   res.expected_topology = topology.valid() ? topology.get() : skin::dual_complex_topology(skin.mixed_complex());
   res.critical = morse::count_critical_points(ms->critical);
   res.live = ms->live_count();
@@ -374,8 +379,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   if (options.observers.morse) options.observers.morse(skin, *ms);
   // The cut curves are traced from seeds on the integral lines: before
   // their polylines go.
-  const std::vector<decompose::Cut> cuts =
-      decompose::choose_cuts(skin, *ms, options.decomposition, with_size(options.sweep, options.size));
+  const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, *ms, options.decomposition, options.sweep);
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
@@ -394,15 +398,12 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
 
   // 3. The sweep (§4.1, §4.2).
   clock.begin("sweep");
-  front::SweepOptions sweep_options = with_size(options.sweep, options.size);
-  if (!sweep_options.progress) sweep_options.progress = options.progress;
   decompose::DecompositionOptions decomposition = options.decomposition;
-  decomposition.threads = threads;
   // The groups of components are refined on their own unless someone
   // watches the whole mesh between the stages.
   decomposition.glue_groups = options.observers.stage_end || options.refinement.observer;
-  decomposition.release_made_cells = true;  // the pipeline's own skin: no other thread reads it
-  decompose::DecomposedSweep decomposed = decompose::sweep_decomposed(skin, *ms, cuts, decomposition, sweep_options);
+  decompose::DecomposedSweep decomposed =
+      decompose::sweep_decomposed(skin, *ms, cuts, decomposition, options.sweep, run);
   front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
   res.slabs = decomposed.cut_heights.size() + 1;
@@ -419,29 +420,28 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, StageC
   std::vector<geometry::SurfaceMesh*> parts;
   if (decomposed.groups.empty()) parts.push_back(&swept.mesh);
   for (front::SweepResult& g : decomposed.groups) parts.push_back(&g.mesh);
-  finish_parts(skin, options, threads, clock, std::move(parts), res);
+  finish_parts(skin, options, run, clock, std::move(parts), res);
 }
 
 /// Stage 5: the skin-aware check of res.mesh, timed on `clock`.
 /// The verifier's options of stage 5 for res.mesh: options.checks with the
-/// run's size constants, threads and expected topology, and the mesher's cell
-/// of every vertex, where the check's walks start.
+/// run's expected topology, and the mesher's cell of every vertex, where the
+/// check's walks start.
 verify::SkinCheckOptions check_options_of(const MeshOptions& options, const MeshResult& res) {
-  verify::SkinCheckOptions check_options = with_size(options.checks, options.size);
+  verify::SkinCheckOptions check_options = options.checks;
   if (!check_options.expected_topology) check_options.expected_topology = res.expected_topology;
   if (res.shells) {  // the kept shells of a mesh whose every shell the check passed
     check_options.expected_topology = skin::kept_topology(*check_options.expected_topology, *res.shells);
     check_options.expected_component_euler = res.shells->kept_euler;
   }
-  if (check_options.threads == verify::SkinCheckOptions{}.threads)
-    check_options.threads = thread_count(options.threads);
   if (res.vertex_cells.size() == res.mesh.positions.size()) check_options.vertex_cells = res.vertex_cells;
   return check_options;
 }
 
-void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res) {
+void run_check(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+               StageClock& clock, MeshResult& res) {
   clock.begin("check");
-  res.check = verify::check_skin_mesh(skin, res.mesh, check_options_of(options, res));
+  res.check = verify::check_skin_mesh(skin, res.mesh, check_options_of(options, res), run);
   res.checked = true;
   clock.end("check");
 }
@@ -449,11 +449,11 @@ void run_check(const skin::SkinSurface& skin, const MeshOptions& options, StageC
 /// Stage 5b: the check of res.mesh's positions as options.stored_positions
 /// stores them, on `clock` (MeshOptions::stored_positions). `centre` is the
 /// local frame's centre: files hold positions in the input's frame.
-void run_stored_check(const skin::SkinSurface& skin, const MeshOptions& options, const Vec3& centre, StageClock& clock,
-                      MeshResult& res) {
+void run_stored_check(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+                      const Vec3& centre, StageClock& clock, MeshResult& res) {
   clock.begin("stored check");
   res.stored_check = check_stored_positions(skin, res.mesh, centre, centre, options.stored_positions,
-                                            check_options_of(options, res), res.stored_displacement);
+                                            check_options_of(options, res), run, res.stored_displacement);
   res.stored_as = options.stored_positions.describe();
   clock.end("stored check");
 }
@@ -464,17 +464,17 @@ void run_stored_check(const skin::SkinSurface& skin, const MeshOptions& options,
 /// Delaunay triangulation of the sample until [L], [U] and the restricted
 /// Delaunay property hold, which needs neither the Morse–Smale complex nor a
 /// front (papers/mesher/pipeline.md, "The whole-skin fallback").
-void remesh_static(const skin::SkinSurface& skin, const MeshOptions& options, StageClock& clock, MeshResult& res,
-                   std::string why) {
+void remesh_static(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+                   StageClock& clock, MeshResult& res, std::string why) {
   MeshResult fresh;
   fresh.algorithm = Algorithm::Dynamic;
   fresh.static_fallback = std::move(why);
-  fresh.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), thread_count(options.threads));
+  fresh.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), run.threads);
   dynamic::DynamicOptions static_options = options.dynamic;
   static_options.growth = false;
   static_options.observer = nullptr;
   const geometry::PredicateStats predicates_before = geometry::predicate_stats();
-  fresh.mesh = dynamic::mesh_dynamic(skin, options.size, static_options, clock, fresh.dynamic, fresh.vertex_data);
+  fresh.mesh = dynamic::mesh_dynamic(skin, run.size, static_options, clock, fresh.dynamic, fresh.vertex_data);
   fresh.dynamic.predicates = predicates_since(predicates_before);
   res = std::move(fresh);
   if (options.observers.memory_released) options.observers.memory_released();
@@ -487,11 +487,12 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   StageClock clock(options.progress);
   const bool dynamic = options.algorithm == Algorithm::Dynamic;
   const geometry::PredicateStats predicates_before = geometry::predicate_stats();
+  const skin::RunContext run = run_context(options);
 
   // 1. The skin: regular triangulation and mixed complex (§2.1).
   clock.begin("skin");
-  const skin::SkinSurface skin(points, thread_count(options.threads));
-  skin::require_non_singular(skin, thread_count(options.threads));
+  const skin::SkinSurface skin(points, run.threads);
+  skin::require_non_singular(skin, run.threads);
   // The whole-skin fallback's stages are timed on their own clock and listed
   // after the others as "fallback <stage>".
   StageClock::Progress fallback_progress;
@@ -503,16 +504,16 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   const bool may_fall_back = !dynamic && options.static_fallback && options.sweep.max_steps < 0 &&
                              !options.sweep.paranoid && options.sweep.dump_path.empty();
   if (dynamic) {
-    res.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), thread_count(options.threads));
+    res.expected_topology = skin::dual_complex_topology(skin.mixed_complex(), run.threads);
     clock.end("skin");
-    res.mesh = dynamic::mesh_dynamic(skin, options.size, options.dynamic, clock, res.dynamic, res.vertex_data);
+    res.mesh = dynamic::mesh_dynamic(skin, run.size, options.dynamic, clock, res.dynamic, res.vertex_data);
     res.dynamic.predicates = predicates_since(predicates_before);
     if (options.observers.memory_released) options.observers.memory_released();
   } else {
     clock.end("skin");
     std::string failure;
     try {
-      run_sweep(skin, options, clock, res);
+      run_sweep(skin, options, run, clock, res);
     } catch (const TopologyError& e) {
       if (!may_fall_back) throw;
       failure = std::string("topology: ") + e.what();
@@ -522,7 +523,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     }
     if (!failure.empty()) {
       clock.end("abandoned");  // the time the failed stages took
-      remesh_static(skin, options, fallback_clock, res, "the sweep failed: " + failure);
+      remesh_static(skin, options, run, fallback_clock, res, "the sweep failed: " + failure);
     }
   }
 
@@ -530,11 +531,11 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // the refinement [L], [U] and the restricted Delaunay property may fail by
   // design, and the user asked for that mesh).
   if (options.check) {
-    run_check(skin, options, res.static_fallback.empty() ? clock : fallback_clock, res);
+    run_check(skin, options, run, res.static_fallback.empty() ? clock : fallback_clock, res);
     if (!res.check.ok() && may_fall_back && options.refine && res.static_fallback.empty()) {
       const std::string first = res.check.problems.empty() ? "" : ": " + res.check.problems.front();
-      remesh_static(skin, options, fallback_clock, res, "the sweep's mesh failed its check" + first);
-      run_check(skin, options, fallback_clock, res);
+      remesh_static(skin, options, run, fallback_clock, res, "the sweep's mesh failed its check" + first);
+      run_check(skin, options, run, fallback_clock, res);
     }
   }
   // The shells the user keeps, once the mesh of them all is checked.
@@ -542,7 +543,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
     res.shells = skin::select_shells(res.mesh, &res.vertex_data, &res.vertex_cells, options.shells);
   if (options.check) {
     if (res.check.ok() && options.stored_positions.lossy())
-      run_stored_check(skin, options, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
+      run_stored_check(skin, options, run, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
     std::vector<Index>().swap(res.vertex_cells);
   }
   // The exact per-atom areas read every cell of this skin: the same skin that
@@ -550,7 +551,7 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // same values, without a second skin beside the mesh.
   if (options.skin_atom_areas) {
     clock.begin("atom_areas");
-    res.skin_atom_areas = skin::atom_areas(skin, thread_count(options.threads));
+    res.skin_atom_areas = skin::atom_areas(skin, run.threads);
     skin.mixed_complex().release_made();
     clock.end("atom_areas");
   }

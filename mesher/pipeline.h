@@ -86,9 +86,9 @@ struct MeshOptions {
   /// Probe radius (Å) used by the Molecule overload of mesh_skin: atom weight
   /// w = 2 (r + probe)² (Cheng & Shi §2.1; papers/skin/molecule_io.md).
   double probe_radius = 1.4;
-  /// C and Q of [L] and [U] (Cheng & Shi §2.2). They are copied into the
-  /// sweep, refinement, angle-improvement, baseline and check options (whose
-  /// own `size` fields are ignored), so that all stages agree.
+  /// C and Q of [L] and [U] (Cheng & Shi §2.2), held here only: every stage
+  /// gets them in the run's one skin::RunContext (with `threads` and
+  /// `progress`), so that all stages agree.
   skin::SizeConstants size;
   /// Unit height direction of the sweep (§3.1 uses +y; the default is tilted
   /// slightly so that no two atoms are at the same height by accident).
@@ -161,8 +161,7 @@ struct MeshOptions {
   /// threads run independent computations side by side — the skin's dual
   /// complex beside the Morse–Smale complex, the integral lines of different
   /// saddles, the mesh-only checks beside the skin checks
-  /// (papers/bench/profile.md, "Threads"). morse.threads and checks.threads,
-  /// when left at their defaults, follow this.
+  /// (papers/bench/profile.md, "Threads").
   int threads = 0;
   /// Called with a stage name ("skin", "morse", "sweep", "refine", "angles",
   /// "growth", "check") and the fraction of it done (0..1); empty: no
@@ -288,7 +287,7 @@ MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options 
 /// positions reach by adding `to_input` (`centre` for a mesh in the local
 /// frame, zero for one in the input's frame): each position p is checked at
 /// storage.stored(p + to_input) - centre. Checked with
-/// `options` but for [L], [U] and the restricted Delaunay property (left
+/// `options` and `run` but for [L], [U] and the restricted Delaunay property (left
 /// out) and a vertex-distance tolerance raised by the largest displacement,
 /// which goes to `displacement` (Å). The pipeline runs it after its own
 /// check; callers holding a mesh and its skin (the Python module's
@@ -296,6 +295,7 @@ MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options 
 verify::SkinCheckReport check_stored_positions(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
                                                const Vec3& to_input, const Vec3& centre,
                                                const geometry::PositionStorage& storage,
-                                               verify::SkinCheckOptions options, double& displacement);
+                                               verify::SkinCheckOptions options, const skin::RunContext& run,
+                                               double& displacement);
 
 }  // namespace skinmesh::mesher

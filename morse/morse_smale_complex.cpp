@@ -117,11 +117,11 @@ MorseCount MorseSmaleComplex::live_count() const {
 }
 
 MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const Vec3& e_in,
-                                            const MorseSmaleOptions& opt) {
+                                            const MorseSmaleOptions& opt, const skin::RunContext& run) {
   MorseSmaleComplex ms;
   const Vec3 e = e_in.normalized();
   ms.height_direction = e;
-  ms.critical = critical_points(skin, e, opt.threads);
+  ms.critical = critical_points(skin, e, run.threads);
   const Index n = static_cast<Index>(ms.critical.size());
   ms.protect_radius.resize(n);
   for (Index i = 0; i < n; ++i) ms.protect_radius[i] = opt.protect_factor * ms.critical[i].rho;
@@ -148,7 +148,7 @@ MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const
   ms.lines.resize(4 * saddles.size());
   for (std::size_t j = 0; j < saddles.size(); ++j)
     for (int k = 0; k < 4; ++k) ms.arcs[saddles[j]][k] = static_cast<Index>(4 * j + k);
-  parallel_for(saddles.size(), thread_count(opt.threads), 8, [&](std::size_t j) {
+  parallel_for(saddles.size(), thread_count(run.threads), 8, [&](std::size_t j) {
     const Index s = saddles[j];
     const CriticalPoint& c = ms.critical[s];
     const Vec3 dirs[4] = {c.ascent, -c.ascent, c.descent, -c.descent};

@@ -14,6 +14,7 @@
 #include "core/types.h"
 #include "geometry/triangulation/point_grid.h"
 #include "morse/critical_points.h"
+#include "skin/run_context.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::morse {
@@ -61,9 +62,6 @@ struct MorseSmaleOptions {
   /// A Heun step that does not climb (descend) is halved at most this many
   /// times before the line is declared stalled. [numerical]
   int max_step_halvings = 30;
-  /// Threads for the integral lines (one saddle's four lines per item; 0:
-  /// every core). The complex is the same for every count.
-  int threads = 1;
 };
 
 /// The Morse–Smale complex: critical points, the four arcs of every saddle,
@@ -135,7 +133,10 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, c
 /// (saddle, extremum) closer than cancel_factor (rho_s + rho_c), closest pairs
 /// first, when exactly one arc joins them (Cheng & Shi §3.2, Figure 3).
 /// Remaining intersections of protecting spheres are listed in `conflicts`.
+/// The critical points and the integral lines (one saddle's four lines per
+/// item) are computed on run.threads threads (0: every core); the complex is
+/// the same for every count.
 MorseSmaleComplex build_morse_smale_complex(const skin::SkinSurface& skin, const Vec3& e,
-                                            const MorseSmaleOptions& opt = {});
+                                            const MorseSmaleOptions& opt = {}, const skin::RunContext& run = {});
 
 }  // namespace skinmesh::morse

@@ -280,8 +280,10 @@ py::dict check(const py::object& source, const py::object& mesh_or_path, double 
     const std::vector<geometry::WeightedPoint> points = skin::weighted_points(mol, probe);
     const Vec3 centre = skin::local_frame_centre(points);
     for (Vec3& p : m.positions) p -= centre;
-    const skin::SkinSurface skin(skin::translated(points, centre), options.threads);
-    json = verify::check_skin_mesh(skin, m, options).to_json();
+    skin::RunContext run;
+    run.threads = 0;  // every core
+    const skin::SkinSurface skin(skin::translated(points, centre), run.threads);
+    json = verify::check_skin_mesh(skin, m, options, run).to_json();
   }
   return py::module_::import("json").attr("loads")(json);
 }
@@ -402,12 +404,14 @@ PYBIND11_MODULE(skinmesh, m) {
               const skin::SkinSurface skin(skin::translated(s.points, centre), 0);
               double moved = 0;
               verify::SkinCheckOptions expect;
+              skin::RunContext every_core;
+              every_core.threads = 0;
               if (s.shells) {  // the kept shells of a mesh whose every shell passed
                 expect.expected_topology = skin::kept_topology(s.topology, *s.shells);
                 expect.expected_component_euler = s.shells->kept_euler;
               }
-              const verify::SkinCheckReport rep =
-                  mesher::check_stored_positions(skin, s.mesh, Vec3::Zero(), centre, storage, expect, moved);
+              const verify::SkinCheckReport rep = mesher::check_stored_positions(skin, s.mesh, Vec3::Zero(), centre,
+                                                                                 storage, expect, every_core, moved);
               if (!rep.ok())
                 throw InputError(p, 0,
                                  "stores positions as " + storage.describe() +

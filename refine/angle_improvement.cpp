@@ -100,8 +100,9 @@ enum class Refusal { None, Orientation, L, U, Rdt, Intersection };
 
 class AngleImprover {
  public:
-  AngleImprover(const skin::SkinSurface& skin, SurfaceMesh& mesh, const AngleImprovementOptions& opt)
-      : skin_(skin), mesh_(mesh), opt_(opt), L_(skin.length_scale()) {
+  AngleImprover(const skin::SkinSurface& skin, SurfaceMesh& mesh, const AngleImprovementOptions& opt,
+                const skin::SizeConstants& size)
+      : skin_(skin), mesh_(mesh), opt_(opt), size_(size), L_(skin.length_scale()) {
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     for (Vertex v : mesh_.vertices())
       if (cell_[v] == kInvalidIndex) cell_[v] = skin_.sample(mesh_.position(v)).cell;
@@ -162,6 +163,7 @@ class AngleImprover {
   const skin::SkinSurface& skin_;
   SurfaceMesh& mesh_;
   const AngleImprovementOptions& opt_;
+  const skin::SizeConstants size_;  ///< C and Q of [L] and [U], kept by every move
   const double L_;
   double kappa_ = 0;  ///< max R / rho_min over the triangles, at least CQ
   geometry::VertexProperty<Index> cell_;
@@ -225,7 +227,7 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   // triangle, so it reads the raw arrays.
   const double cos_t = std::cos(opt_.target_angle_deg * kDegree);
   const double low_factor = 4 * cos_t * cos_t;  // low iff N² > 4 cos_t² D
-  const double CQ2 = opt_.size.C * opt_.size.Q * opt_.size.C * opt_.size.Q;
+  const double CQ2 = size_.C * size_.Q * size_.C * size_.Q;
   const auto& P = mesh_.positions().vector();
   double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = CQ2;
   // The smallest rho of all vertices bounds each triangle's rho_min from
@@ -340,14 +342,14 @@ Trial AngleImprover::evaluate(const Vec2& x, Vertex v, const Vec3& n0, const Vec
     if (!((a - t.p).cross(b - t.p).dot(n0) > 0)) return t;  // folded over in the tangent plane
   }
   for (std::size_t i = 0; i < k; ++i)
-    if (!skin::satisfies_L(t.p, pos(ring[i]), t.s.rho, rho_[ring[i]], opt_.size)) {
+    if (!skin::satisfies_L(t.p, pos(ring[i]), t.s.rho, rho_[ring[i]], size_)) {
       if (why) *why = Refusal::L;
       return t;
     }
   double qmin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < k; ++i) {
     const Vertex a = ring[i], b = ring[(i + 1) % k];
-    if (!skin::satisfies_U(t.p, pos(a), pos(b), t.s.rho, rho_[a], rho_[b], opt_.size)) {
+    if (!skin::satisfies_U(t.p, pos(a), pos(b), t.s.rho, rho_[a], rho_[b], size_)) {
       if (why) *why = Refusal::U;
       return t;
     }
@@ -636,7 +638,7 @@ AngleImprovementStats AngleImprover::run() {
   stats_.min_angle_before_deg = scan(&low_faces, &kappa0, &worst_high);
   stats_.low_triangles = low_faces.size();
   stats_.min_angle_after_deg = stats_.min_angle_before_deg;
-  kappa_ = std::max(kappa0, opt_.size.C * opt_.size.Q);
+  kappa_ = std::max(kappa0, size_.C * size_.Q);
   stats_.kappa = kappa_;
   if (kappa_ > kMaxKappa) {
     stats_.skipped = true;
@@ -714,8 +716,8 @@ AngleImprovementStats AngleImprover::run() {
 }  // namespace
 
 AngleImprovementStats improve_angles(const skin::SkinSurface& skin, SurfaceMesh& mesh,
-                                     const AngleImprovementOptions& opt) {
-  AngleImprover a(skin, mesh, opt);
+                                     const AngleImprovementOptions& opt, const skin::RunContext& run) {
+  AngleImprover a(skin, mesh, opt, run.size);
   return a.run();
 }
 

@@ -7,15 +7,13 @@
 #include <cstddef>
 
 #include "geometry/mesh/surface_mesh.h"
-#include "skin/size_conditions.h"
+#include "skin/run_context.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::refine {
 
 /// Options of the angle-improvement pass.
 struct AngleImprovementOptions {
-  /// C and Q of [L] and [U] (Cheng & Shi §2.2), kept by every move.
-  skin::SizeConstants size;
   /// Vertices of a triangle with an angle below this (degrees) are moved.
   /// [measured: 28° selects about 0.05 % of the triangles of the bundled
   /// molecules and lifts their minimum angle to 26.0°–28.7° for 1–5 % of the
@@ -102,9 +100,10 @@ struct AngleImprovementStats {
 /// date for the moved vertices. Meant to
 /// run after refine_mesh(): a vertex whose star breaks one of the conditions
 /// already is not moved (every condition is required after the move), so the
-/// pass never adds a violation. Deterministic (no hashing order, no threads).
+/// pass never adds a violation; C and Q of [L] and [U] come from run.size.
+/// Deterministic (no hashing order, no threads).
 /// Throws nothing but std::bad_alloc and GeometryError from point location.
 AngleImprovementStats improve_angles(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
-                                     const AngleImprovementOptions& opt = {});
+                                     const AngleImprovementOptions& opt = {}, const skin::RunContext& run = {});
 
 }  // namespace skinmesh::refine

@@ -35,8 +35,8 @@ constexpr std::size_t kVerdictGrain = 512;
 
 class Refiner {
  public:
-  Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt)
-      : skin_(skin), mesh_(mesh), opt_(opt) {
+  Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt, const skin::RunContext& run)
+      : skin_(skin), mesh_(mesh), opt_(opt), run_(run) {
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     inserted_ = mesh_.vertex_property(skin::kVertexInserted, 0);
     for (Vertex v : mesh_.vertices())
@@ -46,7 +46,7 @@ class Refiner {
     // (the values skin::VertexRhos gives) and kept while the pass runs.
     const skin::VertexRhos rho(skin_.mixed_complex(), mesh_);
     rho_.resize(mesh_.vertices_size());
-    parallel_for((rho_.size() + kScanGrain - 1) / kScanGrain, opt_.threads, 1, [&](std::size_t b) {
+    parallel_for((rho_.size() + kScanGrain - 1) / kScanGrain, run_.threads, 1, [&](std::size_t b) {
       for (std::size_t i = b * kScanGrain, end = std::min(rho_.size(), i + kScanGrain); i < end; ++i)
         if (!mesh_.is_deleted(Vertex(static_cast<Index>(i)))) rho_[i] = rho[Vertex(static_cast<Index>(i))];
     });
@@ -92,14 +92,14 @@ class Refiner {
   void push_edges_around(Vertex v);
   bool violates_L(Edge e) const {
     const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
-    return !skin::satisfies_L(pos(a), pos(b), rho_[a.idx()], rho_[b.idx()], opt_.size);
+    return !skin::satisfies_L(pos(a), pos(b), rho_[a.idx()], rho_[b.idx()], run_.size);
   }
   bool violates_U(Face f) const {
     Vertex v[3];
     int i = 0;
     for (Vertex x : mesh_.vertices(f)) v[i++] = x;
     return !skin::satisfies_U(pos(v[0]), pos(v[1]), pos(v[2]), rho_[v[0].idx()], rho_[v[1].idx()], rho_[v[2].idx()],
-                              opt_.size);
+                              run_.size);
   }
   bool contract(Edge e);
   bool insert(Face f);
@@ -120,6 +120,7 @@ class Refiner {
   const skin::SkinSurface& skin_;
   SurfaceMesh& mesh_;
   const RefineOptions& opt_;
+  const skin::RunContext& run_;
   geometry::VertexProperty<Index> cell_;
   skin::VertexNormals normal_;  ///< from the cell
   /// rho per vertex index (Å), the values skin::VertexRhos gives (0 at
@@ -410,12 +411,12 @@ std::vector<Handle> rescan(const SurfaceMesh& mesh, std::size_t all, const std::
 }
 
 std::vector<Edge> Refiner::scan_L(const std::vector<Edge>& prev, bool full) {
-  return rescan(mesh_, mesh_.edges_size(), prev, touched_edges_, full, opt_.threads,
+  return rescan(mesh_, mesh_.edges_size(), prev, touched_edges_, full, run_.threads,
                 [&](Edge e) { return violates_L(e); });
 }
 
 std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
-  return rescan(mesh_, mesh_.faces_size(), prev, touched_faces_, full, opt_.threads,
+  return rescan(mesh_, mesh_.faces_size(), prev, touched_faces_, full, run_.threads,
                 [&](Face f) { return violates_U(f); });
 }
 
@@ -431,7 +432,7 @@ RefineStats Refiner::run() {
     // slot, then marked on the edges.
     std::vector<std::uint8_t> mask(mesh_.faces_size(), 0);
     const std::size_t blocks = (mask.size() + kScanGrain - 1) / kScanGrain;
-    parallel_for(blocks, opt_.threads, 1, [&](std::size_t b) {
+    parallel_for(blocks, run_.threads, 1, [&](std::size_t b) {
       for (std::size_t i = b * kScanGrain, end = std::min(mask.size(), i + kScanGrain); i < end; ++i) {
         const Face f(static_cast<Index>(i));
         if (mesh_.is_deleted(f)) continue;
@@ -459,8 +460,8 @@ RefineStats Refiner::run() {
     // exact surface Delaunay balls are most of this pass's time).
     first_verdict_.assign(mesh_.edges_size(), kUnknown);
     const std::size_t n = stack_.size(), blocks_s = (n + kVerdictGrain - 1) / kVerdictGrain;
-    if (opt_.threads > 1)
-      parallel_for(blocks_s, opt_.threads, 1, [&](std::size_t b) {
+    if (run_.threads > 1)
+      parallel_for(blocks_s, run_.threads, 1, [&](std::size_t b) {
         for (std::size_t i = b * kVerdictGrain, end = std::min(n, i + kVerdictGrain); i < end; ++i)
           first_verdict_[stack_[i].idx()] = flips_locally(stack_[i]) ? kFlip : kKeep;
       });
@@ -503,8 +504,9 @@ const char* operation_name(RefineOperation op) {
   return "?";
 }
 
-RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt) {
-  Refiner r(skin, mesh, opt);
+RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt,
+                        const skin::RunContext& run) {
+  Refiner r(skin, mesh, opt, run);
   return r.run();
 }
 

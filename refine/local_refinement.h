@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "geometry/mesh/surface_mesh.h"
-#include "skin/size_conditions.h"
+#include "skin/run_context.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::refine {
@@ -24,8 +24,6 @@ const char* operation_name(RefineOperation op);
 
 /// Options of the local refinement.
 struct RefineOptions {
-  /// C and Q of [L] and [U] (Cheng & Shi §2.2).
-  skin::SizeConstants size;
   /// At most this many rounds of (contraction pass, insertion pass). A guard
   /// only: the number of rounds that change something is bounded by the
   /// number of contractions and insertions, both finite
@@ -53,10 +51,6 @@ struct RefineOptions {
   /// triangle is below this splits the opposite edge instead of the
   /// triangle (no sliver next to the edge). [measured]
   double split_edge_barycentric = 0.15;
-  /// Threads for the scans that read every element (the first Lawson pass's
-  /// suspects, the first [L] and [U] scans); the refinement is the same for
-  /// every count (core/parallel.h). 1: the calling thread only.
-  int threads = 1;
   /// Called after every flip, contraction and insertion with the mesh as it
   /// is then (a contraction or insertion is told before the flips that
   /// follow it); empty: not called. For recorders (trace/trace_recorder.h);
@@ -97,11 +91,15 @@ struct RefineStats {
 /// skin::kVertexCell (mixed cell), from which it takes the normal and rho
 /// (skin::VertexNormals, skin::VertexRhos), sets it on the vertices it
 /// inserts, and sets skin::kVertexInserted (1 on the vertices it inserted)
-/// (skin/vertex_data.h).
+/// (skin/vertex_data.h). C and Q come from run.size; the scans that read
+/// every element (the first Lawson pass's suspects, the first [L] and [U]
+/// scans) run on run.threads threads, and the refinement is the same for
+/// every count (core/parallel.h).
 /// No operation turns a triangle against the normals of its corners, no vertex
 /// moves, and a vertex inserted here is never deleted; the number of
 /// operations is finite (papers/refine/local_refinement.md, "Termination").
 /// Elements are deleted, not compacted: call garbage_collection() afterwards.
-RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, const RefineOptions& opt = {});
+RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, const RefineOptions& opt = {},
+                        const skin::RunContext& run = {});
 
 }  // namespace skinmesh::refine

@@ -400,8 +400,10 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     counting.check = false;
     counting.sweep.observer = [&counts](const front::SweepEvent&) { ++counts.sweep; };
     counting.refinement.observer = [&counts](refine::RefineOperation, const SurfaceMesh&) { ++counts.refine; };
-    if (options.progress)
-      counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
+    if (options.mesh.progress)
+      counting.progress = [&options](const std::string& stage, double f) {
+        options.mesh.progress("count " + stage, f);
+      };
     mesher::mesh_skin(points, counting);
     every_sweep = stride(counts.sweep, kSweepShare * double(options.max_steps));
     every_refine = stride(counts.refine, kRefineShare * double(options.max_steps));
@@ -541,7 +543,6 @@ json record_sweep(const std::vector<geometry::WeightedPoint>& points, const Trac
     }
     rho_quality(skin, mesh);
   };
-  if (options.progress) run.progress = options.progress;
   const mesher::MeshResult res = mesher::mesh_skin(points, run);
 
   finish(res,
@@ -568,8 +569,10 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
       ++counts.growth;
       counts.max_samples = std::max(counts.max_samples, st.samples().size());
     };
-    if (options.progress)
-      counting.progress = [&options](const std::string& stage, double f) { options.progress("count " + stage, f); };
+    if (options.mesh.progress)
+      counting.progress = [&options](const std::string& stage, double f) {
+        options.mesh.progress("count " + stage, f);
+      };
     mesher::mesh_skin(points, counting);
     // Every recorded growth step moves every sample.
     const double affordable = double(options.growth_budget_bytes) /
@@ -607,7 +610,6 @@ json record_dynamic(const std::vector<geometry::WeightedPoint>& points, const Tr
                      json{{"samples", ids.size()}, {"growth_steps", growth}, {"triangles", history.alive_faces()}}));
     if (final_stage) history.set_quality([&st](Index id) { return st.rho(id); }, size);
   };
-  if (options.progress) run.progress = options.progress;
   const mesher::MeshResult res = mesher::mesh_skin(points, run);
   finish(res, json{{"growth_steps", growth}}, json{{"growth", every}}, growth + 1, history, steps, doc, summary);
   return doc;

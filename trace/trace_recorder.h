@@ -27,6 +27,8 @@ namespace skinmesh::trace {
 struct TraceOptions {
   /// Options of the pipeline, its algorithm included (the recorder sets its
   /// observers: the sweep's, the refinement's, the stages' and the baseline's).
+  /// mesh.progress also hears the first run that counts the operations, as
+  /// stages named "count <stage>".
   mesher::MeshOptions mesh;
   /// Record at most about this many steps: consecutive operations are merged
   /// k to a step beyond it (creations, bridges and seals always end a step).
@@ -42,8 +44,6 @@ struct TraceOptions {
   /// (Å; negative: weighted points given directly).
   std::string title, input;
   double probe = -1;
-  /// Called with a stage name and the fraction done (0..1); empty: none.
-  std::function<void(const std::string& stage, double fraction)> progress;
 };
 
 /// What a recording measured, for the command line's report.

@@ -142,14 +142,14 @@ std::string SkinCheckReport::to_json() const {
 }
 
 SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
-                                const SkinCheckOptions& opt) {
+                                const SkinCheckOptions& opt, const skin::RunContext& run) {
   SkinCheckReport rep;
   geometry::MeshCheckOptions mopt;
   mopt.check_self_intersections = opt.check_self_intersections;
   mopt.small_angle_threshold_deg = opt.min_angle_deg;
   // The mesh-only checks share nothing with the skin checks below but the
   // (read-only) mesh: with two threads they run beside them.
-  const int threads = thread_count(opt.threads);
+  const int threads = thread_count(run.threads);
   mopt.threads = threads;
   std::future<geometry::MeshCheckReport> mesh_report;
   if (threads >= 2)
@@ -262,13 +262,13 @@ SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::I
     if (!valid(t)) continue;
     const Vec3 &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
     if ((b - a).cross(c - a).dot(normal(t[0]) + normal(t[1]) + normal(t[2])) <= 0) ++rep.num_inward_triangles;
-    if (opt.check_size_conditions && !skin::satisfies_U(a, b, c, rho(t[0]), rho(t[1]), rho(t[2]), opt.size))
+    if (opt.check_size_conditions && !skin::satisfies_U(a, b, c, rho(t[0]), rho(t[1]), rho(t[2]), run.size))
       ++rep.num_U_violations;
     for (int i = 0; i < 3; ++i) ++edge_start[std::min(t[i], t[(i + 1) % 3]) + 1];
   }
   // What the tests below do not read goes back as soon as it is read: they
   // run beside the mesh-only checks, at the peak of the whole run's memory.
-  if (opt.check_size_conditions) rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, opt.size);
+  if (opt.check_size_conditions) rep.num_L_violations = count_L_violations(mesh, valid, edge_start, rho, run.size);
   release(edge_start);
   if (rep.num_inward_triangles)
     skin_problems.push_back(std::to_string(rep.num_inward_triangles) +

@@ -16,15 +16,14 @@
 #include "geometry/check/mesh_checks.h"
 #include "geometry/mesh/indexed_mesh.h"
 #include "skin/dual_complex.h"
+#include "skin/run_context.h"
 #include "skin/shells.h"
-#include "skin/size_conditions.h"
 #include "skin/skin_surface.h"
 
 namespace skinmesh::verify {
 
 /// What the skin check verifies and with which thresholds.
 struct SkinCheckOptions {
-  skin::SizeConstants size;
   /// Largest admissible |f(v)| / |grad f(v)| at a vertex (Å) for a skin of
   /// length scale L <= 100 Å; above, it grows with L (tolerance =
   /// max_vertex_distance · max(1, L / 100 Å), about 1e-11 L: scale-free, and
@@ -41,14 +40,6 @@ struct SkinCheckOptions {
   /// arbitrarily small margins, so any rounding may tip one without damage a
   /// reader can see, and they hold for the positions before rounding.
   bool check_size_conditions = true;
-  /// Threads (0: every core of the machine): with 2 or more, the mesh-only
-  /// checks of geometry::check_mesh (closed, manifold, orientation, exact
-  /// self-intersections, angles) run on a thread of their own beside the skin
-  /// checks, and both split their loops (samples of the skin at the vertices,
-  /// restricted Delaunay balls, the self-intersection sweep) over `threads`
-  /// threads. 1 runs everything on the calling thread. The report is the same
-  /// for every value.
-  int threads = 0;
   /// Expected Euler characteristic of each skin component (any order), if the
   /// caller knows it (from the Morse–Smale complex); empty: only the number of
   /// components and the total are compared, plus the multiset when the total
@@ -103,9 +94,16 @@ struct SkinCheckReport {
 };
 
 /// Verifies `mesh` against the skin. Pre: the mesh's vertices are meant to lie
-/// on `skin`. Throws nothing but std::bad_alloc and GeometryError from point
+/// on `skin`. [L] and [U] are those of run.size. With run.threads of 2 or
+/// more (0: every core of the machine), the mesh-only checks of
+/// geometry::check_mesh (closed, manifold, orientation, exact
+/// self-intersections, angles) run on a thread of their own beside the skin
+/// checks, and both split their loops (samples of the skin at the vertices,
+/// restricted Delaunay balls, the self-intersection sweep) over the threads;
+/// 1 runs everything on the calling thread. The report is the same for every
+/// count. Throws nothing but std::bad_alloc and GeometryError from point
 /// location of vertices outside the bounding tetrahedron.
 SkinCheckReport check_skin_mesh(const skin::SkinSurface& skin, const geometry::IndexedMesh& mesh,
-                                const SkinCheckOptions& options = {});
+                                const SkinCheckOptions& options = {}, const skin::RunContext& run = {});
 
 }  // namespace skinmesh::verify

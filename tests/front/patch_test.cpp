@@ -77,7 +77,7 @@ void check_patched(const FrontState& s, const skin::SkinSurface& skin, long chi,
     int k = 0;
     for (Vertex x : s.mesh.vertices(f)) c[k++] = x;
     u_violations += !skin::satisfies_U(s.mesh.position(c[0]), s.mesh.position(c[1]), s.mesh.position(c[2]), s.rho[c[0]],
-                                       s.rho[c[1]], s.rho[c[2]], s.opt.size);
+                                       s.rho[c[1]], s.rho[c[2]], s.run.size);
   }
   CHECK(patch_faces == s.stats.patch_faces);
   CHECK(u_violations == 0);

@@ -9,7 +9,11 @@ Fails (exit 1), printing one line per problem, if
     assert), signals, the locale, the thread count of a runtime (omp_set_num_threads), the terminate handler;
   - the sweep's state, front::detail::FrontState, has a member about a region, a slab or a cut other than the one
     region value (`region`): what a region is lives in front/region.h, not in fields of the paper's state;
-  - `departure_step`, Algorithm 1's loop body, is longer than MAX_DEPARTURE_STEP lines.
+  - `departure_step`, Algorithm 1's loop body, is longer than MAX_DEPARTURE_STEP lines;
+  - a stage's options struct (a struct named ...Options in a module at or above skin/) holds what every stage
+    must agree on — C and Q (SizeConstants), a thread count, a progress callback — instead of reading it from the
+    run's one skin::RunContext; mesher::MeshOptions, where the user sets them once, is the exception. (geometry/
+    lies below the context and keeps its own thread count.)
 """
 import os
 import re
@@ -22,6 +26,9 @@ PROCESS_WIDE = re.compile(r"\b(malloc_trim|mallopt|setenv|putenv|unsetenv|std::e
                           r"setlocale|omp_set_num_threads|set_terminate|setrlimit)\s*\(")
 REGION_WORDS = re.compile(r"slab|park|ghost|owns|upper|lower|cut|band|region", re.IGNORECASE)
 MAX_DEPARTURE_STEP = 55
+SHARED_MEMBER = re.compile(r"^\s*(?:skin::)?SizeConstants\s+\w+\s*[;={]|^\s*int\s+threads\b|"
+                           r"^\s*std::function<.*>\s+progress\s*[;={]")
+STRUCT = re.compile(r"^\s*struct\s+(\w+)\b[^;]*$")
 
 
 def code_lines(path):
@@ -83,12 +90,33 @@ def departure_step_length(root):
     return end - start + 1
 
 
+def shared_settings_in_options(root):
+    """Members of stage options structs that belong in skin::RunContext."""
+    problems = []
+    for folder in MODULE_DIRS:
+        if folder.startswith("geometry") or folder == "core":
+            continue
+        path = os.path.join(root, folder)
+        for name in sorted(os.listdir(path)):
+            if not name.endswith(".h"):
+                continue
+            struct = None
+            for n, line in code_lines(os.path.join(path, name)):
+                m = STRUCT.match(line)
+                if m:
+                    struct = m.group(1)
+                elif struct and struct.endswith("Options") and struct != "MeshOptions" and SHARED_MEMBER.match(line):
+                    problems.append(f"{folder}/{name}:{n}: {struct} holds `{line.strip()}`: it belongs in the run's "
+                                    "skin::RunContext")
+    return problems
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__)
         return 2
     root = sys.argv[1]
-    problems = process_wide_calls(root)
+    problems = process_wide_calls(root) + shared_settings_in_options(root)
     members = front_state_members(root)
     if len(members) < 20:
         problems.append(f"front/front_state.h: found only {len(members)} members of FrontState: the parser is stale")

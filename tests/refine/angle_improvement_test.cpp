@@ -157,7 +157,8 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   const double before = min_angle_deg(mesh);
   // The size bound of the neighbourhoods: the largest circumradius / rho_min
   // over the triangles before the pass, by brute force.
-  double kappa = opt.size.C * opt.size.Q;
+  const skin::SizeConstants size;  // improve_angles', from the default run context
+  double kappa = size.C * size.Q;
   {
     const skin::VertexRhos rho(skin.mixed_complex(), mesh);
     for (geometry::Face f : mesh.faces()) {
@@ -184,7 +185,7 @@ refine::AngleImprovementStats improve_and_check(const skin::SkinSurface& skin, g
   CHECK(after >= before);
   CHECK(st.kappa >= kappa);
   CHECK(st.kappa == doctest::Approx(kappa).epsilon(1e-5));
-  check_by_brute_force(skin, mesh, opt.size);
+  check_by_brute_force(skin, mesh, size);
   geometry::SurfaceMesh copy = mesh;
   copy.garbage_collection();
   test::check_every_property(verify::check_skin_mesh(skin, copy.to_indexed_mesh()));

@@ -96,7 +96,8 @@ TEST_CASE("refinement: the invariants of the termination argument hold") {
     for (geometry::Vertex v : mesh.vertices())
       if (inserted[v]) ins.push_back(v);
     CHECK(ins.size() == st.insertions);  // none deleted
-    const double CQ = opt.size.C * opt.size.Q;
+    const skin::SizeConstants size;      // refine_mesh's, the default run context's
+    const double CQ = size.C * size.Q;
     const double kb = opt.min_inserted_separation * CQ / (1 + CQ);
     const double gamma = kb / (1 + kb);
     double worst = 1e300;
@@ -109,7 +110,7 @@ TEST_CASE("refinement: the invariants of the termination argument hold") {
     for (geometry::Edge e : mesh.edges()) {
       const geometry::Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
       if (inserted[a] && inserted[b])
-        CHECK(skin::satisfies_L(mesh.position(a), mesh.position(b), rho[a], rho[b], opt.size));
+        CHECK(skin::satisfies_L(mesh.position(a), mesh.position(b), rho[a], rho[b], size));
     }
     mesh.garbage_collection();
     test::check_every_property(verify::check_skin_mesh(skin, mesh.to_indexed_mesh()));
@@ -145,7 +146,7 @@ TEST_CASE("refinement: a jittered sphere mesh with slivers and non-Delaunay edge
 
 TEST_CASE("refinement: the mesh is the same for every thread count") {
   // The full scans and the first Lawson pass's verdicts run on the threads
-  // (RefineOptions::threads); a verdict is only used while its edge's two
+  // (skin::RunContext::threads); a verdict is only used while its edge's two
   // faces are unchanged, and whether the flipped edge exists already is asked
   // when the flip is due. A jittered fine icosphere has long chains of flips
   // (each invalidating the verdicts of its quad), contractions and insertions,
@@ -157,9 +158,9 @@ TEST_CASE("refinement: the mesh is the same for every thread count") {
   std::vector<refine::RefineStats> stats;
   for (int threads : {1, 2, 3}) {
     geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(m);
-    refine::RefineOptions opt;
-    opt.threads = threads;
-    stats.push_back(refine::refine_mesh(skin, mesh, opt));
+    skin::RunContext run;
+    run.threads = threads;
+    stats.push_back(refine::refine_mesh(skin, mesh, {}, run));
     mesh.garbage_collection();
     out.push_back(mesh.to_indexed_mesh());
   }

@@ -144,9 +144,9 @@ TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, fl
         m.triangles.push_back({m.triangles[5][0], m.triangles[5][2], m.triangles[5][1]});
         m.triangles.push_back({0, 0, 1});
       }
-      verify::SkinCheckOptions opt;
-      opt.size.C = 0.08 * (0.5 + variant);  // more or fewer [L] violations
-      const auto rep = verify::check_skin_mesh(skin, m, opt);
+      skin::RunContext run;
+      run.size.C = 0.08 * (0.5 + variant);  // more or fewer [L] violations
+      const auto rep = verify::check_skin_mesh(skin, m, {}, run);
       const auto& P = m.positions;
       std::set<std::pair<Index, Index>> edges;
       std::size_t want_L = 0, want_rdt = 0;
@@ -155,7 +155,7 @@ TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, fl
         if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
         for (int i = 0; i < 3; ++i) {
           const Index a = std::min(t[i], t[(i + 1) % 3]), b = std::max(t[i], t[(i + 1) % 3]);
-          if (edges.insert({a, b}).second && !skin::satisfies_L(P[a], P[b], rho(a), rho(b), opt.size)) ++want_L;
+          if (edges.insert({a, b}).second && !skin::satisfies_L(P[a], P[b], rho(a), rho(b), run.size)) ++want_L;
         }
         Vec3 mc;
         Index cell = skin.sample(P[t[0]]).cell;
@@ -179,7 +179,7 @@ TEST_CASE("[L] and restricted-Delaunay counts equal brute force on perturbed, fl
 TEST_SUITE("verify") {
 
 TEST_CASE("the report is the same with one, two and three threads") {
-  // verify::SkinCheckOptions::threads: the mesh-only checks on a second thread must
+  // skin::RunContext::threads: the mesh-only checks on a second thread must
   // not change a single byte of the report, including the order of the
   // problems, on clean and defective meshes.
   const Vec3 c(0, 0, 0);
@@ -216,15 +216,15 @@ TEST_CASE("the report is the same with one, two and three threads") {
   int defective = 0;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     INFO("mesh " << i);
-    verify::SkinCheckOptions one, two, three;
+    skin::RunContext one, two, three;
     one.threads = 1;
     two.threads = 2;
     three.threads = 3;
-    const auto a = verify::check_skin_mesh(skin, meshes[i], one);
-    const auto b = verify::check_skin_mesh(skin, meshes[i], two);
+    const auto a = verify::check_skin_mesh(skin, meshes[i], {}, one);
+    const auto b = verify::check_skin_mesh(skin, meshes[i], {}, two);
     CHECK(a.to_json() == b.to_json());
     CHECK(a.problems == b.problems);
-    CHECK(a.to_json() == verify::check_skin_mesh(skin, meshes[i], three).to_json());
+    CHECK(a.to_json() == verify::check_skin_mesh(skin, meshes[i], {}, three).to_json());
     defective += !a.ok();
     if (i > 0) CHECK(a.problems.size() >= 1);
   }
