@@ -197,21 +197,22 @@ Index append_with_vertex_data(geometry::SurfaceMesh& mesh, geometry::SurfaceMesh
   return base;
 }
 
-/// The sweep of the whole skin (no cut): one sweep per group of whole
-/// components (morse::component_groups()), on up to run.threads threads, their
-/// meshes appended in group order; one sweep of everything when the skin
-/// is one group, or when a group's sweep fails (its error in `why`). A
-/// group's fronts never meet another group's surface, so nothing else is
+/// The ladder's rung of groups: one sweep per group of whole components
+/// (morse::component_groups()), on up to run.threads threads, their meshes
+/// appended in group order. Nothing when the skin is one group, or when a
+/// group's sweep fails (its error in `why`): the next rung sweeps everything
+/// at once. A group's fronts never meet another group's surface, so nothing else is
 /// shared (papers/decompose/README.md, "Groups of whole components"). With `unglued`,
 /// two or more groups' meshes are moved there in group order instead of
 /// appended, and the result holds their summed stats only. With
 /// run.release_made_cells the groups go in windows of run.threads, and the
 /// complex's made cells and planes go back after each window.
-SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const SweepOptions& sweep, const skin::RunContext& run, DecompositionCosts& costs,
-                             std::string& why, std::vector<SweepResult>* unglued) {
+std::optional<SweepResult> sweep_components(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                            const SweepOptions& sweep, const skin::RunContext& run,
+                                            DecompositionCosts& costs, std::string& why,
+                                            std::vector<SweepResult>* unglued) {
   const morse::ComponentGroups groups = morse::component_groups(ms);
-  if (groups.count < 2) return sweep_mesh(skin, ms, sweep, run);
+  if (groups.count < 2) return std::nullopt;
   const int threads = run.threads;
   const bool release_made = run.release_made_cells;
   // Each group reports nothing: the progress is the groups done.
@@ -257,7 +258,7 @@ SweepResult sweep_components(const skin::SkinSurface& skin, const morse::MorseSm
   for (Index g = 0; g < groups.count; ++g)
     if (!errors[g].empty()) {
       why = "component group " + std::to_string(g) + " of " + std::to_string(groups.count) + ": " + errors[g];
-      return sweep_mesh(skin, ms, sweep, run);
+      return std::nullopt;
     }
   if (unglued) {
     SweepResult out;
@@ -452,44 +453,171 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
   return cuts;
 }
 
-DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                                 const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const SweepOptions& sweep, const skin::RunContext& context) {
-  DecomposedSweep out;
+namespace {
+
+/// A slab by its cuts' indices (kNone: below the skin / above it).
+using SlabKey = std::pair<std::size_t, std::size_t>;
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+/// The slabs between the kept cuts `live` (increasing), bottom to top.
+std::vector<SlabKey> slab_keys(const std::vector<std::size_t>& live) {
+  std::vector<SlabKey> keys;
+  for (std::size_t k = 0; k <= live.size(); ++k)
+    keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
+  return keys;
+}
+
+/// The slabs `todo` swept on up to run.threads threads, each into its own
+/// outcome. `below[c]` says which critical points lie below cut c (empty
+/// without detours): a slab between detoured cuts owns the points between.
+std::vector<SlabOutcome> sweep_slabs(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                     const std::vector<Cut>& cuts, const std::vector<std::vector<char>>& below,
+                                     const std::vector<SlabKey>& todo, const DecompositionOptions& opt,
+                                     const SweepOptions& sweep, const skin::RunContext& run) {
+  std::vector<SlabOutcome> fresh(todo.size());
+  std::mutex progress_mutex;
+  std::size_t finished = 0;
+  parallel_for(todo.size(), run.threads, 1, [&](std::size_t i) {
+    Region slab;
+    slab.park_factor = opt.park_factor;
+    slab.holds_before_parking = opt.detours;
+    const auto [lower, upper] = todo[i];
+    if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
+    if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
+    if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
+      slab.owns.assign(ms.critical.size(), 1);
+      for (std::size_t p = 0; p < ms.critical.size(); ++p)
+        if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
+      if (upper != kNone) slab.upper_detours = cuts[upper].detours;
+    }
+    skin::RunContext slab_run = run.quiet();
+    if (run.progress && run.threads == 1)
+      slab_run.progress = [&run, i, &todo](const std::string& stage, double f) {
+        run.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
+      };
+    fresh[i] = sweep_one(skin, ms, slab, sweep, slab_run);
+    if (run.progress && run.threads > 1) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      run.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
+    }
+  });
+  return fresh;
+}
+
+/// The glued mesh of the slabs `keys` and the bands under the kept cuts
+/// `live`, or where the glue failed: the position in `live` of the cut
+/// whose band does not glue or whose seam is open or pinched, and why.
+struct Glued {
+  std::optional<SweepResult> mesh;
+  std::vector<SlabCost> slabs;  ///< per slab, bottom to top
+  std::size_t failed = 0;
+  std::string why;
+};
+
+/// The glue: every slab's mesh appended in slab order, its vertex data with
+/// it, then the bands' triangles on the shared vertices. The slabs' meshes
+/// are taken from `swept` (erased as they are appended).
+Glued glue(std::map<SlabKey, SlabOutcome>& swept, const std::vector<SlabKey>& keys,
+           const std::vector<std::vector<Band>>& bands) {
+  Glued out;
+  SweepResult glued;
+  // The lowest slab's mesh is taken as it is (garbage-collected, with the
+  // vertex data as its only properties: what appending it to an empty mesh
+  // would make, without a second copy of it at the peak); every other
+  // slab's is appended and then freed, so the peak holds one copy of one
+  // slab at a time.
+  geometry::SurfaceMesh& mesh = glued.mesh;
+  {
+    std::size_t nv = 0, nf = 0;
+    for (const SlabKey& key : keys) {
+      const RegionResult& r = *swept.at(key).result;
+      nv += r.mesh.vertices_size(), nf += r.mesh.faces_size();
+    }
+    for (const std::vector<Band>& cut_bands : bands)
+      for (const Band& band : cut_bands) nf += band.triangles.size();
+    SlabOutcome& lowest = swept.at(keys[0]);
+    out.slabs.push_back({lowest.seconds, lowest.result->mesh.n_faces()});
+    add_stats(glued.stats, lowest.result->stats);
+    mesh = std::move(lowest.result->mesh);
+    swept.erase(keys[0]);
+    mesh.reserve(nv, nf);
+  }
+  std::vector<Index> base(keys.size(), 0);
+  for (std::size_t k = 1; k < keys.size(); ++k) {
+    SlabOutcome& o = swept.at(keys[k]);
+    RegionResult& r = *o.result;
+    out.slabs.push_back({o.seconds, r.mesh.n_faces()});
+    add_stats(glued.stats, r.stats);
+    base[k] = append_with_vertex_data(mesh, r.mesh);
+    swept.erase(keys[k]);
+  }
+  // Each slab's mesh is a surface whose boundary is its lower curves'
+  // samples and its rims, one rim per upper curve (sweep_region), and every
+  // band covers its rim's and its curve's edges: only the bands' corners
+  // can be left open or pinched, so only they are tested (the check of
+  // the whole mesh later tests every vertex).
+  std::vector<std::pair<geometry::Vertex, std::size_t>> seam;  // a band's corner, the cut's position in live
+  for (std::size_t k = 0; k < bands.size(); ++k)
+    for (const Band& band : bands[k])
+      for (const std::array<BandVertex, 3>& t : band.triangles) {
+        std::array<geometry::Vertex, 3> g;
+        for (int i = 0; i < 3; ++i) {
+          g[i] = geometry::Vertex(base[t[i].above ? k + 1 : k] + t[i].index);
+          seam.emplace_back(g[i], k);
+        }
+        try {
+          mesh.add_triangle(g[0], g[1], g[2]);
+        } catch (const TopologyError& e) {
+          out.failed = k;
+          out.why = std::string("a band's triangle does not glue at the cut: ") + e.what();
+          return out;
+        }
+      }
+  for (const auto& [v, k] : seam)
+    if (mesh.is_boundary(v) || !mesh.is_manifold(v)) {
+      std::ostringstream os;
+      os << "the glued mesh is " << (mesh.is_boundary(v) ? "open" : "not manifold") << " at ("
+         << mesh.position(v).transpose() << ")";
+      out.failed = k;
+      out.why = os.str();
+      return out;
+    }
+  out.mesh = std::move(glued);
+  return out;
+}
+
+/// The ladder's rung of regions: the slabs between `cuts` swept on the
+/// threads, their bands closed and the whole glued. A slab that fails gives
+/// up the cut above it (below it for the top slab, and the cut where it
+/// failed for a failure at its lower cut); a band without a strip, or a glue
+/// that fails, gives up its cut; the two slabs become one, swept again, the
+/// others kept. Every cut given up goes to out.dropped with why; the costs
+/// and the kept cuts go to `out`. Nothing when every cut was given up: the
+/// next rung sweeps everything at once.
+std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                         const std::vector<Cut>& cuts, const DecompositionOptions& opt,
+                                         const SweepOptions& sweep, const skin::RunContext& run, DecomposedSweep& out) {
   const std::size_t n_cuts = cuts.size();
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  // A slab by its cuts' indices (kNone: below the skin / above it); every
-  // slab swept so far, kept when a cut is dropped since the slabs away from
-  // it stay as they were.
-  using SlabKey = std::pair<std::size_t, std::size_t>;
+  // Every slab swept so far, kept when a cut is dropped since the slabs away
+  // from it stay as they were.
   std::map<SlabKey, SlabOutcome> swept;
   std::vector<char> kept(n_cuts, 1);
+  const auto drop = [&](std::size_t c, const std::string& why) {
+    kept[c] = 0;
+    out.dropped.push_back({cuts[c].height, why});
+  };
   // Per cut, which critical points lie below it (for the slabs' ownership
   // where cuts detour).
   std::vector<std::vector<char>> below(n_cuts);
   if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.detours.empty(); }))
     for (std::size_t c = 0; c < n_cuts; ++c) below[c] = below_cut(cuts[c], ms);
-  // The observers and the trace see one slab at a time, in order.
-  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, context.threads);
-  const skin::RunContext run = context.with_threads(threads);
 
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
     for (std::size_t c = 0; c < n_cuts; ++c)
       if (kept[c]) live.push_back(c);
-    if (live.empty()) {
-      // An observer or a trace replays one front in one mesh: they get the
-      // one sweep of everything.
-      if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
-        out.sweep = sweep_components(skin, ms, sweep, run, out.costs, out.components_fallback,
-                                     opt.glue_groups ? nullptr : &out.groups);
-      else
-        out.sweep = sweep_mesh(skin, ms, sweep, run);
-      return out;
-    }
-    std::vector<SlabKey> keys;
-    for (std::size_t k = 0; k <= live.size(); ++k)
-      keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
+    if (live.empty()) return std::nullopt;
+    const std::vector<SlabKey> keys = slab_keys(live);
 
     // The slabs of dropped cuts are not needed any more: their time is lost.
     for (auto it = swept.begin(); it != swept.end();) {
@@ -501,52 +629,24 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
       it = swept.erase(it);
     }
 
-    // 1. The slabs not swept yet, on up to `threads` threads; each writes
-    // its own outcome.
+    // 1. The slabs not swept yet.
     std::vector<SlabKey> todo;
     for (const SlabKey& key : keys)
       if (!swept.count(key)) todo.push_back(key);
-    std::vector<SlabOutcome> fresh(todo.size());
-    std::mutex progress_mutex;
-    std::size_t finished = 0;
-    parallel_for(todo.size(), threads, 1, [&](std::size_t i) {
-      Region slab;
-      slab.park_factor = opt.park_factor;
-      slab.holds_before_parking = opt.detours;
-      const auto [lower, upper] = todo[i];
-      if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
-      if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
-      if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
-        slab.owns.assign(ms.critical.size(), 1);
-        for (std::size_t p = 0; p < ms.critical.size(); ++p)
-          if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
-        if (upper != kNone) slab.upper_detours = cuts[upper].detours;
-      }
-      skin::RunContext slab_run = run.quiet();
-      if (run.progress && threads == 1)
-        slab_run.progress = [&run, i, &todo](const std::string& stage, double f) {
-          run.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
-        };
-      fresh[i] = sweep_one(skin, ms, slab, sweep, slab_run);
-      if (run.progress && threads > 1) {
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        run.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
-      }
-    });
+    std::vector<SlabOutcome> fresh = sweep_slabs(skin, ms, cuts, below, todo, opt, sweep, run);
     for (std::size_t i = 0; i < todo.size(); ++i) swept.emplace(todo[i], std::move(fresh[i]));
 
     // 2. A slab that failed is merged with the slab above (the top one with
     // the slab below, and one that failed at its lower cut with the slab
     // below) by dropping the cut between them, and swept again.
     bool dropped = false;
-    for (std::size_t k = 0; k < keys.size(); ++k) {
-      const SlabOutcome& o = swept.at(keys[k]);
+    for (const SlabKey& key : keys) {
+      const SlabOutcome& o = swept.at(key);
       if (o.result) continue;
-      const std::size_t c =
-          (o.at_lower_cut && keys[k].first != kNone) || keys[k].second == kNone ? keys[k].first : keys[k].second;
+      const std::size_t c = (o.at_lower_cut && key.first != kNone) || key.second == kNone ? key.first : key.second;
       if (!kept[c]) continue;  // the slab below dropped it already
-      kept[c] = 0, dropped = true;
-      out.dropped.push_back({cuts[c].height, o.error});
+      drop(c, o.error);
+      dropped = true;
     }
     if (dropped) continue;
 
@@ -555,98 +655,76 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
     std::vector<std::vector<Band>> bands(live.size());
     std::vector<std::string> band_error(live.size());
     const auto bands_start = std::chrono::steady_clock::now();
-    parallel_for(live.size(), threads, 1, [&](std::size_t k) {
-      const RegionResult& below = *swept.at(keys[k]).result;
-      const RegionResult& above = *swept.at(keys[k + 1]).result;
+    parallel_for(live.size(), run.threads, 1, [&](std::size_t k) {
+      const RegionResult& lower = *swept.at(keys[k]).result;
+      const RegionResult& upper = *swept.at(keys[k + 1]).result;
       try {
-        bands[k] = close_bands(skin.mixed_complex(), below, above, cuts[live[k]].height);
+        bands[k] = close_bands(skin.mixed_complex(), lower, upper, cuts[live[k]].height);
       } catch (const TopologyError& e) {
         band_error[k] = e.what();
       }
     });
     const double bands_seconds = seconds_since(bands_start);
     for (std::size_t k = 0; k < live.size(); ++k)
-      if (!band_error[k].empty()) {
-        kept[live[k]] = 0, dropped = true;
-        out.dropped.push_back({cuts[live[k]].height, band_error[k]});
-      }
+      if (!band_error[k].empty()) drop(live[k], band_error[k]), dropped = true;
     if (dropped) {
       out.costs.retried += bands_seconds;
       continue;
     }
 
-    // 4. The glue: every slab's mesh appended in slab order, its vertex data
-    // with it, then the bands' triangles on the shared vertices. What the
-    // slabs' walks made of the complex goes back first (no thread reads it
-    // now): the glue's copies are the sweep's peak.
+    // 4. The glue. What the slabs' walks made of the complex goes back
+    // first (no thread reads it now): the glue's copies are the sweep's peak.
     if (run.release_made_cells) skin.mixed_complex().release_made();
     const auto glue_start = std::chrono::steady_clock::now();
+    Glued glued = glue(swept, keys, bands);
+    if (!glued.mesh) {
+      // Every slab went into the failed glue: all are swept again.
+      for (const SlabCost& c : glued.slabs) out.costs.retried += c.seconds;
+      out.costs.retried += bands_seconds + seconds_since(glue_start);
+      swept.clear();
+      drop(live[glued.failed], "decomposed sweep: " + glued.why);
+      continue;
+    }
+    out.costs.slabs = std::move(glued.slabs);
     out.costs.bands = bands_seconds;
-    // The lowest slab's mesh is taken as it is (garbage-collected, with the
-    // vertex data as its only properties: what appending it to an empty mesh
-    // would make, without a second copy of it at the peak); every other
-    // slab's is appended and then freed, so the peak holds one copy of one
-    // slab at a time.
-    geometry::SurfaceMesh& mesh = out.sweep.mesh;
-    {
-      std::size_t nv = 0, nf = 0;
-      for (const SlabKey& key : keys) {
-        const RegionResult& r = *swept.at(key).result;
-        nv += r.mesh.vertices_size(), nf += r.mesh.faces_size();
-      }
-      for (const std::vector<Band>& cut_bands : bands)
-        for (const Band& band : cut_bands) nf += band.triangles.size();
-      SlabOutcome& lowest = swept.at(keys[0]);
-      out.costs.slabs.push_back({lowest.seconds, lowest.result->mesh.n_faces()});
-      add_stats(out.sweep.stats, lowest.result->stats);
-      mesh = std::move(lowest.result->mesh);
-      swept.erase(keys[0]);
-      mesh.reserve(nv, nf);
-    }
-    std::vector<Index> base(keys.size(), 0);
-    for (std::size_t k = 1; k < keys.size(); ++k) {
-      SlabOutcome& o = swept.at(keys[k]);
-      RegionResult& r = *o.result;
-      out.costs.slabs.push_back({o.seconds, r.mesh.n_faces()});
-      add_stats(out.sweep.stats, r.stats);
-      base[k] = append_with_vertex_data(mesh, r.mesh);
-      swept.erase(keys[k]);
-    }
-    // Each slab's mesh is a surface whose boundary is its lower curves'
-    // samples and its rims, one rim per upper curve (sweep_region), and every
-    // band covers its rim's and its curve's edges: only the bands' corners
-    // can be left open or pinched, so only they are tested (the check of
-    // the whole mesh later tests every vertex).
-    std::vector<geometry::Vertex> seam;
-    for (std::size_t k = 0; k < live.size(); ++k)
-      for (const Band& band : bands[k])
-        for (const std::array<BandVertex, 3>& t : band.triangles) {
-          std::array<geometry::Vertex, 3> g;
-          for (int i = 0; i < 3; ++i) g[i] = geometry::Vertex(base[t[i].above ? k + 1 : k] + t[i].index);
-          seam.insert(seam.end(), g.begin(), g.end());
-          try {
-            mesh.add_triangle(g[0], g[1], g[2]);
-          } catch (const TopologyError& e) {
-            throw TopologyError("decomposed sweep: a band's triangle does not glue at the cut at height " +
-                                std::to_string(cuts[live[k]].height) + ": " + e.what());
-          }
-        }
     for (std::size_t c : live) {
       out.cut_heights.push_back(cuts[c].height);
       std::size_t balls = 0;
       for (const morse::CutDetour& d : cuts[c].detours) balls += d.balls.size();
       out.cut_balls.push_back(balls);
     }
-    for (geometry::Vertex v : seam)
-      if (mesh.is_boundary(v) || !mesh.is_manifold(v)) {
-        std::ostringstream os;
-        os << "decomposed sweep: the glued mesh is " << (mesh.is_boundary(v) ? "open" : "not manifold") << " at ("
-           << mesh.position(v).transpose() << ")";
-        throw TopologyError(os.str());
-      }
     out.costs.glue = seconds_since(glue_start);
-    return out;
+    return std::move(glued.mesh);
   }
+}
+
+}  // namespace
+
+DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
+                                 const std::vector<Cut>& cuts, const DecompositionOptions& opt,
+                                 const SweepOptions& sweep, const skin::RunContext& context) {
+  DecomposedSweep out;
+  // The observers and the trace see one slab at a time, in order.
+  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, context.threads);
+  const skin::RunContext run = context.with_threads(threads);
+  // The ladder, each rung's failure a value that sends the sweep to the
+  // next: regions (merged where one fails), groups of whole components, one
+  // sweep. The last rung's errors are thrown; the whole-skin fallback below
+  // it is the pipeline's. An observer or a trace replays one front in one
+  // mesh: they get the one sweep of everything.
+  if (!cuts.empty())
+    if (std::optional<SweepResult> regions = sweep_regions(skin, ms, cuts, opt, sweep, run, out)) {
+      out.sweep = std::move(*regions);
+      return out;
+    }
+  if (opt.components && out.dropped.empty() && !sweep.observer && !sweep.trace)
+    if (std::optional<SweepResult> groups = sweep_components(skin, ms, sweep, run, out.costs, out.components_fallback,
+                                                             opt.glue_groups ? nullptr : &out.groups)) {
+      out.sweep = std::move(*groups);
+      return out;
+    }
+  out.sweep = sweep_mesh(skin, ms, sweep, run);
+  return out;
 }
 
 }  // namespace skinmesh::decompose

@@ -188,15 +188,17 @@ struct DecomposedSweep {
 /// every group do not stay beside every group's mesh; with cuts, what the
 /// slabs made goes back before the glue (papers/decompose/history.md, "The
 /// made cells between the stages"). C and Q and the progress reports come
-/// from `run`. Where a slab fails (sweep_region() throws
-/// TopologyError, GeometryError or std::invalid_argument) the cut above it
-/// is dropped (below it for the top slab), and where a band has no outward
-/// strip the cut of the band: the two slabs become one, swept again, the
-/// others kept. With no cut given: one sweep per group of whole skin
-/// components (DecompositionOptions::components; sweep_mesh() if there is one
-/// group or a group's sweep fails); with every cut dropped: sweep_mesh().
-/// Throws what sweep_mesh() throws, and TopologyError if the glued mesh is
-/// not a closed manifold.
+/// from `run`. The sweep goes down a ladder whose rungs fail by value, each
+/// failure sending it to the next: regions, merged where one fails (a slab
+/// whose sweep_region() throws TopologyError, GeometryError or
+/// std::invalid_argument drops the cut above it, below it for the top slab;
+/// a band without an outward strip, a band triangle that does not glue or
+/// a seam left open or pinched drops its cut: the two slabs become one,
+/// swept again, the others kept); with no cut given, one sweep per group of
+/// whole skin components (DecompositionOptions::components); one sweep of
+/// everything (sweep_mesh()) when there is one group, a group's sweep fails
+/// or every cut was dropped. Throws what sweep_mesh() throws; the
+/// whole-skin fallback below the last rung is the pipeline's.
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
                                  const front::SweepOptions& sweep = {}, const skin::RunContext& run = {});

@@ -10,6 +10,8 @@ Fails (exit 1), printing one line per problem, if
   - the sweep's state, front::detail::FrontState, has a member about a region, a slab or a cut other than the one
     region value (`region`): what a region is lives in front/region.h, not in fields of the paper's state;
   - `departure_step`, Algorithm 1's loop body, is longer than MAX_DEPARTURE_STEP lines;
+  - `sweep_decomposed`, the fallback ladder (regions, groups of components, one sweep), is longer than MAX_LADDER
+    lines or catches an exception (each rung's failure is a value);
   - a stage's options struct (a struct named ...Options in a module at or above skin/) holds what every stage
     must agree on — C and Q (SizeConstants), a thread count, a progress callback — instead of reading it from the
     run's one skin::RunContext; mesher::MeshOptions, where the user sets them once, is the exception. (geometry/
@@ -26,6 +28,7 @@ PROCESS_WIDE = re.compile(r"\b(malloc_trim|mallopt|setenv|putenv|unsetenv|std::e
                           r"setlocale|omp_set_num_threads|set_terminate|setrlimit)\s*\(")
 REGION_WORDS = re.compile(r"slab|park|ghost|owns|upper|lower|cut|band|region", re.IGNORECASE)
 MAX_DEPARTURE_STEP = 55
+MAX_LADDER = 40
 SHARED_MEMBER = re.compile(r"^\s*(?:skin::)?SizeConstants\s+\w+\s*[;={]|^\s*int\s+threads\b|"
                            r"^\s*std::function<.*>\s+progress\s*[;={]")
 STRUCT = re.compile(r"^\s*struct\s+(\w+)\b[^;]*$")
@@ -83,11 +86,28 @@ def front_state_members(root):
     return members
 
 
-def departure_step_length(root):
-    lines = open(os.path.join(root, "front", "sweep.cpp"), encoding="utf-8").read().split("\n")
-    start = next(i for i, l in enumerate(lines) if l.startswith("bool departure_step("))
+def function_body(root, path, head):
+    """The lines of the top-level function of `path` whose definition starts with `head`, to its closing brace."""
+    lines = open(os.path.join(root, path), encoding="utf-8").read().split("\n")
+    start = next(i for i, l in enumerate(lines) if l.startswith(head) and not l.rstrip().endswith(";"))
     end = next(i for i in range(start, len(lines)) if lines[i] == "}")
-    return end - start + 1
+    return lines[start:end + 1]
+
+
+def departure_step_length(root):
+    return len(function_body(root, "front/sweep.cpp", "bool departure_step("))
+
+
+def ladder_problems(root):
+    """The decomposition's fallback ladder is one short function whose rungs fail by value: no catch in it."""
+    body = function_body(root, "decompose/decomposed.cpp", "DecomposedSweep sweep_decomposed(")
+    problems = []
+    if len(body) > MAX_LADDER:
+        problems.append(f"decompose/decomposed.cpp: sweep_decomposed (the ladder) is {len(body)} lines, more than "
+                        f"{MAX_LADDER}")
+    if any(re.search(r"\bcatch\s*\(", line.split("//", 1)[0]) for line in body):
+        problems.append("decompose/decomposed.cpp: sweep_decomposed catches an exception: a rung's failure is a value")
+    return problems, len(body)
 
 
 def shared_settings_in_options(root):
@@ -125,11 +145,14 @@ def main():
             problems.append(f"front/front_state.h:{n}: FrontState member `{name}` belongs in the region value "
                             "(front/region.h)")
     length = departure_step_length(root)
+    ladder, ladder_length = ladder_problems(root)
+    problems += ladder
     if length > MAX_DEPARTURE_STEP:
         problems.append(f"front/sweep.cpp: departure_step is {length} lines, more than {MAX_DEPARTURE_STEP}")
     for p in problems:
         print("problem: " + p)
-    print(f"layout: {len(members)} FrontState members, departure_step {length} lines; {len(problems)} problem(s)")
+    print(f"layout: {len(members)} FrontState members, departure_step {length} lines, "
+          f"sweep_decomposed {ladder_length} lines; {len(problems)} problem(s)")
     return 1 if problems else 0
 
 
