@@ -68,7 +68,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
       }
       if (!(down.norm() > 1e-6)) {
         std::ostringstream os;
-        os << "slab: the lower cut passes through a critical point near (" << fs.mesh.position(x).transpose()
+        os << "region: the lower cut passes through a critical point near (" << fs.mesh.position(x).transpose()
            << "): the skin's normal is vertical there";
         throw LowerCutError(os.str());
       }
@@ -86,7 +86,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
       const Vec3 nt = (fs.mesh.position(p[j1]) - pj).cross(fs.mesh.position(g[j1]) - pj);
       if (!(nt.dot(fs.normal[p[j]]) > 0)) {
         std::ostringstream os;
-        os << "slab: the lower cut curve through (" << pj.transpose()
+        os << "region: the lower cut curve through (" << pj.transpose()
            << ") is not oriented as n x e (morse::level_curves), or its ghost strip folds";
         throw LowerCutError(os.str());
       }
@@ -101,7 +101,7 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
     for (Vertex x : p)
       if (std::abs(fold_excess(fs, x)) > fs.opt.fold_tolerance_deg * kDegree) {
         std::ostringstream os;
-        os << "slab: the ghost strip below the lower cut folds at (" << fs.mesh.position(x).transpose()
+        os << "region: the ghost strip below the lower cut folds at (" << fs.mesh.position(x).transpose()
            << "): the cut curve bends more sharply than the strip is deep";
         throw LowerCutError(os.str());
       }
@@ -248,7 +248,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
     for (double rho : c.rho)
       if (region.lower + (region.park_factor + 1) * opt.disc_factor * rho > region.upper) {
         std::ostringstream os;
-        os << "sweep_region: the slab [" << region.lower << ", " << region.upper
+        os << "sweep_region: the region [" << region.lower << ", " << region.upper
            << "] is thinner than park_factor + 1 = " << region.park_factor + 1 << " disc radii ("
            << (region.park_factor + 1) * opt.disc_factor * rho << " A) at a sample of its lower curves";
         throw std::invalid_argument(os.str());
@@ -277,7 +277,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
   // would have changed the region's boundary.
   for (Face f : ghost_faces)
     if (fs.mesh.is_deleted(f))
-      throw LowerCutError("slab: a repair of the front reached below the lower cut (a ghost face was deleted)");
+      throw LowerCutError("region: a repair of the front reached below the lower cut (a ghost face was deleted)");
   for (Face f : ghost_faces) fs.mesh.delete_face(f);
 
   // The boundary: each lower curve one loop, every other loop a parked rim.
@@ -309,7 +309,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
     }
     if (!parked) {
       std::ostringstream os;
-      os << "slab: a hole of " << loop.size() << " vertices near ("
+      os << "region: a hole of " << loop.size() << " vertices near ("
          << fs.mesh.position(fs.mesh.to_vertex(loop.front())).transpose()
          << ") was left open: it is neither a lower cut curve nor a parked rim";
       throw TopologyError(os.str());
@@ -319,7 +319,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
   }
   for (std::size_t k = 0; k < curve_seen.size(); ++k)
     if (!curve_seen[k])
-      throw LowerCutError("slab: a lower cut curve is no longer one boundary loop of the slab's mesh");
+      throw LowerCutError("region: a lower cut curve is no longer one boundary loop of the region's mesh");
   if (locator) {
     std::vector<int> rims_of(region.upper_curves.size(), 0);
     for (const std::vector<Vertex>& rim : rims) ++rims_of[res.rim_curve.emplace_back(locator->vote(fs, rim))];
@@ -329,7 +329,7 @@ RegionResult sweep_region(const skin::SkinSurface& skin, const morse::MorseSmale
         const morse::LevelCurve& c = region.upper_curves[k];
         const bool island = !c.detour.empty() &&
                             std::all_of(c.detour.begin(), c.detour.end(), [](Index d) { return d != kInvalidIndex; });
-        os << "slab: the upper cut curve through (" << c.points.front().transpose() << ") has " << rims_of[k]
+        os << "region: the upper cut curve through (" << c.points.front().transpose() << ") has " << rims_of[k]
            << " parked rims below it instead of one" << (island ? " (a loop around balls only, " : " (")
            << c.points.size() << " samples)";
         throw TopologyError(os.str());
