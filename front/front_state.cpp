@@ -70,8 +70,14 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   const std::size_t nc = ms.critical.size();
   resolved.assign(nc, 0);
   held.resize(nc);
+  // Only the critical points that can hold this region's front go into the
+  // hold grid and its bounds (every one for the whole skin and for level
+  // cuts; a group of components or a detoured region holds its own): a
+  // region's grid follows its own size, not the skin's.
+  const auto holds_here = [this](std::size_t i) { return this->region.holds(static_cast<Index>(i)); };
   double rmax = 0;
   for (std::size_t i = 0; i < nc; ++i) {
+    if (!holds_here(i)) continue;
     rmax = std::max(rmax, ms.protect_radius[i]);
     if (ms.critical[i].rho > 0) protect_factor = std::max(protect_factor, ms.protect_radius[i] / ms.critical[i].rho);
   }
@@ -88,7 +94,7 @@ FrontState::FrontState(const skin::SkinSurface& skin, const morse::MorseSmaleCom
   critical_positions.resize(nc);
   for (std::size_t i = 0; i < nc; ++i) {
     critical_positions[i] = ms.critical[i].position;
-    if (!ms.live[i] || ms.critical[i].kind == CriticalKind::Minimum) continue;
+    if (!ms.live[i] || ms.critical[i].kind == CriticalKind::Minimum || !holds_here(i)) continue;
     const double rho_c = ms.critical[i].rho;
     if (hold_reach > 0 && hold_reach < 1)  // queries from rho_p with |rho_c - rho_p| <= hold_reach rho_p
       hold_grid->insert_for_queries(static_cast<Index>(i), ms.critical[i].position, rho_c / (1 + hold_reach),
