@@ -705,7 +705,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
                                  const SweepOptions& sweep, const skin::RunContext& context) {
   DecomposedSweep out;
   // The observers and the trace see one slab at a time, in order.
-  const int threads = sweep.observer || sweep.trace ? 1 : std::max(1, context.threads);
+  const int threads = sweep.observer || sweep.trace ? 1 : thread_count(context.threads);
   const skin::RunContext run = context.with_threads(threads);
   // The ladder, each rung's failure a value that sends the sweep to the
   // next: regions (merged where one fails), groups of whole components, one

@@ -506,7 +506,8 @@ const char* operation_name(RefineOperation op) {
 
 RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt,
                         const skin::RunContext& run) {
-  Refiner r(skin, mesh, opt, run);
+  const skin::RunContext resolved = run.with_threads(thread_count(run.threads));
+  Refiner r(skin, mesh, opt, resolved);
   return r.run();
 }
 

@@ -24,8 +24,9 @@ struct RunContext {
   /// window, the refinement's and the angle improvement's targets, and the
   /// check's thresholds all derive from them.
   SizeConstants size;
-  /// Threads a stage may use (at least 1). No output depends on it: the
-  /// stages split independent work only (core/parallel.h).
+  /// Threads a stage may use; 0: every core of the machine (each stage reads
+  /// it through core/parallel.h's thread_count()). No output depends on it:
+  /// the stages split independent work only.
   int threads = 1;
   /// Called with a stage name and the fraction of it done (0..1), from the
   /// calling thread; empty: no reports. The library itself prints nothing.
