@@ -320,7 +320,9 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, con
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return parts[a]->n_faces() > parts[b]->n_faces(); });
-  const auto release = [&skin] { release_made_cells(skin); };
+  const auto release = [&skin, &run] {
+    if (run.release_made_cells) release_made_cells(skin);
+  };
   const auto stage_end = [&](const char* stage) {
     if (options.observers.stage_end && n == 1) options.observers.stage_end(stage, skin, *parts[0]);
   };
@@ -345,7 +347,7 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, con
   }
   // The check reads res.mesh: the half-edge meshes go back part by part as
   // the output is written.
-  release_made_cells(skin);  // the only release here when the refinement is off
+  release();  // the only release here when the refinement is off
   write_output(skin, parts, threads, res);
   if (options.observers.memory_released) options.observers.memory_released();
   clock.end("output");
