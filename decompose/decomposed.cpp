@@ -386,8 +386,45 @@ int automatic_slabs(std::size_t atoms, const morse::MorseSmaleComplex& ms, const
   return automatic_slabs(static_cast<std::size_t>(std::llround(share * static_cast<double>(atoms))), opt);
 }
 
+namespace {
+
+/// The detoured cut at height c (morse::cut_detours(), morse::cut_curves()),
+/// or nothing where the height admits none: a near-tangency or an unjoined
+/// corner (GeometryError), or no curve. A cluster that goes down but whose
+/// union the level set enters (the cut runs along its arcs above c) goes up
+/// instead: below such arcs the slab below would have to bridge or seal the
+/// cluster's critical points within a disc radius or two of its parked rim,
+/// and its front parks before it reaches their protecting spheres (HIV
+/// protease at probe 0: a saddle 0.011 Å under the cut, the curves on its
+/// ball's boundary, the two curves' rims one loop). Above, the slab starts on
+/// the arcs below the cluster, inside its spheres' hold regions, as the sweep
+/// reaches any protecting sphere. A cluster the level set does not enter lies
+/// wholly on its side and keeps it. Depends on c and the input only.
+std::optional<Cut> detoured_cut(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, double c,
+                                const DecompositionOptions& opt) {
+  Cut cut{c, {}, morse::cut_detours(ms, c)};
+  try {
+    cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
+    std::vector<char> entered(cut.detours.size(), 0);
+    for (const morse::LevelCurve& curve : cut.curves)
+      for (Index d : curve.detour)
+        if (d != kInvalidIndex && !cut.detours[d].upper) entered[d] = 1;
+    if (std::find(entered.begin(), entered.end(), 1) != entered.end()) {
+      for (std::size_t d = 0; d < entered.size(); ++d)
+        if (entered[d]) cut.detours[d].upper = true;
+      cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
+    }
+  } catch (const GeometryError&) {
+    return std::nullopt;
+  }
+  if (cut.curves.empty()) return std::nullopt;
+  return cut;
+}
+
+}  // namespace
+
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const DecompositionOptions& opt, const SweepOptions& sweep) {
+                             const DecompositionOptions& opt, const SweepOptions& sweep, const skin::RunContext& run) {
   if (opt.slabs < 0) throw std::invalid_argument("choose_cuts: the slab count must be positive, or 0 (automatic)");
   const int slabs = opt.slabs == 0 ? automatic_slabs(skin.points().size(), ms, opt, sweep) : opt.slabs;
   std::vector<Cut> cuts;
@@ -397,44 +434,41 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
   const double slab_height = (hi - lo) / slabs;
   const int reach = static_cast<int>(std::floor(opt.search_reach / opt.search_step));
   const CriticalByHeight by_height(ms, sweep.disc_factor);
+  // Candidates from the target outwards: 0, +1, -1, +2, -2, … steps.
+  auto candidate = [&](int i, int j) {
+    const int step = (j + 1) / 2 * (j % 2 ? 1 : -1);
+    return lo + i * slab_height + step * opt.search_step * slab_height;
+  };
+  // With detours, the first candidate of each target that admits a cut is
+  // traced for every target at once, on the threads: which candidate that is
+  // depends on its height alone. The walk below then takes it if it lies
+  // above and apart from the cut before, as it would have reached it one
+  // candidate after the other (every earlier candidate admits no cut), and
+  // traces the later candidates only if it does not: the cuts are the same
+  // for every thread count.
+  std::vector<std::pair<int, std::optional<Cut>>> first(static_cast<std::size_t>(slabs));
+  if (opt.detours)
+    parallel_for(first.size() - 1, thread_count(run.threads), 1, [&](std::size_t k) {
+      const int i = static_cast<int>(k) + 1;
+      for (int j = 0; j <= 2 * reach; ++j)
+        if (std::optional<Cut> cut = detoured_cut(skin, ms, candidate(i, j), opt)) {
+          first[static_cast<std::size_t>(i)] = {j, std::move(cut)};
+          return;
+        }
+      first[static_cast<std::size_t>(i)] = {2 * reach + 1, std::nullopt};
+    });
   for (int i = 1; i < slabs; ++i) {
-    const double target = lo + i * slab_height;
-    // Candidates from the target outwards: 0, +1, -1, +2, -2, … steps.
-    for (int j = 0; j <= 2 * reach; ++j) {
-      const int step = (j + 1) / 2 * (j % 2 ? 1 : -1);
-      const double c = target + step * opt.search_step * slab_height;
+    for (int j = opt.detours ? first[static_cast<std::size_t>(i)].first : 0; j <= 2 * reach; ++j) {
+      const double c = candidate(i, j);
       if (!cuts.empty() && c <= cuts.back().height) continue;
       if (opt.detours) {
-        Cut cut{c, {}, morse::cut_detours(ms, c)};
-        try {
-          cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
-          // A cluster that goes down but whose union the level set enters
-          // (the cut runs along its arcs above c) goes up instead: below
-          // such arcs the slab below would have to bridge or seal the
-          // cluster's critical points within a disc radius or two of its
-          // parked rim, and its front parks before it reaches their
-          // protecting spheres (HIV protease at probe 0: a saddle 0.011 Å
-          // under the cut, the curves on its ball's boundary, the two
-          // curves' rims one loop). Above, the slab starts on the arcs
-          // below the cluster, inside its spheres' hold regions, as the
-          // sweep reaches any protecting sphere. A cluster the level set
-          // does not enter lies wholly on its side and keeps it.
-          std::vector<char> entered(cut.detours.size(), 0);
-          for (const morse::LevelCurve& curve : cut.curves)
-            for (Index d : curve.detour)
-              if (d != kInvalidIndex && !cut.detours[d].upper) entered[d] = 1;
-          if (std::find(entered.begin(), entered.end(), 1) != entered.end()) {
-            for (std::size_t d = 0; d < entered.size(); ++d)
-              if (entered[d]) cut.detours[d].upper = true;
-            cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
-          }
-        } catch (const GeometryError&) {
-          continue;  // a near-tangency or an unjoined corner: not this height
-        }
-        if (cut.curves.empty() ||
-            (!cuts.empty() && !apart(cuts.back(), cut, ms.height_direction.normalized(), opt, sweep.disc_factor)))
+        std::optional<Cut> cut = j == first[static_cast<std::size_t>(i)].first
+                                     ? std::move(first[static_cast<std::size_t>(i)].second)
+                                     : detoured_cut(skin, ms, c, opt);
+        if (!cut ||
+            (!cuts.empty() && !apart(cuts.back(), *cut, ms.height_direction.normalized(), opt, sweep.disc_factor)))
           continue;
-        cuts.push_back(std::move(cut));
+        cuts.push_back(std::move(*cut));
         break;
       }
       if (!window_clear(ms, by_height, c, opt, sweep.disc_factor)) continue;

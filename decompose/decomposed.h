@@ -116,10 +116,12 @@ struct Cut {
 /// admissible height nearby is skipped (fewer slabs). With opt.detours, a
 /// cluster of morse::cut_detours() that goes down but whose union the level
 /// set enters is sent up, and the cut traced again (papers/decompose/
-/// README.md, "Detoured cuts"). Throws std::invalid_argument if
-/// opt.slabs < 0.
+/// README.md, "Detoured cuts"). The detoured cuts' candidates are traced on
+/// run.threads threads (0: every core); the cuts are the same for every
+/// count. Throws std::invalid_argument if opt.slabs < 0.
 std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                             const DecompositionOptions& opt, const front::SweepOptions& sweep);
+                             const DecompositionOptions& opt, const front::SweepOptions& sweep,
+                             const skin::RunContext& run = {});
 
 /// A cut the decomposed sweep gave up, and why: a slab next to it failed
 /// (the message of sweep_region()'s error) or a band under it had no strip.

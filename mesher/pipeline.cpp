@@ -381,7 +381,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   if (options.observers.morse) options.observers.morse(skin, *ms);
   // The cut curves are traced from seeds on the integral lines: before
   // their polylines go.
-  const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, *ms, options.decomposition, options.sweep);
+  const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, *ms, options.decomposition, options.sweep, run);
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "decompose/decomposed.h"
 #include "mesher/pipeline.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/molecule_io.h"
@@ -339,6 +340,37 @@ TEST_CASE("decomposed sweep: the default slab count follows the largest group of
   front::SweepOptions observed;
   observed.observer = [](const front::SweepEvent&) {};
   CHECK(decompose::automatic_slabs(4, broken, opt, observed) == 1);
+}
+
+TEST_CASE("decomposed sweep: the detoured cuts are traced on the threads and the same for every count") {
+  // choose_cuts traces each target's first admitted candidate on the
+  // threads, then walks the targets in order, tracing on where that
+  // candidate is too near the cut below; 24 slabs of crambin at probe 0 put
+  // the targets close together.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const skin::SkinSurface skin(skin::weighted_points(mol, 0.0));
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, Vec3(0.36, -0.48, 0.8));
+  decompose::DecompositionOptions opt;
+  opt.slabs = 24;
+  opt.detours = true;
+  const front::SweepOptions sweep;
+  skin::RunContext run;
+  run.threads = 1;
+  const std::vector<decompose::Cut> one = decompose::choose_cuts(skin, ms, opt, sweep, run);
+  REQUIRE(one.size() >= 12);
+  for (std::size_t k = 1; k < one.size(); ++k) CHECK(one[k].height > one[k - 1].height);
+  for (int threads : {2, 3}) {
+    CAPTURE(threads);
+    run.threads = threads;
+    const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, ms, opt, sweep, run);
+    REQUIRE(cuts.size() == one.size());
+    for (std::size_t k = 0; k < cuts.size(); ++k) {
+      CHECK(cuts[k].height == one[k].height);
+      REQUIRE(cuts[k].curves.size() == one[k].curves.size());
+      for (std::size_t i = 0; i < cuts[k].curves.size(); ++i)
+        CHECK(cuts[k].curves[i].points == one[k].curves[i].points);
+    }
+  }
 }
 
 TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
