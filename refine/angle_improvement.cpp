@@ -138,6 +138,9 @@ class AngleImprover {
   /// rho_x (Å), can neither be a corner of a triangle that the move affects
   /// nor lie in a star triangle's surface ball.
   bool relevant(const Bounds& b, double d, double rho_x) const;
+  /// The distance (Å) from b.v within which a vertex of local length scale
+  /// rho_x (Å) is relevant(); increasing in rho_x.
+  double relevance_radius(const Bounds& b, double rho_x) const;
   /// Radius (Å) about b.v that holds every relevant() vertex, rho being
   /// 1-Lipschitz.
   double reach(const Bounds& b) const;
@@ -274,10 +277,14 @@ bool AngleImprover::relevant(const Bounds& b, double d, double rho_x) const {
   // ball of a star triangle, lies within 2 sqrt5 kappa max(rho_a, rho(p))
   // of p; a corner of a triangle meeting the star (radius <= S + 2M about
   // p) lies within S + 2M + 2 kappa rho_a of p.
+  return d <= relevance_radius(b, rho_x);
+}
+
+double AngleImprover::relevance_radius(const Bounds& b, double rho_x) const {
   const double rho_p = rho_[b.v] + 2 * b.M;
   const double ball = 2 * b.M + 2 * kSqrt5 * kappa_ * std::max(rho_x, rho_p);
   const double cross = 4 * b.M + b.S + 2 * kappa_ * rho_x;
-  return d <= std::max(ball, cross) * (1 + kBoundPad) + kBoundPadL * L_;
+  return std::max(ball, cross) * (1 + kBoundPad) + kBoundPadL * L_;
 }
 
 double AngleImprover::reach(const Bounds& b) const {
@@ -298,9 +305,14 @@ std::vector<Vertex> AngleImprover::neighbourhood(const Bounds& b) const {
   const Vec3 p0 = pos(b.v);
   const double r = reach(b);
   // rho is 1-Lipschitz on the skin: the vertices within r have rho within r
-  // of rho(v) (padded for rounding).
+  // of rho(v) (padded for rounding). Below rho(v) the bound is tighter: a
+  // relevant x with rho_x < rho(v) lies within relevance_radius(b, rho_x)
+  // <= R = relevance_radius(b, rho(v)) of v (the radius grows with rho_x),
+  // so rho_x >= rho(v) - R. The levels of smaller scales, whose cells are
+  // small against the query's reach and which hold vertices from all over
+  // the mesh, are not read: the query's cost follows the mesh near v.
   const double rho_v = rho_[b.v], slack = 1e-9 * (rho_v + r);
-  const double lo = rho_v - r - slack, hi = rho_v + r + slack;
+  const double lo = rho_v - relevance_radius(b, rho_v) - slack, hi = rho_v + r + slack;
   const auto& positions = mesh_.positions().vector();
   grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
     const Vertex x(id);
