@@ -156,12 +156,40 @@ struct SlabOutcome {
   std::optional<RegionResult> result;
   std::string error;
   bool at_lower_cut = false;  // the failure was the lower cut's (LowerCutError)
-  double seconds = 0;         // wall clock of the sweep_region() call
+  double seconds = 0;         // wall clock of the sweep_region() call and of the region's refinement
+  refine::RefineStats refinement;
+  bool refined = false;  // by refine_region()
 };
 
 /// Wall-clock seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Refines the slab's mesh in place, its boundary kept
+/// (DecompositionOptions::refine_regions), on one thread, and compacts it;
+/// the indices of its lower loops and rims follow. Returns the old -> new
+/// vertex map (empty: nothing deleted). The lower curves' samples, its
+/// first vertices and all on the boundary, keep theirs.
+std::vector<Index> refine_region(const skin::SkinSurface& skin, SlabOutcome& o, const DecompositionOptions& opt,
+                                 const skin::RunContext& run) {
+  RegionResult& r = *o.result;
+  const auto start = std::chrono::steady_clock::now();
+  o.refinement = refine::refine_mesh(skin, r.mesh, opt.refinement, run.with_threads(1));
+  o.refined = true;
+  std::vector<Index> to;
+  if (r.mesh.has_garbage()) {
+    to.assign(r.mesh.vertices_size(), kInvalidIndex);
+    Index next = 0;
+    for (std::size_t i = 0; i < to.size(); ++i)
+      if (!r.mesh.is_deleted(geometry::Vertex(static_cast<Index>(i)))) to[i] = next++;
+    for (std::vector<std::vector<Index>>* loops : {&r.lower_loops, &r.upper_rims})
+      for (std::vector<Index>& loop : *loops)
+        for (Index& v : loop) v = to[v];
+    r.mesh.garbage_collection();
+  }
+  o.seconds += seconds_since(start);
+  return to;
 }
 
 /// sweep_region(), with the failures the decomposition answers by merging
@@ -620,6 +648,24 @@ Glued glue(std::map<SlabKey, SlabOutcome>& swept, const std::vector<SlabKey>& ke
   return out;
 }
 
+/// The slabs `keys` not refined yet, refined on up to run.threads threads
+/// (refine_region()), and the vertices of `bands` (per kept cut, bottom to
+/// top) renumbered with them. The refinement has no failure of its own: what
+/// it throws is thrown, as from the pipeline's refinement of a whole mesh.
+void refine_slabs(const skin::SkinSurface& skin, std::map<SlabKey, SlabOutcome>& swept,
+                  const std::vector<SlabKey>& keys, std::vector<std::vector<Band>>& bands,
+                  const DecompositionOptions& opt, const skin::RunContext& run) {
+  std::vector<std::vector<Index>> to(keys.size());
+  parallel_for(keys.size(), run.threads, 1, [&](std::size_t k) {
+    if (SlabOutcome& o = swept.at(keys[k]); !o.refined) to[k] = refine_region(skin, o, opt, run);
+  });
+  for (std::size_t k = 0; k < bands.size(); ++k)
+    for (Band& band : bands[k])
+      for (std::array<BandVertex, 3>& t : band.triangles)
+        for (BandVertex& v : t)
+          if (const std::vector<Index>& map = to[v.above ? k + 1 : k]; !map.empty()) v.index = map[v.index];
+}
+
 /// The ladder's rung of regions: the slabs between `cuts` swept on the
 /// threads, their bands closed and the whole glued. A slab that fails gives
 /// up the cut above it (below it for the top slab, and the cut where it
@@ -706,9 +752,16 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       continue;
     }
 
+    // 3b. The regions refined on the threads, once their bands are known
+    // (a slab swept again after a drop is refined once, in the round that
+    // glues), and the bands' vertices renumbered with them.
+    if (opt.refine_regions) refine_slabs(skin, swept, keys, bands, opt, run);
+
     // 4. The glue. What the slabs' walks made of the complex goes back
     // first (no thread reads it now): the glue's copies are the sweep's peak.
     if (run.release_made_cells) skin.mixed_complex().release_made();
+    refine::RefineStats refinement;
+    for (const SlabKey& key : keys) refine::add_refine_stats(refinement, swept.at(key).refinement);
     const auto glue_start = std::chrono::steady_clock::now();
     Glued glued = glue(swept, keys, bands);
     if (!glued.mesh) {
@@ -720,6 +773,7 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       continue;
     }
     out.costs.slabs = std::move(glued.slabs);
+    out.region_refinement = refinement;
     out.costs.bands = bands_seconds;
     for (std::size_t c : live) {
       out.cut_heights.push_back(cuts[c].height);

@@ -14,6 +14,7 @@
 #include "front/region.h"
 #include "front/sweep.h"
 #include "morse/level_curves.h"
+#include "refine/local_refinement.h"
 
 namespace skinmesh::decompose {
 
@@ -81,6 +82,16 @@ struct DecompositionOptions {
   /// sweep"). mesher::mesh_skin() sets it itself: false unless an observer
   /// watches the whole mesh between the stages.
   bool glue_groups = true;
+  /// With cuts: refine each region's mesh on the threads once its bands
+  /// are known, before the glue (refine::refine_mesh() with `refinement`,
+  /// one thread per region, its boundary kept), so that the refinement's
+  /// serial flips, contractions and insertions run region by region and the
+  /// pass over the glued mesh meets the seams. The mesh depends on the
+  /// regions only, never on the thread count
+  /// (papers/decompose/README.md, "After the sweep").
+  bool refine_regions = false;
+  /// The refinement of refine_regions.
+  refine::RefineOptions refinement;
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
@@ -136,7 +147,7 @@ struct DroppedCut {
 /// triangles. For the speed-up model of bench/speedup_model.py
 /// (papers/decompose/README.md, "Measured costs and the predicted speed-up").
 struct SlabCost {
-  double seconds = 0;
+  double seconds = 0;  ///< with DecompositionOptions::refine_regions, its refinement's as well
   std::size_t triangles = 0;
 };
 
@@ -165,6 +176,10 @@ struct DecomposedSweep {
   std::vector<std::size_t> cut_balls;
   /// The cuts dropped, in the order they were.
   std::vector<DroppedCut> dropped;
+  /// With DecompositionOptions::refine_regions: the sum of the refinements
+  /// of the glued regions (rounds: the most; refusals and violations left
+  /// are the region pass's, which the pass over the glued mesh takes up).
+  refine::RefineStats region_refinement;
   /// The costs, empty for one sweep (no cut kept, one group of components).
   DecompositionCosts costs;
   /// Why the groups of components were swept as one after all (a group's

@@ -243,16 +243,6 @@ geometry::PredicateStats predicates_since(const geometry::PredicateStats& before
   return d;
 }
 
-/// The sum of two refinements' counts (rounds: the larger).
-void add_refine_stats(refine::RefineStats& a, const refine::RefineStats& b) {
-  a.flips += b.flips, a.contractions += b.contractions, a.insertions += b.insertions;
-  a.rounds = std::max(a.rounds, b.rounds);
-  a.refused_contractions += b.refused_contractions, a.refused_insertions += b.refused_insertions;
-  a.crowded_insertions += b.crowded_insertions, a.protected_contractions += b.protected_contractions;
-  a.flip_caps += b.flip_caps;
-  a.L_left += b.L_left, a.U_left += b.U_left;
-}
-
 /// The sum of two angle improvements' counts (passes and kappa: the larger;
 /// skipped: either; the smallest angles before and after: the smaller).
 void add_angle_stats(refine::AngleImprovementStats& a, const refine::AngleImprovementStats& b) {
@@ -331,7 +321,7 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, con
     const skin::RunContext part_run = run.with_threads(inner);
     res.refinement = per_group<refine::RefineStats>(
         order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, *parts[g], options.refinement, part_run); },
-        add_refine_stats, release);
+        refine::add_refine_stats, release);
     stage_end("refine");
     clock.end("refine");
     // 4b. Angle improvement (not in the paper; papers/refine/angle_improvement.md).
@@ -404,6 +394,10 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   // The groups of components are refined on their own unless someone
   // watches the whole mesh between the stages.
   decomposition.glue_groups = options.observers.stage_end || options.refinement.observer;
+  // The regions are refined on the threads before the glue unless someone
+  // watches the refinement or the mesh between the stages.
+  decomposition.refine_regions = options.refine && !options.observers.stage_end && !options.refinement.observer;
+  decomposition.refinement = options.refinement;
   decompose::DecomposedSweep decomposed =
       decompose::sweep_decomposed(skin, *ms, cuts, decomposition, options.sweep, run);
   front::SweepResult& swept = decomposed.sweep;
@@ -423,6 +417,11 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   if (decomposed.groups.empty()) parts.push_back(&swept.mesh);
   for (front::SweepResult& g : decomposed.groups) parts.push_back(&g.mesh);
   finish_parts(skin, options, run, clock, std::move(parts), res);
+  // The regions' operations count with the glued mesh's (their refusals
+  // and violations left are the pass over the glued mesh's to take up).
+  res.refinement.flips += decomposed.region_refinement.flips;
+  res.refinement.contractions += decomposed.region_refinement.contractions;
+  res.refinement.insertions += decomposed.region_refinement.insertions;
 }
 
 /// Stage 5: the skin-aware check of res.mesh, timed on `clock`.

@@ -229,6 +229,9 @@ bool Refiner::contract(Edge e) {
       protected_vertex = true;
       continue;
     }
+    // A region's boundary (its cut curves' samples and parked rims) is
+    // shared with the band and the region next to it: it stays as it is.
+    if (mesh_.is_boundary(mesh_.from_vertex(h))) continue;
     if (!mesh_.is_collapse_ok(h)) continue;
     const Vertex v0 = mesh_.from_vertex(h), v1 = mesh_.to_vertex(h);
     double q = 4;
@@ -491,6 +494,15 @@ RefineStats Refiner::run() {
 }
 
 }  // namespace
+
+void add_refine_stats(RefineStats& a, const RefineStats& b) {
+  a.flips += b.flips, a.contractions += b.contractions, a.insertions += b.insertions;
+  a.rounds = std::max(a.rounds, b.rounds);
+  a.refused_contractions += b.refused_contractions, a.refused_insertions += b.refused_insertions;
+  a.crowded_insertions += b.crowded_insertions, a.protected_contractions += b.protected_contractions;
+  a.flip_caps += b.flip_caps;
+  a.L_left += b.L_left, a.U_left += b.U_left;
+}
 
 const char* operation_name(RefineOperation op) {
   switch (op) {

@@ -77,7 +77,11 @@ struct RefineStats {
   std::size_t L_left = 0, U_left = 0;
 };
 
-/// Refines a closed triangle mesh of the skin in place so that every edge
+/// Adds the counts of b to a (rounds: the larger): the refinement of several
+/// meshes (the parts of mesher/, the regions of decompose/) as one.
+void add_refine_stats(RefineStats& a, const RefineStats& b);
+
+/// Refines a triangle mesh of the skin in place so that every edge
 /// satisfies [L], every triangle [U] and (as far as flips reach) every edge is
 /// locally restricted Delaunay: Lawson flips with the surface Delaunay ball
 /// test (papers/front/open_questions.md Q9.2 (the flip criterion)), then rounds of contraction of
@@ -86,7 +90,11 @@ struct RefineStats {
 /// triangles that violate [U] (Q9.4 (insertion for [U])), each followed by local flips. [L] and [U] together
 /// bound every angle below by arcsin(1/Q²) = 21.55°.
 ///
-/// `mesh` must be closed, oriented outwards, with every vertex on the skin;
+/// `mesh` must be oriented outwards, with every vertex on the skin, and
+/// closed or open with its boundary kept: a boundary vertex is never
+/// deleted, a boundary edge never flipped or split, and an insertion whose
+/// walk reaches the boundary is refused (a region of decompose/, refined
+/// before the glue; the pass over the glued mesh repairs its seams);
 /// it uses (and creates if absent, sampling the skin) the vertex property
 /// skin::kVertexCell (mixed cell), from which it takes the normal and rho
 /// (skin::VertexNormals, skin::VertexRhos), sets it on the vertices it

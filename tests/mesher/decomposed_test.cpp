@@ -17,9 +17,11 @@
 #include "decompose/decomposed.h"
 #include "mesher/pipeline.h"
 #include "morse/morse_smale_complex.h"
+#include "refine/local_refinement.h"
 #include "skin/molecule_io.h"
 #include "skin/skin_surface.h"
 #include "tests/verify/check_expectations.h"
+#include "verify/skin_mesh_check.h"
 
 using namespace skinmesh;
 
@@ -387,6 +389,44 @@ TEST_CASE("decomposed sweep: the mesh is the same for every thread count") {
     CHECK(res.cut_heights == one.cut_heights);
     CHECK(res.mesh.positions == one.mesh.positions);
     CHECK(res.mesh.triangles == one.mesh.triangles);
+  }
+}
+
+TEST_CASE("decomposed sweep: the regions are refined on the threads before the glue, their seams after") {
+  // DecompositionOptions::refine_regions: each region's mesh is refined on
+  // its own thread with its boundary kept, so the glue still finds the cut
+  // samples and the rims; the pass over the glued mesh then has the seams
+  // left. The glued mesh is closed and the same for every thread count,
+  // and after that pass every property holds.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/src_kinase_2src.pdb");
+  const skin::SkinSurface skin(skin::weighted_points(mol, 1.4));
+  const morse::MorseSmaleComplex ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  decompose::DecompositionOptions opt;
+  opt.slabs = 8;
+  const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, ms, opt, {});
+  REQUIRE(cuts.size() >= 5);
+  opt.refine_regions = true;
+  skin::RunContext run;
+  run.threads = 1;
+  const decompose::DecomposedSweep one = decompose::sweep_decomposed(skin, ms, cuts, opt, {}, run);
+  REQUIRE(one.cut_heights.size() >= 4);
+  CHECK(one.region_refinement.flips > 1000);
+  CHECK(one.region_refinement.insertions > 100);
+  for (geometry::Vertex v : one.sweep.mesh.vertices()) REQUIRE_FALSE(one.sweep.mesh.is_boundary(v));
+  // The pass over the glued mesh: the seams (the bands' strips and the
+  // triangles next to the regions' boundaries) refined as well.
+  geometry::SurfaceMesh glued = one.sweep.mesh;
+  const refine::RefineStats seams = refine::refine_mesh(skin, glued, {}, run);
+  CHECK(seams.L_left + seams.U_left == 0);
+  glued.garbage_collection();
+  test::check_every_property(verify::check_skin_mesh(skin, glued.to_indexed_mesh()));
+  for (int threads : {2, 3}) {
+    CAPTURE(threads);
+    run.threads = threads;
+    const decompose::DecomposedSweep more = decompose::sweep_decomposed(skin, ms, cuts, opt, {}, run);
+    const geometry::IndexedMesh a = one.sweep.mesh.to_indexed_mesh(), b = more.sweep.mesh.to_indexed_mesh();
+    CHECK(b.positions == a.positions);
+    CHECK(b.triangles == a.triangles);
   }
 }
 

@@ -5,9 +5,12 @@
 // [L] / [U] / restricted-Delaunay violation) and the topology is unchanged.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "refine/local_refinement.h"
@@ -174,6 +177,53 @@ TEST_CASE("refinement: the mesh is the same for every thread count") {
     CHECK(out[i].triangles == out[0].triangles);
   }
   test::check_every_property(verify::check_skin_mesh(skin, out[0]));
+}
+
+TEST_CASE("refinement: an open mesh keeps its boundary (a region refined before the glue)") {
+  // decompose/ refines each region's mesh before the bands and the glue:
+  // its boundary loops are shared with the band and the region next to it,
+  // so no boundary vertex may go and no boundary edge change. A sphere
+  // without its top cap, coarse (insertions) and fine (contractions),
+  // jittered (flips).
+  const skin::SkinSurface skin = one_atom();
+  for (const auto& [level, amount] : {std::pair{2, 0.05}, std::pair{5, 0.01}}) {
+    CAPTURE(level);
+    const geometry::IndexedMesh sphere = jittered_sphere(level, 5, amount);
+    geometry::IndexedMesh open = sphere;
+    open.triangles.clear();
+    for (const auto& t : sphere.triangles)
+      if ((sphere.positions[t[0]] + sphere.positions[t[1]] + sphere.positions[t[2]]).z() < 1.5 * kRadius)
+        open.triangles.push_back(t);
+    REQUIRE(open.triangles.size() < sphere.triangles.size());
+    geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(open);
+    // The boundary edges, each as its two end positions in boundary order.
+    const auto boundary = [](const geometry::SurfaceMesh& m) {
+      std::vector<std::array<double, 6>> edges;
+      for (geometry::Halfedge h : m.halfedges())
+        if (!m.is_deleted(m.edge(h)) && m.is_boundary(h)) {
+          const Vec3 &a = m.position(m.from_vertex(h)), &b = m.position(m.to_vertex(h));
+          edges.push_back({a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
+        }
+      std::sort(edges.begin(), edges.end());
+      return edges;
+    };
+    const auto before = boundary(mesh);
+    REQUIRE(before.size() > 8);
+    const refine::RefineStats st = refine::refine_mesh(skin, mesh);
+    CHECK(st.flips > 0);
+    CHECK(st.insertions + st.contractions > 0);
+    mesh.garbage_collection();
+    CHECK(boundary(mesh) == before);
+    // Every triangle still faces outwards, and the inside is [L] and [U]
+    // away from the boundary it could not touch.
+    for (geometry::Face f : mesh.faces()) {
+      std::array<Vec3, 3> p;
+      int i = 0;
+      for (geometry::Vertex v : mesh.vertices(f)) p[i++] = mesh.position(v);
+      CHECK((p[1] - p[0]).cross(p[2] - p[0]).dot(p[0] + p[1] + p[2]) > 0);
+    }
+    CHECK(mesh.n_faces() != open.triangles.size());
+  }
 }
 
 TEST_CASE("refinement: circumcentres over a ridge (a cube on the sphere, split along the diagonals)") {
