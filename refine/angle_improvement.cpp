@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geometry/check/mesh_checks.h"
 #include "geometry/kernel/triangle_intersection.h"
 #include "geometry/triangulation/point_grid.h"
@@ -36,6 +37,9 @@ constexpr double kSqrt5 = 2.2360679774997896964;
 /// papers/refine/angle_improvement.md ("Which triangles a move can affect")
 /// is finite. [U] gives kappa < CQ = 0.132.
 constexpr double kMaxKappa = 0.2;
+/// Triangles per block of scan() on the threads. [chosen] large enough that
+/// a block's hand-out and its share of the join cost little beside its tests.
+constexpr std::size_t kScanGrain = 16384;
 /// Angles within this of the star's minimum are active in the ascent
 /// (radians; 0.25°): their gradients together decide the direction, so the
 /// ascent does not zigzag between nearly equal angles. [chosen]
@@ -101,8 +105,8 @@ enum class Refusal { None, Orientation, L, U, Rdt, Intersection };
 class AngleImprover {
  public:
   AngleImprover(const skin::SkinSurface& skin, SurfaceMesh& mesh, const AngleImprovementOptions& opt,
-                const skin::SizeConstants& size)
-      : skin_(skin), mesh_(mesh), opt_(opt), size_(size), L_(skin.length_scale()) {
+                const skin::SizeConstants& size, int threads)
+      : skin_(skin), mesh_(mesh), opt_(opt), size_(size), L_(skin.length_scale()), threads_(threads) {
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     for (Vertex v : mesh_.vertices())
       if (cell_[v] == kInvalidIndex) cell_[v] = skin_.sample(mesh_.position(v)).cell;
@@ -168,7 +172,8 @@ class AngleImprover {
   const AngleImprovementOptions& opt_;
   const skin::SizeConstants size_;  ///< C and Q of [L] and [U], kept by every move
   const double L_;
-  double kappa_ = 0;  ///< max R / rho_min over the triangles, at least CQ
+  const int threads_;  ///< for the scans of every triangle (scan())
+  double kappa_ = 0;   ///< max R / rho_min over the triangles, at least CQ
   geometry::VertexProperty<Index> cell_;
   skin::VertexNormals normal_;  ///< from the cell
   skin::VertexRhos rho_;        ///< from the cell
@@ -232,7 +237,6 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   const double low_factor = 4 * cos_t * cos_t;  // low iff N² > 4 cos_t² D
   const double CQ2 = size_.C * size_.Q * size_.C * size_.Q;
   const auto& P = mesh_.positions().vector();
-  double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = CQ2;
   // The smallest rho of all vertices bounds each triangle's rho_min from
   // below: a triangle whose ratio stays within kappa at that bound needs no
   // rho of its own (rounding is monotone, so the skip never drops a triangle
@@ -240,31 +244,56 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   double rho_floor = std::numeric_limits<double>::infinity();
   if (kappa)
     for (Vertex v : mesh_.vertices()) rho_floor = std::min(rho_floor, rho_[v]);
-  Face worst;
-  for (Face f : mesh_.faces()) {
-    const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0);
-    const Index i0 = mesh_.to_vertex(h0).idx(), i1 = mesh_.to_vertex(h1).idx(),
-                i2 = mesh_.to_vertex(mesh_.next(h1)).idx();
-    const Vec3 &a = P[i0], &b = P[i1], &c = P[i2];
-    const double e0 = (b - c).squaredNorm(), e1 = (c - a).squaredNorm(), e2 = (a - b).squaredNorm();
-    const double lo01 = std::min(e0, e1), hi01 = std::max(e0, e1);
-    const double x = std::min(lo01, e2), y = std::max(lo01, e2), z = hi01;
-    const double N = y + z - x, N2 = N * N, D = y * z;
-    if (N2 * worst_D > worst_N2 * D) worst_N2 = N2, worst_D = D, worst = f;
-    if (low && N2 > low_factor * D)
-      low->push_back(f);
-    else if (N2 * high_D > high_N2 * D)
-      high_N2 = N2, high_D = D, *worst_high = f;
-    if (kappa) {
-      // R² = e0 e1 e2 / (4 |(b - a) x (c - a)|²) against kappa² rho_min²;
-      // the ratio only for triangles beyond the current kappa.
-      const double n4 = 4 * (b - a).cross(c - a).squaredNorm();
-      const double num = x * y * z;
-      if (!(num > n4 * kappa2 * rho_floor * rho_floor)) continue;
-      const double rmin = std::min(std::min(rho_[Vertex(i0)], rho_[Vertex(i1)]), rho_[Vertex(i2)]);
-      if (num > n4 * kappa2 * rmin * rmin)
-        kappa2 = n4 > 0 ? num / (n4 * rmin * rmin) : std::numeric_limits<double>::infinity();
+  // Each block of consecutive faces is scanned on its own and the blocks'
+  // results are joined in order, the way one loop would meet them: the
+  // result is the same for every thread count.
+  struct Block {
+    double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = 0;
+    Face worst, high;
+    std::vector<Face> low;
+  };
+  const std::size_t n = mesh_.faces_size(), blocks = (n + kScanGrain - 1) / kScanGrain;
+  std::vector<Block> part(blocks);
+  parallel_for(blocks, threads_, 1, [&](std::size_t k) {
+    Block& r = part[k];
+    r.kappa2 = CQ2;
+    for (std::size_t i = k * kScanGrain, end = std::min(n, i + kScanGrain); i < end; ++i) {
+      const Face f(static_cast<Index>(i));
+      if (mesh_.is_deleted(f)) continue;
+      const Halfedge h0 = mesh_.halfedge(f), h1 = mesh_.next(h0);
+      const Index i0 = mesh_.to_vertex(h0).idx(), i1 = mesh_.to_vertex(h1).idx(),
+                  i2 = mesh_.to_vertex(mesh_.next(h1)).idx();
+      const Vec3 &a = P[i0], &b = P[i1], &c = P[i2];
+      const double e0 = (b - c).squaredNorm(), e1 = (c - a).squaredNorm(), e2 = (a - b).squaredNorm();
+      const double lo01 = std::min(e0, e1), hi01 = std::max(e0, e1);
+      const double x = std::min(lo01, e2), y = std::max(lo01, e2), z = hi01;
+      const double N = y + z - x, N2 = N * N, D = y * z;
+      if (N2 * r.worst_D > r.worst_N2 * D) r.worst_N2 = N2, r.worst_D = D, r.worst = f;
+      if (low && N2 > low_factor * D)
+        r.low.push_back(f);
+      else if (N2 * r.high_D > r.high_N2 * D)
+        r.high_N2 = N2, r.high_D = D, r.high = f;
+      if (kappa) {
+        // R² = e0 e1 e2 / (4 |(b - a) x (c - a)|²) against kappa² rho_min²;
+        // the ratio only for triangles beyond the block's kappa so far.
+        const double n4 = 4 * (b - a).cross(c - a).squaredNorm();
+        const double num = x * y * z;
+        if (!(num > n4 * r.kappa2 * rho_floor * rho_floor)) continue;
+        const double rmin = std::min(std::min(rho_[Vertex(i0)], rho_[Vertex(i1)]), rho_[Vertex(i2)]);
+        if (num > n4 * r.kappa2 * rmin * rmin)
+          r.kappa2 = n4 > 0 ? num / (n4 * rmin * rmin) : std::numeric_limits<double>::infinity();
+      }
     }
+  });
+  double worst_N2 = -1, worst_D = 1, high_N2 = -1, high_D = 1, kappa2 = CQ2;
+  Face worst;
+  for (Block& r : part) {
+    if (r.worst.is_valid() && r.worst_N2 * worst_D > worst_N2 * r.worst_D)
+      worst_N2 = r.worst_N2, worst_D = r.worst_D, worst = r.worst;
+    if (r.high.is_valid() && r.high_N2 * high_D > high_N2 * r.high_D)
+      high_N2 = r.high_N2, high_D = r.high_D, *worst_high = r.high;
+    if (low) low->insert(low->end(), r.low.begin(), r.low.end());
+    kappa2 = std::max(kappa2, r.kappa2);
   }
   if (kappa) *kappa = std::sqrt(kappa2) * (1 + kBoundPad);
   return worst.is_valid() ? face_min_angle(worst) / kDegree : 0.0;
@@ -729,7 +758,7 @@ AngleImprovementStats AngleImprover::run() {
 
 AngleImprovementStats improve_angles(const skin::SkinSurface& skin, SurfaceMesh& mesh,
                                      const AngleImprovementOptions& opt, const skin::RunContext& run) {
-  AngleImprover a(skin, mesh, opt, run.size);
+  AngleImprover a(skin, mesh, opt, run.size, thread_count(run.threads));
   return a.run();
 }
 

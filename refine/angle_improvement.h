@@ -101,7 +101,9 @@ struct AngleImprovementStats {
 /// run after refine_mesh(): a vertex whose star breaks one of the conditions
 /// already is not moved (every condition is required after the move), so the
 /// pass never adds a violation; C and Q of [L] and [U] come from run.size.
-/// Deterministic (no hashing order, no threads).
+/// Deterministic (no hashing order): the scans of every triangle run on
+/// run.threads threads and give the same lists for every count
+/// (core/parallel.h); the moves are made one at a time, in order.
 /// Throws nothing but std::bad_alloc and GeometryError from point location.
 AngleImprovementStats improve_angles(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
                                      const AngleImprovementOptions& opt = {}, const skin::RunContext& run = {});
