@@ -571,6 +571,9 @@ std::vector<SlabOutcome> sweep_slabs(const skin::SkinSurface& skin, const morse:
 /// whose band does not glue or whose seam is open or pinched, and why.
 struct Glued {
   std::optional<SweepResult> mesh;
+  /// The faces at the seams: the bands' triangles and the triangles around
+  /// their corners (DecomposedSweep::seams).
+  std::vector<geometry::Face> seams;
   std::vector<SlabCost> slabs;  ///< per slab, bottom to top
   std::size_t failed = 0;
   std::string why;
@@ -644,6 +647,10 @@ Glued glue(std::map<SlabKey, SlabOutcome>& swept, const std::vector<SlabKey>& ke
       out.why = os.str();
       return out;
     }
+  for (const auto& [v, k] : seam)
+    for (geometry::Face f : mesh.faces(v)) out.seams.push_back(f);
+  std::sort(out.seams.begin(), out.seams.end(), [](geometry::Face a, geometry::Face b) { return a.idx() < b.idx(); });
+  out.seams.erase(std::unique(out.seams.begin(), out.seams.end()), out.seams.end());
   out.mesh = std::move(glued);
   return out;
 }
@@ -782,6 +789,7 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       out.cut_balls.push_back(balls);
     }
     out.costs.glue = seconds_since(glue_start);
+    if (opt.refine_regions) out.seams = std::move(glued.seams);
     return std::move(glued.mesh);
   }
 }

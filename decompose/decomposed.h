@@ -180,6 +180,11 @@ struct DecomposedSweep {
   /// of the glued regions (rounds: the most; refusals and violations left
   /// are the region pass's, which the pass over the glued mesh takes up).
   refine::RefineStats region_refinement;
+  /// With DecompositionOptions::refine_regions and regions glued: the faces
+  /// of the glued mesh at the seams (the bands' triangles and the triangles
+  /// around their corners, increasing), where refine::refine_seams() starts;
+  /// away from them the regions' pass refined the mesh. Empty otherwise.
+  std::vector<geometry::Face> seams;
   /// The costs, empty for one sweep (no cut kept, one group of components).
   DecompositionCosts costs;
   /// Why the groups of components were swept as one after all (a group's

@@ -291,8 +291,12 @@ Stats per_group(const std::vector<std::size_t>& order, int threads, Run&& run, A
 /// every thread for the refinement's scans. Neither choice changes the mesh,
 /// which depends on the parts only. The observers of whole stages see the
 /// mesh when there is one part (they make the sweep glue its groups).
+/// `seams`: per part, the faces where its refinement starts
+/// (refine::refine_seams(): a part glued from regions refined already), or
+/// empty for the whole part (refine::refine_mesh()); empty: every part whole.
 void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
-                  StageClock& clock, std::vector<geometry::SurfaceMesh*> parts, MeshResult& res) {
+                  StageClock& clock, std::vector<geometry::SurfaceMesh*> parts,
+                  const std::vector<std::vector<geometry::Face>>& seams, MeshResult& res) {
   const int threads = run.threads;
   const std::size_t n = parts.size();
   std::size_t faces = 0, largest = 0;
@@ -320,7 +324,12 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, con
     clock.begin("refine");
     const skin::RunContext part_run = run.with_threads(inner);
     res.refinement = per_group<refine::RefineStats>(
-        order, outer, [&](std::size_t g) { return refine::refine_mesh(skin, *parts[g], options.refinement, part_run); },
+        order, outer,
+        [&](std::size_t g) {
+          return g < seams.size() && !seams[g].empty()
+                     ? refine::refine_seams(skin, *parts[g], seams[g], options.refinement, part_run)
+                     : refine::refine_mesh(skin, *parts[g], options.refinement, part_run);
+        },
         refine::add_refine_stats, release);
     stage_end("refine");
     clock.end("refine");
@@ -414,9 +423,13 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   // 4, 4b and the output (§4.3), over the parts: the glued mesh, or each
   // group of components.
   std::vector<geometry::SurfaceMesh*> parts;
-  if (decomposed.groups.empty()) parts.push_back(&swept.mesh);
+  std::vector<std::vector<geometry::Face>> seams;
+  if (decomposed.groups.empty()) {
+    parts.push_back(&swept.mesh);
+    seams.push_back(std::move(decomposed.seams));
+  }
   for (front::SweepResult& g : decomposed.groups) parts.push_back(&g.mesh);
-  finish_parts(skin, options, run, clock, std::move(parts), res);
+  finish_parts(skin, options, run, clock, std::move(parts), seams, res);
   // The regions' operations count with the glued mesh's (their refusals
   // and violations left are the pass over the glued mesh's to take up).
   res.refinement.flips += decomposed.region_refinement.flips;

@@ -35,8 +35,9 @@ constexpr std::size_t kVerdictGrain = 512;
 
 class Refiner {
  public:
-  Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt, const skin::RunContext& run)
-      : skin_(skin), mesh_(mesh), opt_(opt), run_(run) {
+  Refiner(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt, const skin::RunContext& run,
+          const std::vector<Face>* seeds)
+      : skin_(skin), mesh_(mesh), opt_(opt), run_(run), seeds_(seeds) {
     cell_ = mesh_.vertex_property(skin::kVertexCell, kInvalidIndex);
     inserted_ = mesh_.vertex_property(skin::kVertexInserted, 0);
     for (Vertex v : mesh_.vertices())
@@ -89,6 +90,9 @@ class Refiner {
   /// flips_locally(), and the new edge does not exist yet (is_flip_ok()).
   bool should_flip(Edge e) const;
   void lawson();
+  /// The rounds of contraction and insertion passes, from the violators
+  /// `short_edges` and `big` (every element's verdict if `full`).
+  RefineStats rounds(std::vector<Edge> short_edges, std::vector<Face> big, bool full);
   void push_edges_around(Vertex v);
   bool violates_L(Edge e) const {
     const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
@@ -121,6 +125,9 @@ class Refiner {
   SurfaceMesh& mesh_;
   const RefineOptions& opt_;
   const skin::RunContext& run_;
+  /// refine_seams(): the faces where the flips and the first scans start;
+  /// null: every element.
+  const std::vector<Face>* seeds_;
   geometry::VertexProperty<Index> cell_;
   skin::VertexNormals normal_;  ///< from the cell
   /// rho per vertex index (Å), the values skin::VertexRhos gives (0 at
@@ -424,6 +431,24 @@ std::vector<Face> Refiner::scan_U(const std::vector<Face>& prev, bool full) {
 }
 
 RefineStats Refiner::run() {
+  std::vector<Edge> short_edges;
+  std::vector<Face> big;
+  if (seeds_) {
+    // refine_seams(): the seeds' edges are the only suspects, and the first
+    // scans test the seeds and what the flips touched.
+    for (Face f : *seeds_) {
+      if (mesh_.is_deleted(f)) continue;
+      big.push_back(f);
+      for (Halfedge h : mesh_.halfedges(f)) short_edges.push_back(mesh_.edge(h));
+    }
+    std::sort(big.begin(), big.end(), [](Face a, Face b) { return a.idx() < b.idx(); });
+    big.erase(std::unique(big.begin(), big.end()), big.end());
+    std::sort(short_edges.begin(), short_edges.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+    short_edges.erase(std::unique(short_edges.begin(), short_edges.end()), short_edges.end());
+    stack_.assign(short_edges.begin(), short_edges.end());
+    lawson();
+    return rounds(std::move(short_edges), std::move(big), false);
+  }
   // The first Lawson pass. An edge flips only if the apex across it lies in
   // the surface ball of one of its faces (should_flip), which needs the
   // filter to fail first: each face's filter is set up once for the apexes
@@ -471,11 +496,16 @@ RefineStats Refiner::run() {
   }
   lawson();
   std::vector<std::uint8_t>().swap(first_verdict_);
-  // The first scans read every element; later ones the previous violators
-  // and what changed since (touched_edges_, touched_faces_): the same lists.
-  std::vector<Edge> short_edges;
-  std::vector<Face> big;
-  bool full = true;
+  return rounds(std::move(short_edges), std::move(big), true);
+}
+
+RefineStats Refiner::rounds(std::vector<Edge> short_edges, std::vector<Face> big, bool full) {
+  // The first scans read every element (full) or the given lists; later ones
+  // the previous violators and what changed since (touched_edges_,
+  // touched_faces_): the same lists. Started from seeds, the rounds end with
+  // one scan of every element, which takes up any violation the seeds did
+  // not reach, so the result holds for the whole mesh either way.
+  bool verified = full;
   for (int round = 0; round < opt_.max_rounds; ++round) {
     ++stats_.rounds;
     bool changed = false;
@@ -486,7 +516,10 @@ RefineStats Refiner::run() {
     full = false;
     for (Face f : big)
       if (!mesh_.is_deleted(f) && violates_U(f) && insert(f)) changed = true;
-    if (!changed) break;
+    if (!changed) {
+      if (verified) break;
+      verified = full = true;
+    }
   }
   stats_.L_left = scan_L(short_edges, full).size();
   stats_.U_left = scan_U(big, full).size();
@@ -519,7 +552,14 @@ const char* operation_name(RefineOperation op) {
 RefineStats refine_mesh(const skin::SkinSurface& skin, SurfaceMesh& mesh, const RefineOptions& opt,
                         const skin::RunContext& run) {
   const skin::RunContext resolved = run.with_threads(thread_count(run.threads));
-  Refiner r(skin, mesh, opt, resolved);
+  Refiner r(skin, mesh, opt, resolved, nullptr);
+  return r.run();
+}
+
+RefineStats refine_seams(const skin::SkinSurface& skin, SurfaceMesh& mesh, const std::vector<Face>& seeds,
+                         const RefineOptions& opt, const skin::RunContext& run) {
+  const skin::RunContext resolved = run.with_threads(thread_count(run.threads));
+  Refiner r(skin, mesh, opt, resolved, &seeds);
   return r.run();
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "geometry/mesh/surface_mesh.h"
 #include "skin/run_context.h"
@@ -109,5 +110,20 @@ void add_refine_stats(RefineStats& a, const RefineStats& b);
 /// Elements are deleted, not compacted: call garbage_collection() afterwards.
 RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, const RefineOptions& opt = {},
                         const skin::RunContext& run = {});
+
+/// refine_mesh() on a mesh whose elements are refined already except near
+/// `seeds` (faces of `mesh`): the regions of decompose/, each refined with
+/// its boundary kept, glued by bands whose triangles and the triangles around
+/// their corners are the seeds. The Lawson pass starts from the seeds' edges
+/// only, the first [L] and [U] scans test the seeds' edges and faces, and
+/// the rounds end with one scan of every element (on run.threads threads),
+/// whose violators are taken up as refine_mesh() would: [L] and [U] hold on
+/// the whole mesh as far as refine_mesh() makes them hold. An edge that is
+/// not locally restricted Delaunay away from the seeds and every change is
+/// not looked for (the regions' pass flipped them). Same preconditions,
+/// stats and errors as refine_mesh().
+RefineStats refine_seams(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
+                         const std::vector<geometry::Face>& seeds, const RefineOptions& opt = {},
+                         const skin::RunContext& run = {});
 
 }  // namespace skinmesh::refine

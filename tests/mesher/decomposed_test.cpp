@@ -420,6 +420,21 @@ TEST_CASE("decomposed sweep: the regions are refined on the threads before the g
   CHECK(seams.L_left + seams.U_left == 0);
   glued.garbage_collection();
   test::check_every_property(verify::check_skin_mesh(skin, glued.to_indexed_mesh()));
+  // The same pass started from the seams (DecomposedSweep::seams: the
+  // bands' triangles and those around their corners) finds the same work:
+  // away from the seams the regions left nothing to flip or refine.
+  REQUIRE(!one.seams.empty());
+  CHECK(one.seams.size() < one.sweep.mesh.n_faces() / 5);
+  geometry::SurfaceMesh from_seams = one.sweep.mesh;
+  const refine::RefineStats seeded = refine::refine_seams(skin, from_seams, one.seams, {}, run);
+  CHECK(seeded.L_left + seeded.U_left == 0);
+  CHECK(seeded.flips == seams.flips);
+  CHECK(seeded.insertions == seams.insertions);
+  CHECK(seeded.contractions == seams.contractions);
+  from_seams.garbage_collection();
+  const geometry::IndexedMesh s = from_seams.to_indexed_mesh(), g = glued.to_indexed_mesh();
+  CHECK(s.positions == g.positions);
+  CHECK(s.triangles == g.triangles);
   for (int threads : {2, 3}) {
     CAPTURE(threads);
     run.threads = threads;

@@ -179,6 +179,35 @@ TEST_CASE("refinement: the mesh is the same for every thread count") {
   test::check_every_property(verify::check_skin_mesh(skin, out[0]));
 }
 
+TEST_CASE("refinement from seams: violations away from the seeds are taken up by the closing scan") {
+  // refine_seams() flips and scans from its seeds only, then scans every
+  // element once: on a coarse icosphere, whose every triangle violates [U],
+  // one seed triangle must still give a mesh with every property, and a
+  // jittered sphere seeded at one triangle is flipped to Delaunay and
+  // refined as far as the scans reach.
+  const skin::SkinSurface skin = one_atom();
+  geometry::IndexedMesh coarse = test::sphere(1);
+  for (Vec3& p : coarse.positions) p *= kRadius;
+  geometry::SurfaceMesh mesh = geometry::SurfaceMesh::from_indexed_mesh(coarse);
+  const std::vector<geometry::Face> seeds{geometry::Face(0)};
+  const refine::RefineStats st = refine::refine_seams(skin, mesh, seeds);
+  CHECK(st.insertions > 40);  // far more triangles than the seed's neighbours
+  CHECK(st.L_left == 0);
+  CHECK(st.U_left == 0);
+  mesh.garbage_collection();
+  const auto rep = verify::check_skin_mesh(skin, mesh.to_indexed_mesh());
+  test::check_every_property(rep);
+  CHECK(rep.mesh.num_triangles > 80);
+
+  // Seeded with every triangle, a refined mesh is left as it is.
+  geometry::SurfaceMesh again = mesh;
+  std::vector<geometry::Face> all;
+  for (geometry::Face f : again.faces()) all.push_back(f);
+  const refine::RefineStats none = refine::refine_seams(skin, again, all);
+  CHECK(none.flips + none.insertions + none.contractions == 0);
+  CHECK(again.n_faces() == mesh.n_faces());
+}
+
 TEST_CASE("refinement: an open mesh keeps its boundary (a region refined before the glue)") {
   // decompose/ refines each region's mesh before the bands and the glue:
   // its boundary loops are shared with the band and the region next to it,
