@@ -118,9 +118,9 @@ RefineStats refine_mesh(const skin::SkinSurface& skin, geometry::SurfaceMesh& me
 /// only, the first [L] and [U] scans test the seeds' edges and faces, and
 /// the rounds end with one scan of every element (on run.threads threads),
 /// whose violators are taken up as refine_mesh() would: [L] and [U] hold on
-/// the whole mesh as far as refine_mesh() makes them hold. An edge that is
-/// not locally restricted Delaunay away from the seeds and every change is
-/// not looked for (the regions' pass flipped them). Same preconditions,
+/// the whole mesh as far as refine_mesh() makes them hold. Edges away from
+/// the seeds and from every change are not tested for the restricted
+/// Delaunay property (the regions' pass flipped them). Same preconditions,
 /// stats and errors as refine_mesh().
 RefineStats refine_seams(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh,
                          const std::vector<geometry::Face>& seeds, const RefineOptions& opt = {},
