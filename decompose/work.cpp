@@ -119,9 +119,15 @@ WorkProfile work_profile(const skin::SkinSurface& skin, const Vec3& e, int threa
     std::vector<std::uint64_t> h(static_cast<std::size_t>(bins), 0);
     std::vector<Index> tets, star;
     std::vector<std::pair<Vec3, double>> planes;  // inside: n·d <= offset
+    // Counts the directions d inside every plane at the height of focus + r d.
+    const auto sample = [&](const Vec3& focus, double r) {
+      for (const Vec3& d : dirs)
+        if (std::all_of(planes.begin(), planes.end(), [&](const auto& pl) { return pl.first.dot(d) <= pl.second; }))
+          ++h[bin_of(e.dot(focus + r * d))];
+    };
     if (b < atom_blocks) {
-      for (Index v = static_cast<Index>(b * kBlock), end = static_cast<Index>(std::min<std::size_t>(
-                                                         n_points, (b + 1) * kBlock));
+      for (Index v = static_cast<Index>(b * kBlock),
+                 end = static_cast<Index>(std::min<std::size_t>(n_points, (b + 1) * kBlock));
            v < end; ++v) {
         if (!rt.is_vertex(v)) continue;
         const geometry::WeightedPoint& a = rt.point(v);
@@ -136,15 +142,7 @@ WorkProfile work_profile(const skin::SkinSurface& skin, const Vec3& e, int threa
           const Vec3 d = q.z - a.z;
           planes.emplace_back(r * d, (d.squaredNorm() + a.w - q.w) / 4);
         }
-        for (const Vec3& dir : dirs) {
-          bool inside = true;
-          for (const auto& [n, offset] : planes)
-            if (n.dot(dir) > offset) {
-              inside = false;
-              break;
-            }
-          if (inside) ++h[bin_of(e.dot(a.z + r * dir))];
-        }
+        sample(a.z, r);
       }
     } else {
       const std::size_t first = (b - atom_blocks) * kBlock;
@@ -172,20 +170,12 @@ WorkProfile work_profile(const skin::SkinSurface& skin, const Vec3& e, int threa
         // focus) iff focus + 2r·dir is in the tetrahedron.
         planes.clear();
         for (int i = 0; i < 4; ++i) {
-          const Vec3& a = z[(i + 1) % 4];
-          Vec3 n = (z[(i + 2) % 4] - a).cross(z[(i + 3) % 4] - a);
-          if (n.dot(z[i] - a) > 0) n = -n;  // outward: away from the opposite vertex
-          planes.emplace_back(2 * r * n, n.dot(a - focus));
+          const Vec3& o = z[(i + 1) % 4];
+          Vec3 n = (z[(i + 2) % 4] - o).cross(z[(i + 3) % 4] - o);
+          if (n.dot(z[i] - o) > 0) n = -n;  // outward: away from the opposite vertex
+          planes.emplace_back(2 * r * n, n.dot(o - focus));
         }
-        for (const Vec3& dir : dirs) {
-          bool inside = true;
-          for (const auto& [n, offset] : planes)
-            if (n.dot(dir) > offset) {
-              inside = false;
-              break;
-            }
-          if (inside) ++h[bin_of(e.dot(focus + r * dir))];
-        }
+        sample(focus, r);
       }
     }
     const std::lock_guard<std::mutex> lock(merge);

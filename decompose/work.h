@@ -20,7 +20,7 @@ namespace skinmesh::decompose {
 /// The hyperboloid patches (the necks) are left out: their pieces are
 /// bounded by Voronoi facets the estimate would have to build.
 struct WorkProfile {
-  double lo = 0;  ///< the lowest bin's lower height (Å)
+  double lo = 0;   ///< the lowest bin's lower height (Å)
   double bin = 1;  ///< the bins' width (Å)
   /// Per bin, the sampled directions of patch points in it (each worth
   /// 4 pi / samples_per_patch of solid angle); integers, so the profile does

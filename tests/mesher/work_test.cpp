@@ -47,7 +47,8 @@ TEST_CASE("predicted work: its shares by height follow the mesh's triangles, for
     const char* file;
     double probe;
   };
-  for (const Case& c : {Case{"crambin_1crn.pdb", 1.4}, Case{"crambin_1crn.pdb", 0.0}, Case{"src_kinase_2src.pdb", 1.4}}) {
+  for (const Case& c :
+       {Case{"crambin_1crn.pdb", 1.4}, Case{"crambin_1crn.pdb", 0.0}, Case{"src_kinase_2src.pdb", 1.4}}) {
     CAPTURE(c.file);
     CAPTURE(c.probe);
     const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/" + c.file);
