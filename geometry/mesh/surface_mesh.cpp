@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/binary_io.h"
 #include "core/errors.h"
 
 namespace skinmesh::geometry {
@@ -916,6 +917,118 @@ void SurfaceMesh::check_consistency() const {
     std::sort(ring.begin(), ring.end());
     if (std::adjacent_find(ring.begin(), ring.end()) != ring.end()) fail(vs() + " has two edges to the same vertex");
   }
+}
+
+// ---------------------------------------------------------------------------
+// SurfaceMesh Binary Files
+// ---------------------------------------------------------------------------
+
+namespace {
+
+/// The first bytes of a binary mesh, and a value whose bytes say the byte order.
+constexpr char kBinaryMagic[8] = {'s', 'k', 'm', 'e', 's', 'h', 'M', '1'};
+constexpr std::uint32_t kByteOrder = 0x01020304;
+
+void write_container(std::ostream& os, const detail::PropertyContainer& c) {
+  put_raw<std::uint64_t>(os, c.size());
+  put_raw<std::uint64_t>(os, c.arrays().size());
+  for (const auto& a : c.arrays()) {
+    put_string(os, a->name());
+    put_raw<std::uint32_t>(os, a->tag());
+    put_raw<std::uint64_t>(os, a->value_size());
+    a->write_raw(os);
+  }
+}
+
+void read_container(std::istream& is, detail::PropertyContainer& c, const std::string& file) {
+  const std::uint64_t n = get_count(is, file);
+  const std::uint64_t arrays = get_count(is, file, 1024);
+  std::vector<const detail::BasePropertyArray*> read;
+  for (std::uint64_t i = 0; i < arrays; ++i) {
+    const std::string name = get_string(is, file);
+    const auto tag = get_raw<std::uint32_t>(is, file);
+    const auto size = get_raw<std::uint64_t>(is, file);
+    detail::BasePropertyArray* a = c.find(name);
+    if (a == nullptr) a = c.add_of_tag(name, tag);
+    if (a == nullptr || a->tag() != tag || a->value_size() != size)
+      throw InputError(file, 0, "the mesh property '" + name + "' has a type this reader does not know");
+    a->read_raw(is, file);
+    if (a->size() != n)
+      throw InputError(file, 0, "the mesh property '" + name + "' has the wrong count (a damaged file)");
+    read.push_back(a);
+  }
+  // An array the file does not hold keeps its default values.
+  for (const auto& a : c.arrays())
+    if (std::find(read.begin(), read.end(), a.get()) == read.end()) a->resize(n);
+  c.set_size(n);
+}
+
+}  // namespace
+
+namespace detail {
+
+BasePropertyArray* PropertyContainer::add_of_tag(const std::string& name, std::uint32_t tag) {
+  switch (tag) {
+    case 1:
+      return add<bool>(name, false);
+    case 2:
+      return add<std::uint8_t>(name, 0);
+    case 3:
+      return add<std::int8_t>(name, 0);
+    case 4:
+      return add<std::uint16_t>(name, 0);
+    case 5:
+      return add<std::int16_t>(name, 0);
+    case 6:
+      return add<std::uint32_t>(name, 0);
+    case 7:
+      return add<std::int32_t>(name, 0);
+    case 8:
+      return add<std::uint64_t>(name, 0);
+    case 9:
+      return add<std::int64_t>(name, 0);
+    case 10:
+      return add<float>(name, 0.0f);
+    case 11:
+      return add<double>(name, 0.0);
+    case 12:
+      return add<Vec3>(name, Vec3::Zero());
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace detail
+
+void SurfaceMesh::write_binary(std::ostream& os) const {
+  os.write(kBinaryMagic, sizeof kBinaryMagic);
+  put_raw(os, kByteOrder);
+  for (const detail::PropertyContainer* c : {&vprops_, &hprops_, &eprops_, &fprops_}) write_container(os, *c);
+  put_raw<std::uint64_t>(os, deleted_vertices_);
+  put_raw<std::uint64_t>(os, deleted_edges_);
+  put_raw<std::uint64_t>(os, deleted_faces_);
+}
+
+SurfaceMesh SurfaceMesh::read_binary(std::istream& is, const std::string& file) {
+  char magic[sizeof kBinaryMagic];
+  get_bytes(is, magic, sizeof magic, file);
+  if (!std::equal(magic, magic + sizeof magic, kBinaryMagic))
+    throw InputError(file, 0, "not a mesh written by skinmesh (no binary mesh marker)");
+  if (get_raw<std::uint32_t>(is, file) != kByteOrder)
+    throw InputError(file, 0, "the mesh was written on a machine of the other byte order");
+  SurfaceMesh m;
+  for (detail::PropertyContainer* c : {&m.vprops_, &m.hprops_, &m.eprops_, &m.fprops_}) read_container(is, *c, file);
+  m.deleted_vertices_ = get_count(is, file, m.vprops_.size());
+  m.deleted_edges_ = get_count(is, file, m.eprops_.size());
+  m.deleted_faces_ = get_count(is, file, m.fprops_.size());
+  if (m.hprops_.size() != 2 * m.eprops_.size())
+    throw InputError(file, 0, "the mesh's half-edges are not twice its edges (a damaged file)");
+  try {
+    m.check_consistency();
+  } catch (const std::logic_error& e) {
+    throw InputError(file, 0, std::string("the mesh read is not consistent (a damaged file): ") + e.what());
+  }
+  return m;
 }
 
 }  // namespace skinmesh::geometry

@@ -8,10 +8,12 @@
 #include <array>
 #include <compare>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
-#include <iosfwd>
+#include <istream>
 #include <iterator>
 #include <memory>
+#include <ostream>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -20,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/binary_io.h"
 #include "core/growable_array.h"
 #include "core/types.h"
 #include "geometry/mesh/indexed_mesh.h"
@@ -109,6 +112,43 @@ struct CompactionMap {
 };
 
 /// Type-erased array of per-element values, owned by a PropertyContainer.
+/// The value type of a property as SurfaceMesh::write_binary() names it:
+/// 1–11 the arithmetic types (bool, the fixed-width integers, float,
+/// double), 12 Vec3, 255 any other type whose bytes are its value (an
+/// opaque struct: readable only into an array that exists already with
+/// the same size of value), 0 a type that cannot be written.
+template <class T>
+constexpr std::uint32_t raw_tag() {
+  if constexpr (std::is_same_v<T, bool>)
+    return 1;
+  else if constexpr (std::is_same_v<T, std::uint8_t>)
+    return 2;
+  else if constexpr (std::is_same_v<T, std::int8_t>)
+    return 3;
+  else if constexpr (std::is_same_v<T, std::uint16_t>)
+    return 4;
+  else if constexpr (std::is_same_v<T, std::int16_t>)
+    return 5;
+  else if constexpr (std::is_same_v<T, std::uint32_t>)
+    return 6;
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return 7;
+  else if constexpr (std::is_same_v<T, std::uint64_t>)
+    return 8;
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return 9;
+  else if constexpr (std::is_same_v<T, float>)
+    return 10;
+  else if constexpr (std::is_same_v<T, double>)
+    return 11;
+  else if constexpr (std::is_same_v<T, Vec3>)
+    return 12;
+  else if constexpr (kRelocatable<T> && std::is_trivially_destructible_v<T>)
+    return 255;
+  else
+    return 0;
+}
+
 class BasePropertyArray {
  public:
   explicit BasePropertyArray(std::string name) : name_(std::move(name)) {}
@@ -134,6 +174,19 @@ class BasePropertyArray {
   virtual std::unique_ptr<BasePropertyArray> clone() const = 0;
   /// The value type.
   virtual const std::type_info& type() const = 0;
+  /// The number of elements.
+  virtual std::size_t size() const = 0;
+  /// raw_tag() of the value type, and its size in bytes.
+  virtual std::uint32_t tag() const = 0;
+  virtual std::size_t value_size() const = 0;
+  /// Writes the default value, the element count and the elements, as
+  /// their bytes (SurfaceMesh::write_binary()). Throws std::invalid_argument
+  /// for a value type of tag 0.
+  virtual void write_raw(std::ostream& os) const = 0;
+  /// Reads what write_raw() wrote into this array (same tag and value size):
+  /// the default value and the elements, replacing both. Throws InputError
+  /// naming `file` if the stream ends first.
+  virtual void read_raw(std::istream& is, const std::string& file) = 0;
   /// The property's name.
   const std::string& name() const { return name_; }
 
@@ -183,6 +236,34 @@ class PropertyArray final : public BasePropertyArray {
   }
   std::unique_ptr<BasePropertyArray> clone() const override { return std::make_unique<PropertyArray<T>>(*this); }
   const std::type_info& type() const override { return typeid(T); }
+  std::size_t size() const override { return data_.size(); }
+  std::uint32_t tag() const override { return raw_tag<T>(); }
+  std::size_t value_size() const override { return sizeof(T); }
+  void write_raw(std::ostream& os) const override {
+    if constexpr (raw_tag<T>() != 0) {
+      os.write(reinterpret_cast<const char*>(&init_), sizeof(T));
+      const std::uint64_t n = data_.size();
+      os.write(reinterpret_cast<const char*>(&n), sizeof n);
+      os.write(reinterpret_cast<const char*>(data_.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    } else {
+      (void)os;
+      throw std::invalid_argument("SurfaceMesh: the property '" + name() + "' has a type that cannot be written");
+    }
+  }
+  void read_raw(std::istream& is, const std::string& file) override {
+    if constexpr (raw_tag<T>() != 0) {
+      get_bytes(is, &init_, sizeof(T), file);
+      std::uint64_t n = 0;
+      get_bytes(is, &n, sizeof n, file);
+      if (n > (std::uint64_t{1} << 40) / sizeof(T))
+        throw InputError(file, 0, "the property '" + name() + "' has too many elements (a damaged file)");
+      data_.resize(n, init_);
+      get_bytes(is, data_.data(), n * sizeof(T), file);
+    } else {
+      (void)is;
+      throw InputError(file, 0, "the property '" + name() + "' has a type that cannot be read");
+    }
+  }
   PropertyStorage<T>& data() { return data_; }
 
  private:
@@ -262,6 +343,13 @@ class PropertyContainer {
     for (auto& a : arrays_) a->compact(map);
     size_ = map.kept;
   }
+  /// The arrays, in the order they were added.
+  const std::vector<std::unique_ptr<BasePropertyArray>>& arrays() const { return arrays_; }
+  /// A new array of the arithmetic type or Vec3 of raw_tag() `tag`, named
+  /// `name`, added last; nullptr for any other tag.
+  BasePropertyArray* add_of_tag(const std::string& name, std::uint32_t tag);
+  /// The element count, once read_raw() has filled every array with it.
+  void set_size(std::size_t n) { size_ = n; }
 
  private:
   std::vector<std::unique_ptr<BasePropertyArray>> arrays_;
@@ -524,6 +612,20 @@ class SurfaceMesh {
   void release_faces();
   /// Reserve space for about nv vertices and nf faces (edges: nv + nf).
   void reserve(std::size_t nv, std::size_t nf);
+
+  /// Writes the mesh as it is held — every element, deleted ones included,
+  /// every property with its default value, in index order — for
+  /// read_binary() in another process of the same build: the mesh read back
+  /// has the same elements, links and values, so every operation on it does
+  /// what it would do on this one. Native byte order. Throws
+  /// std::invalid_argument for a property whose type cannot be written
+  /// (raw_tag() 0).
+  void write_binary(std::ostream& os) const;
+  /// The mesh write_binary() wrote. Properties of arithmetic types and Vec3
+  /// are made by name; other types only if they are built in. Throws
+  /// InputError naming `file` for a stream that is not such a mesh, is
+  /// truncated or was written with another byte order.
+  static SurfaceMesh read_binary(std::istream& is, const std::string& file);
 
   /// Build from an IndexedMesh (positions + triangles; normals/atom ignored).
   /// Vertex i of the result is positions[i] (unreferenced vertices become

@@ -1145,3 +1145,94 @@ TEST_CASE("SurfaceMesh: release_faces keeps the vertices, their positions and pr
 }
 
 }  // TEST_SUITE
+
+TEST_CASE("SurfaceMesh binary files: the mesh read back is the mesh written, element for element") {
+  // A mesh with deleted elements (a collapse, not compacted) and vertex
+  // properties of several types: every link, flag and value must come back,
+  // and the same operation on both meshes must give the same mesh.
+  SurfaceMesh m = build(skinmesh::test::sphere(1));
+  auto cell = m.add_vertex_property<Index>("v:cell", skinmesh::kInvalidIndex);
+  auto weight = m.add_vertex_property<double>("v:weight", -1.5);
+  auto normal = m.add_vertex_property<Vec3>("v:normal", Vec3(0, 0, 1));
+  auto mark = m.add_vertex_property<std::uint8_t>("v:mark", 7);
+  for (Vertex v : m.vertices()) {
+    cell[v] = 3 * v.idx() + 1;
+    weight[v] = 0.1 * v.idx() + 1e-17;
+    normal[v] = m.position(v).normalized();
+    mark[v] = static_cast<std::uint8_t>(v.idx() % 5);
+  }
+  Halfedge h(0);
+  while (!m.is_collapse_ok(h)) h = Halfedge(h.idx() + 1);
+  m.collapse(h);
+  REQUIRE(m.has_garbage());
+
+  std::stringstream file;
+  m.write_binary(file);
+  SurfaceMesh r = SurfaceMesh::read_binary(file, "mesh.bin");
+  r.check_consistency();
+  REQUIRE(r.vertices_size() == m.vertices_size());
+  REQUIRE(r.halfedges_size() == m.halfedges_size());
+  REQUIRE(r.faces_size() == m.faces_size());
+  CHECK(r.n_vertices() == m.n_vertices());
+  CHECK(r.n_edges() == m.n_edges());
+  CHECK(r.n_faces() == m.n_faces());
+  auto rcell = r.get_vertex_property<Index>("v:cell");
+  auto rweight = r.get_vertex_property<double>("v:weight");
+  auto rnormal = r.get_vertex_property<Vec3>("v:normal");
+  auto rmark = r.get_vertex_property<std::uint8_t>("v:mark");
+  REQUIRE((rcell && rweight && rnormal && rmark));
+  for (Vertex v : m.vertices()) {
+    CHECK(r.position(v) == m.position(v));
+    CHECK(r.halfedge(v) == m.halfedge(v));
+    CHECK(rcell[v] == cell[v]);
+    CHECK(rweight[v] == weight[v]);
+    CHECK(rnormal[v] == normal[v]);
+    CHECK(rmark[v] == mark[v]);
+  }
+  for (Index i = 0; i < m.vertices_size(); ++i) CHECK(r.is_deleted(Vertex(i)) == m.is_deleted(Vertex(i)));
+  for (Index i = 0; i < m.halfedges_size(); ++i) {
+    const Halfedge g(i);
+    CHECK(r.to_vertex(g) == m.to_vertex(g));
+    if (m.is_deleted(Edge(i / 2))) continue;
+    CHECK(r.next(g) == m.next(g));
+    CHECK(r.prev(g) == m.prev(g));
+    CHECK(r.face(g) == m.face(g));
+  }
+  for (Index i = 0; i < m.faces_size(); ++i) CHECK(r.is_deleted(Face(i)) == m.is_deleted(Face(i)));
+
+  // The defaults come back too: a vertex added to both gets the same values.
+  const Vertex a = m.add_vertex(Vec3(5, 5, 5)), b = r.add_vertex(Vec3(5, 5, 5));
+  REQUIRE(a == b);
+  CHECK(rcell[b] == cell[a]);
+  CHECK(rweight[b] == -1.5);
+  CHECK(rnormal[b] == Vec3(0, 0, 1));
+  CHECK(rmark[b] == 7);
+  // The same compaction on both: the same indexed mesh.
+  m.garbage_collection();
+  r.garbage_collection();
+  const IndexedMesh im = m.to_indexed_mesh(), ir = r.to_indexed_mesh();
+  CHECK(im.positions == ir.positions);
+  CHECK(im.triangles == ir.triangles);
+}
+
+TEST_CASE("SurfaceMesh binary files: a damaged or foreign stream is refused with the file named") {
+  SurfaceMesh m = build(skinmesh::test::icosahedron());
+  std::stringstream file;
+  m.write_binary(file);
+  const std::string bytes = file.str();
+  auto read = [](const std::string& s) {
+    std::stringstream is(s);
+    return SurfaceMesh::read_binary(is, "part.bin");
+  };
+  CHECK(read(bytes).n_faces() == 20);
+  for (std::size_t cut : {std::size_t{0}, std::size_t{5}, std::size_t{12}, bytes.size() / 2, bytes.size() - 1}) {
+    CAPTURE(cut);
+    CHECK_THROWS_AS(read(bytes.substr(0, cut)), skinmesh::InputError);
+  }
+  std::string foreign = bytes;
+  foreign[0] = 'X';
+  CHECK_THROWS_WITH_AS(read(foreign), doctest::Contains("part.bin"), skinmesh::InputError);
+  std::string swapped = bytes;
+  std::swap(swapped[8], swapped[11]);  // the byte-order marker
+  CHECK_THROWS_WITH_AS(read(swapped), doctest::Contains("byte order"), skinmesh::InputError);
+}
