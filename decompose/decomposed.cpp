@@ -152,16 +152,6 @@ void add_stats(SweepStats& a, const SweepStats& b) {
       a.most_departures = std::max(a.most_departures, b.most_departures);
 }
 
-/// One slab's sweep: its mesh, or why it failed.
-struct SlabOutcome {
-  std::optional<RegionResult> result;
-  std::string error;
-  bool at_lower_cut = false;  // the failure was the lower cut's (LowerCutError)
-  double seconds = 0;         // wall clock of the sweep_region() call and of the region's refinement
-  refine::RefineStats refinement;
-  bool refined = false;  // by refine_region()
-};
-
 /// Wall-clock seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -535,9 +525,7 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
 
 namespace {
 
-/// A slab by its cuts' indices (kNone: below the skin / above it).
-using SlabKey = std::pair<std::size_t, std::size_t>;
-constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+constexpr std::size_t kNone = kNoCut;
 
 /// The slabs between the kept cuts `live` (increasing), bottom to top.
 std::vector<SlabKey> slab_keys(const std::vector<std::size_t>& live) {
@@ -545,6 +533,35 @@ std::vector<SlabKey> slab_keys(const std::vector<std::size_t>& live) {
   for (std::size_t k = 0; k <= live.size(); ++k)
     keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
   return keys;
+}
+
+/// The region of the slab `key` of `cuts`. `below[c]` says which critical
+/// points lie below cut c (below_cut(); needed where a cut detours): a slab
+/// between detoured cuts owns the points between.
+Region slab_region(const morse::MorseSmaleComplex& ms, const std::vector<Cut>& cuts,
+                   const std::vector<std::vector<char>>& below, const SlabKey& key, const DecompositionOptions& opt) {
+  Region slab;
+  slab.park_factor = opt.park_factor;
+  slab.holds_before_parking = opt.detours;
+  const auto [lower, upper] = key;
+  if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
+  if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
+  if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
+    slab.owns.assign(ms.critical.size(), 1);
+    for (std::size_t p = 0; p < ms.critical.size(); ++p)
+      if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
+    if (upper != kNone) slab.upper_detours = cuts[upper].detours;
+  }
+  return slab;
+}
+
+/// Per cut, which critical points lie below it (below_cut()), where some cut
+/// detours; empty vectors otherwise.
+std::vector<std::vector<char>> below_cuts(const std::vector<Cut>& cuts, const morse::MorseSmaleComplex& ms) {
+  std::vector<std::vector<char>> below(cuts.size());
+  if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.detours.empty(); }))
+    for (std::size_t c = 0; c < cuts.size(); ++c) below[c] = below_cut(cuts[c], ms);
+  return below;
 }
 
 /// The slabs `todo` swept on up to run.threads threads, each into its own
@@ -558,18 +575,7 @@ std::vector<SlabOutcome> sweep_slabs(const skin::SkinSurface& skin, const morse:
   std::mutex progress_mutex;
   std::size_t finished = 0;
   parallel_for(todo.size(), run.threads, 1, [&](std::size_t i) {
-    Region slab;
-    slab.park_factor = opt.park_factor;
-    slab.holds_before_parking = opt.detours;
-    const auto [lower, upper] = todo[i];
-    if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
-    if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
-    if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
-      slab.owns.assign(ms.critical.size(), 1);
-      for (std::size_t p = 0; p < ms.critical.size(); ++p)
-        if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
-      if (upper != kNone) slab.upper_detours = cuts[upper].detours;
-    }
+    const Region slab = slab_region(ms, cuts, below, todo[i], opt);
     skin::RunContext slab_run = run.quiet();
     if (run.progress && run.threads == 1)
       slab_run.progress = [&run, i, &todo](const std::string& stage, double f) {
@@ -701,11 +707,11 @@ void refine_slabs(const skin::SkinSurface& skin, std::map<SlabKey, SlabOutcome>&
 /// next rung sweeps everything at once.
 std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                          const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                         const SweepOptions& sweep, const skin::RunContext& run, DecomposedSweep& out) {
+                                         const SweepOptions& sweep, const skin::RunContext& run,
+                                         std::map<SlabKey, SlabOutcome> swept, DecomposedSweep& out) {
   const std::size_t n_cuts = cuts.size();
-  // Every slab swept so far, kept when a cut is dropped since the slabs away
-  // from it stay as they were.
-  std::map<SlabKey, SlabOutcome> swept;
+  // `swept`: every slab swept so far (given ones first), kept when a cut is
+  // dropped since the slabs away from it stay as they were.
   std::vector<char> kept(n_cuts, 1);
   const auto drop = [&](std::size_t c, const std::string& why) {
     kept[c] = 0;
@@ -713,9 +719,7 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
   };
   // Per cut, which critical points lie below it (for the slabs' ownership
   // where cuts detour).
-  std::vector<std::vector<char>> below(n_cuts);
-  if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.detours.empty(); }))
-    for (std::size_t c = 0; c < n_cuts; ++c) below[c] = below_cut(cuts[c], ms);
+  const std::vector<std::vector<char>> below = below_cuts(cuts, ms);
 
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
@@ -814,9 +818,26 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
 
 }  // namespace
 
+std::vector<SlabKey> slabs_between(std::size_t cuts) {
+  std::vector<std::size_t> live(cuts);
+  std::iota(live.begin(), live.end(), std::size_t{0});
+  return slab_keys(live);
+}
+
+SlabOutcome sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const std::vector<Cut>& cuts,
+                       const SlabKey& key, const DecompositionOptions& opt, const SweepOptions& sweep,
+                       const skin::RunContext& run) {
+  if ((key.first != kNone && key.first >= cuts.size()) || (key.second != kNone && key.second >= cuts.size()) ||
+      (key.first != kNone && key.second != kNone && key.first >= key.second))
+    throw std::invalid_argument("sweep_slab: no slab between cuts " + std::to_string(key.first) + " and " +
+                                std::to_string(key.second) + " of " + std::to_string(cuts.size()));
+  return sweep_one(skin, ms, slab_region(ms, cuts, below_cuts(cuts, ms), key, opt), sweep, run.quiet());
+}
+
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const SweepOptions& sweep, const skin::RunContext& context) {
+                                 const SweepOptions& sweep, const skin::RunContext& context,
+                                 std::map<SlabKey, SlabOutcome> swept) {
   DecomposedSweep out;
   // The observers and the trace see one slab at a time, in order.
   const int threads = sweep.observer || sweep.trace ? 1 : thread_count(context.threads);
@@ -827,7 +848,7 @@ DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::Mor
   // it is the pipeline's. An observer or a trace replays one front in one
   // mesh: they get the one sweep of everything.
   if (!cuts.empty())
-    if (std::optional<SweepResult> regions = sweep_regions(skin, ms, cuts, opt, sweep, run, out)) {
+    if (std::optional<SweepResult> regions = sweep_regions(skin, ms, cuts, opt, sweep, run, std::move(swept), out)) {
       out.sweep = std::move(*regions);
       return out;
     }

@@ -9,7 +9,11 @@
 // Notes: papers/decompose/README.md
 #pragma once
 
+#include <limits>
+#include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "front/region.h"
@@ -207,6 +211,38 @@ struct DecomposedSweep {
   std::vector<front::SweepResult> groups;
 };
 
+/// A slab by the indices of its two cuts in the cuts given, increasing;
+/// kNoCut for the lowest slab's lower cut and the highest's upper one.
+using SlabKey = std::pair<std::size_t, std::size_t>;
+inline constexpr std::size_t kNoCut = std::numeric_limits<std::size_t>::max();
+
+/// The slabs between `cuts` cuts when every one is kept, bottom to top: slab
+/// k lies between cut k - 1 and cut k.
+std::vector<SlabKey> slabs_between(std::size_t cuts);
+
+/// One slab's sweep (front::sweep_region() of its region): its mesh, or why
+/// it failed.
+struct SlabOutcome {
+  std::optional<front::RegionResult> result;
+  /// The failure the decomposition answers by merging the slab with a
+  /// neighbour (a TopologyError, GeometryError or std::invalid_argument of
+  /// sweep_region()), or empty.
+  std::string error;
+  bool at_lower_cut = false;  ///< the failure was the lower cut's (front::LowerCutError)
+  double seconds = 0;         ///< wall clock of the sweep_region() call and of the region's refinement
+  refine::RefineStats refinement;
+  bool refined = false;  ///< by the region's refinement (DecompositionOptions::refine_regions)
+};
+
+/// The slab `key` of `cuts` swept as sweep_decomposed() sweeps it in its
+/// first round (before any cut is dropped), with every thread of `run`
+/// for it: the outcome another process hands to sweep_decomposed()
+/// (decompose/region_files.h). Throws std::invalid_argument if `key` is not
+/// a slab of `cuts`.
+SlabOutcome sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const std::vector<Cut>& cuts,
+                       const SlabKey& key, const DecompositionOptions& opt, const front::SweepOptions& sweep = {},
+                       const skin::RunContext& run = {});
+
 /// Meshes the skin slab by slab between `cuts` (increasing heights, as
 /// choose_cuts() returns them) and glues the slabs into one closed mesh: the
 /// cut samples are shared by the slab above (its lower boundary) and the
@@ -230,9 +266,12 @@ struct DecomposedSweep {
 /// whole skin components (DecompositionOptions::components); one sweep of
 /// everything (sweep_mesh()) when there is one group, a group's sweep fails
 /// or every cut was dropped. Throws what sweep_mesh() throws; the
-/// whole-skin fallback below the last rung is the pipeline's.
+/// whole-skin fallback below the last rung is the pipeline's. `swept`: slabs
+/// of `cuts` swept already (sweep_slab(), in other processes), taken instead
+/// of sweeping them; the mesh is the same as without them.
 DecomposedSweep sweep_decomposed(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                  const std::vector<Cut>& cuts, const DecompositionOptions& opt,
-                                 const front::SweepOptions& sweep = {}, const skin::RunContext& run = {});
+                                 const front::SweepOptions& sweep = {}, const skin::RunContext& run = {},
+                                 std::map<SlabKey, SlabOutcome> swept = {});
 
 }  // namespace skinmesh::decompose

@@ -10,10 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <future>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/errors.h"
 #include "core/parallel.h"
@@ -352,13 +354,12 @@ void finish_parts(const skin::SkinSurface& skin, const MeshOptions& options, con
   clock.end("output");
 }
 
-/// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
-/// refinement and the angle improvement; fills res.mesh.
-void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
-               StageClock& clock, MeshResult& res) {
-  // 2. Critical points and the Morse–Smale complex (§3), checked against the
-  //    Euler characteristic of the skin from its dual complex.
-  clock.begin("morse");
+/// Stage 2: the critical points and the Morse–Smale complex (§3), checked
+/// against the Euler characteristic of the skin from its dual complex
+/// (res.expected_topology, res.critical and res.live filled), the observer
+/// of the stage called.
+std::unique_ptr<morse::MorseSmaleComplex> morse_stage(const skin::SkinSurface& skin, const MeshOptions& options,
+                                                      const skin::RunContext& run, MeshResult& res) {
   // The dual complex (for the Euler characteristic and the check) needs only
   // the skin: with two threads it is computed beside the Morse–Smale complex,
   // on every thread as well (alone on one it outlasted the Morse–Smale
@@ -378,9 +379,50 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
                         " differs from the expected Euler characteristic " +
                         std::to_string(res.expected_topology.euler_skin()));
   if (options.observers.morse) options.observers.morse(skin, *ms);
+  return ms;
+}
+
+/// The slab files of options.region_files whose fingerprint is `fingerprint`
+/// and whose slabs are slabs of `cuts` cuts, by slab; InputError otherwise.
+std::map<decompose::SlabKey, decompose::SlabOutcome> given_regions(const MeshOptions& options,
+                                                                   std::uint64_t fingerprint, std::size_t cuts) {
+  std::map<decompose::SlabKey, decompose::SlabOutcome> swept;
+  const std::vector<decompose::SlabKey> slabs = decompose::slabs_between(cuts);
+  for (const std::string& path : options.region_files) {
+    decompose::RegionFile file = decompose::read_region(path);
+    if (file.fingerprint != fingerprint)
+      throw InputError(path, 0, "the region belongs to other points or options than the cuts file");
+    if (std::find(slabs.begin(), slabs.end(), file.slab) == slabs.end())
+      throw InputError(path, 0, "the region is no slab of the cuts file's cuts");
+    if (!swept.emplace(file.slab, std::move(file.outcome)).second)
+      throw InputError(path, 0, "a second file of the same slab");
+  }
+  return swept;
+}
+
+/// Stages 2–4b of Cheng & Shi: the Morse–Smale complex, the sweep, the local
+/// refinement and the angle improvement; fills res.mesh.
+void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const skin::RunContext& run,
+               StageClock& clock, MeshResult& res) {
+  // 2. Critical points and the Morse–Smale complex (§3).
+  clock.begin("morse");
+  std::unique_ptr<morse::MorseSmaleComplex> ms = morse_stage(skin, options, run, res);
   // The cut curves are traced from seeds on the integral lines: before
-  // their polylines go.
-  const std::vector<decompose::Cut> cuts = decompose::choose_cuts(skin, *ms, options.decomposition, options.sweep, run);
+  // their polylines go. A decomposition over processes reads them instead.
+  std::vector<decompose::Cut> cuts;
+  std::map<decompose::SlabKey, decompose::SlabOutcome> given;
+  if (options.cuts_file.empty()) {
+    cuts = decompose::choose_cuts(skin, *ms, options.decomposition, options.sweep, run);
+  } else {
+    decompose::CutsFile file = decompose::read_cuts(options.cuts_file);
+    const std::uint64_t fingerprint = decomposition_fingerprint(skin.points(), options);
+    if (file.fingerprint != fingerprint)
+      throw InputError(options.cuts_file, 0,
+                       "the cuts belong to other points or options than this run's (give `skinmesh cuts`, `region` and "
+                       "`mesh` the same input and options)");
+    cuts = std::move(file.cuts);
+    given = given_regions(options, fingerprint, cuts.size());
+  }
   // The sweep reads the critical points, their protecting spheres and which
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
@@ -408,7 +450,7 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   decomposition.refine_regions = options.refine && !options.observers.stage_end && !options.refinement.observer;
   decomposition.refinement = options.refinement;
   decompose::DecomposedSweep decomposed =
-      decompose::sweep_decomposed(skin, *ms, cuts, decomposition, options.sweep, run);
+      decompose::sweep_decomposed(skin, *ms, cuts, decomposition, options.sweep, run, std::move(given));
   front::SweepResult& swept = decomposed.sweep;
   res.sweep = swept.stats;
   res.slabs = decomposed.cut_heights.size() + 1;
@@ -588,6 +630,98 @@ MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options)
   if (!(options.probe_radius >= 0 && options.probe_radius <= skin::kMaxRadius))
     throw std::invalid_argument("the probe radius must lie in [0, " + std::to_string(skin::kMaxRadius) + "] Å");
   return mesh_skin(skin::weighted_points(molecule, options.probe_radius), options);
+}
+
+namespace {
+
+/// FNV-1a, 64 bits, over the bytes of values fed one by one.
+class Fingerprint {
+ public:
+  template <class T>
+  void add(const T& value) {
+    static_assert(std::is_arithmetic_v<T>, "Fingerprint: numbers only (a struct's padding has no value)");
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
+    for (std::size_t i = 0; i < sizeof(T); ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3ULL;
+  }
+  void add(const Vec3& v) { add(v.x()), add(v.y()), add(v.z()); }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+};
+
+/// `fn(skin, ms, run)` after stages 1 and 2 on the points in their local
+/// frame, as mesh_skin() runs them.
+template <class Fn>
+auto with_complex(const std::vector<geometry::WeightedPoint>& input_points, const MeshOptions& options, Fn&& fn) {
+  const Vec3 centre = skin::local_frame_centre(input_points);
+  const skin::RunContext run = run_context(options);
+  try {
+    const skin::SkinSurface skin(skin::translated(input_points, centre), run.threads);
+    skin::require_non_singular(skin, run.threads);
+    MeshResult res;
+    const std::unique_ptr<morse::MorseSmaleComplex> ms = morse_stage(skin, options, run, res);
+    return fn(skin, *ms, run);
+  } catch (const TopologyError& e) {
+    throw TopologyError(in_frame(e.what(), centre));
+  } catch (const GeometryError& e) {
+    throw GeometryError(in_frame(e.what(), centre));
+  }
+}
+
+}  // namespace
+
+std::uint64_t decomposition_fingerprint(const std::vector<geometry::WeightedPoint>& points,
+                                        const MeshOptions& options) {
+  Fingerprint f;
+  f.add(points.size());
+  for (const geometry::WeightedPoint& p : points) f.add(p.z), f.add(p.w);
+  f.add(options.height_direction);
+  f.add(options.size.C), f.add(options.size.Q);
+  const morse::MorseSmaleOptions& m = options.morse;
+  f.add(m.step_factor), f.add(m.protect_factor), f.add(m.cancel_factor), f.add(m.coincident_factor);
+  f.add(m.max_steps), f.add(m.start_offset), f.add(m.arrival_steps), f.add(m.max_step_halvings);
+  f.add(options.sweep.disc_factor);
+  const decompose::DecompositionOptions& d = options.decomposition;
+  f.add(d.slabs), f.add(d.atoms_per_slab), f.add(d.max_slabs), f.add(d.park_factor), f.add(d.window_below);
+  f.add(d.window_above), f.add(d.sphere_margin), f.add(d.min_thickness), f.add(d.balance_work);
+  f.add(d.search_reach), f.add(d.search_step), f.add(d.detours), f.add(d.components);
+  f.add(d.curves.spacing), f.add(d.curves.trace_step), f.add(d.curves.seed_tolerance), f.add(d.curves.min_sine);
+  return f.value();
+}
+
+decompose::CutsFile mesh_cuts(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options) {
+  return with_complex(
+      points, options,
+      [&](const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const skin::RunContext& run) {
+        decompose::CutsFile file;
+        file.fingerprint = decomposition_fingerprint(skin.points(), options);
+        file.cuts = decompose::choose_cuts(skin, ms, options.decomposition, options.sweep, run);
+        return file;
+      });
+}
+
+decompose::RegionFile mesh_region(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options,
+                                  const decompose::CutsFile& cuts, std::size_t slab) {
+  const std::vector<decompose::SlabKey> slabs = decompose::slabs_between(cuts.cuts.size());
+  if (slab >= slabs.size())
+    throw std::invalid_argument("mesh_region: slab " + std::to_string(slab) + " of " + std::to_string(slabs.size()) +
+                                " (the cuts make slabs 0 to " + std::to_string(slabs.size() - 1) + ")");
+  // The fingerprint is of the points in their local frame, as the skin holds them.
+  if (decomposition_fingerprint(skin::translated(points, skin::local_frame_centre(points)), options) !=
+      cuts.fingerprint)
+    throw InputError("", 0,
+                     "the cuts belong to other points or options than this run's (give `skinmesh cuts`, `region` and "
+                     "`mesh` the same input and options)");
+  return with_complex(
+      points, options,
+      [&](const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const skin::RunContext& run) {
+        decompose::RegionFile file;
+        file.fingerprint = cuts.fingerprint;
+        file.slab = slabs[slab];
+        file.outcome = decompose::sweep_slab(skin, ms, cuts.cuts, file.slab, options.decomposition, options.sweep, run);
+        return file;
+      });
 }
 
 }  // namespace skinmesh::mesher

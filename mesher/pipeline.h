@@ -22,6 +22,7 @@
 // Notes: papers/mesher/pipeline.md
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "decompose/decomposed.h"
+#include "decompose/region_files.h"
 #include "dynamic/dynamic_skin.h"
 #include "front/sweep.h"
 #include "geometry/io/mesh_io.h"
@@ -104,6 +106,15 @@ struct MeshOptions {
   /// after the sweep see one closed mesh as before. Default 0: automatic
   /// (decompose::automatic_slabs: one sweep below 3,750 atoms).
   decompose::DecompositionOptions decomposition;
+  /// Stage 3 carried out over several processes (decompose/region_files.h):
+  /// a cuts file that mesh_cuts() wrote replaces the cut choice, and the
+  /// region files of its slabs that mesh_region() wrote are glued instead of
+  /// being swept again (slabs without a file are swept here). Every file
+  /// must come from the same points and options (their fingerprint,
+  /// decomposition_fingerprint(), is compared; InputError otherwise). The
+  /// mesh is the one a single process makes. Empty: the cuts are chosen here.
+  std::string cuts_file;
+  std::vector<std::string> region_files;
   /// Stage 4: run the local refinement (default). Without it the mesh is
   /// closed, embedded and of the right topology but [L], [U] and the
   /// restricted Delaunay property may fail.
@@ -280,6 +291,29 @@ MeshResult mesh_skin(const std::vector<geometry::WeightedPoint>& points, const M
 /// mesh_skin() of a molecule's atoms, weighted with options.probe_radius
 /// (std::invalid_argument unless 0 <= probe_radius <= skin::kMaxRadius).
 MeshResult mesh_skin(const skin::Molecule& molecule, const MeshOptions& options = {});
+
+/// What the cuts and slabs of a run depend on, hashed (FNV-1a, 64 bits): the
+/// weighted points (in order, as their bytes), the height direction, C and
+/// Q, the Morse–Smale complex's tuning, the sweep's disc factor and park
+/// factor and the decomposition's numbers. The processes of one
+/// decomposition compare it (MeshOptions::cuts_file).
+std::uint64_t decomposition_fingerprint(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options);
+
+/// Stages 1 and 2 and the cut choice of a sweep over several processes: the
+/// cuts of the points' skin (decompose::choose_cuts() with
+/// options.decomposition, in the local frame of the points), with the run's
+/// fingerprint, for decompose::write_cuts(). Throws as mesh_skin() does for
+/// those stages.
+decompose::CutsFile mesh_cuts(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options);
+
+/// Stages 1 and 2 and the sweep of slab `slab` (bottom to top,
+/// decompose::slabs_between()) of `cuts`, as the process that glues them
+/// would sweep it (decompose::sweep_slab()), for decompose::write_region().
+/// Throws InputError if `cuts` belongs to other points or options (its
+/// fingerprint), std::invalid_argument if there is no such slab; otherwise
+/// as mesh_cuts(). A slab whose sweep fails is returned with its failure.
+decompose::RegionFile mesh_region(const std::vector<geometry::WeightedPoint>& points, const MeshOptions& options,
+                                  const decompose::CutsFile& cuts, std::size_t slab);
 
 /// The check of `mesh`'s positions as `storage` stores them
 /// (MeshOptions::stored_positions). `skin` is in the local frame whose centre
