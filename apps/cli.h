@@ -35,6 +35,8 @@ Command add_info_command(CLI::App& app);
 Command add_mesh_command(CLI::App& app);
 Command add_check_command(CLI::App& app);
 Command add_trace_command(CLI::App& app);
+Command add_cuts_command(CLI::App& app);
+Command add_region_command(CLI::App& app);
 
 /// A validator for numbers >= 0 (strictly: > 0) with a short message.
 CLI::Validator number_at_least_zero(bool strictly);

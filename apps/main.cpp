@@ -7,6 +7,8 @@
 //   skinmesh mesh  IN -o OUT         mesh the skin (Cheng & Shi 2004)      (mesh.cpp, batch.cpp)
 //   skinmesh check IN MESH           verify a mesh against the analytic skin (check.cpp)
 //   skinmesh trace IN -o trace.html  record the algorithm, step by step, as a page (trace.cpp)
+//   skinmesh cuts  IN -o F.cuts      one structure over several processes: its cuts (region.cpp)
+//   skinmesh region IN --cuts F.cuts --index K -o F.K.region   one region's sweep (region.cpp)
 //
 // Exit codes: 0 success; 1 bad input or a mesh that fails `check`; 2 bad
 // command line; 3 the algorithm failed (or the mesh failed its checks);
@@ -64,17 +66,17 @@ int main(int argc, char** argv) {
   app.footer(kFormats);
   app.set_version_flag("--version", std::string("skinmesh ") + SKINMESH_VERSION);
   app.require_subcommand(1);
-  const std::vector<Command> commands = {add_info_command(app), add_mesh_command(app), add_check_command(app),
-                                         add_trace_command(app)};
+  const std::vector<Command> commands = {add_info_command(app),  add_mesh_command(app), add_check_command(app),
+                                         add_trace_command(app), add_cuts_command(app), add_region_command(app)};
 
   if (argc < 2) {
     std::cerr << app.help();
     return 2;
   }
-  if (const std::string first = argv[1];
-      first[0] != '-' && first != "info" && first != "mesh" && first != "check" && first != "trace") {
+  if (const std::string first = argv[1]; first[0] != '-' && first != "info" && first != "mesh" && first != "check" &&
+                                         first != "trace" && first != "cuts" && first != "region") {
     std::cerr << "skinmesh: unknown command '" << first
-              << "' (commands: info, mesh, check, trace; see 'skinmesh --help')\n";
+              << "' (commands: info, mesh, check, trace, cuts, region; see 'skinmesh --help')\n";
     return 2;
   }
   try {
@@ -92,7 +94,7 @@ int main(int argc, char** argv) {
   const Command* parsed = nullptr;
   for (const Command& c : commands)
     if (c.parser->parsed()) parsed = &c;
-  const bool meshing = parsed->parser->get_name() == "mesh";
+  const bool meshing = parsed->parser->get_name() == "mesh" || parsed->parser->get_name() == "region";
   try {
     return parsed->run();
   } catch (const CLI::ValidationError& e) {

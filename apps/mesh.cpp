@@ -255,12 +255,14 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
                   ? "--chains each writes one mesh per chain: it needs -O DIR, the output folder"
                   : "several inputs (or --list) need -O DIR, the output folder";
   else if (batch_run)
-    for (const char* name :
-         {"--output", "--stats", "--area-file", "--trace", "--paranoid", "--max-steps", "--dump-partial", "--timeout"})
+    for (const char* name : {"--output", "--stats", "--area-file", "--trace", "--paranoid", "--max-steps",
+                             "--dump-partial", "--timeout", "--cuts", "--regions"})
       if (cmd.count(name) > 0) {
         problem = std::string(name) + " applies to one input, not to a batch run (-O)";
         break;
       }
+  if (problem.empty() && !mesh.opt.region_files.empty() && mesh.opt.cuts_file.empty())
+    problem = "--regions needs --cuts, the cuts file the regions were swept between";
   if (problem.empty() && !batch_run && mesh.area_files)
     problem = "--area-files applies to a batch run (-O DIR); for one input write --area-file FILE";
   if (!problem.empty()) {
@@ -272,7 +274,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
       cmd, mesh.algorithm == "dynamic",
       {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
        "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--slabs", "--cut-detours",
-       "--no-component-sweeps", "--no-growth", "--growth-step"},
+       "--no-component-sweeps", "--cuts", "--regions", "--no-growth", "--growth-step"},
       {"--no-growth", "--growth-step"});
 }
 
@@ -398,6 +400,15 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
                 "with --slabs: cuts that pass around the critical points they meet, which large components need "
                 "(experimental; papers/decompose/README.md, \"Detoured cuts\")");
+  const char* regions = "One structure over several processes (skinmesh cuts, skinmesh region)";
+  cmd->add_option("--cuts", mesh.opt.cuts_file,
+                  "take the cuts from this file of `skinmesh cuts` (the same input and options) instead of "
+                  "choosing them; the mesh is the one this command makes without it")
+      ->group(regions);
+  cmd->add_option("--regions", mesh.opt.region_files,
+                  "with --cuts: the region files of `skinmesh region`, glued instead of being swept again (a "
+                  "region without a file is swept here)")
+      ->group(regions);
   cmd->add_flag(
       "--no-component-sweeps", mesh.no_component_sweeps,
       "sweep every skin component in one front, with no slab unless --slabs asks (default: each group of whole "

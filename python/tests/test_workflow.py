@@ -56,3 +56,29 @@ def test_snakemake_meshes_data_and_resumes(tmp_path):
     assert redo.returncode == 0, redo.stderr[-2000:]
     changed = {n for n, t in before.items() if os.stat(out / n).st_mtime_ns != t}
     assert changed == {"ligand_2zmm.pdb.ply", "ligand_2zmm.pdb.json", "ligand_2zmm.pdb.area"}
+
+
+def test_snakemake_meshes_one_structure_as_regions_over_jobs(tmp_path):
+    # slabs=N: the cuts in one job, each region in a job of its own, the glue,
+    # refinement and check in the last: the mesh of one process, byte for byte.
+    inputs = tmp_path / "in"
+    inputs.mkdir()
+    shutil.copy(os.path.join(DATA, "crambin_1crn.pdb"), inputs)
+    run = subprocess.run(["snakemake", "-s", SNAKEFILE, "-j", "2", "--directory", str(tmp_path),
+                          "--config", "inputs=" + str(inputs), "out=" + str(tmp_path / "out"),
+                          "skinmesh=" + os.path.abspath(SKINMESH), "slabs=4", "cut_detours=1"],
+                         capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stderr[-2000:]
+    regions = tmp_path / "out" / "regions" / "crambin_1crn.pdb"
+    with open(regions / "regions.txt") as f:
+        count = int(f.read())
+    assert count == 4
+    assert sorted(os.listdir(regions)) == sorted(["cuts.bin", "regions.txt"] + ["%d.region" % k for k in range(count)])
+    one = tmp_path / "one.ply"
+    subprocess.run([SKINMESH, "mesh", str(inputs / "crambin_1crn.pdb"), "--slabs", "4", "--cut-detours", "-q",
+                    "-o", str(one)], check=True)
+    with open(one, "rb") as a, open(tmp_path / "out" / "crambin_1crn.pdb.ply", "rb") as b:
+        assert a.read() == b.read()
+    with open(tmp_path / "out" / "summary.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["checks_passed"] for r in rows] == ["True"]
