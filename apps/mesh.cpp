@@ -274,7 +274,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
       cmd, mesh.algorithm == "dynamic",
       {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
        "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--slabs", "--cut-detours",
-       "--no-component-sweeps", "--cuts", "--regions", "--no-growth", "--growth-step"},
+       "--level-cuts", "--no-component-sweeps", "--cuts", "--regions", "--no-growth", "--growth-step"},
       {"--no-growth", "--growth-step"});
 }
 
@@ -332,6 +332,7 @@ mesher::MeshOptions mesh_options(const MeshArgs& a) {
   options.check = !a.no_check;
   options.improve_angles = !a.no_angle_improvement;
   options.decomposition.components = !a.no_component_sweeps;
+  options.decomposition.detour_fallback = !a.level_cuts;
   options.dynamic.growth = !a.no_growth;
   options.sweep.patch_fallback = !a.no_fallback && !a.no_patch;
   options.static_fallback = !a.no_fallback;
@@ -398,8 +399,10 @@ Command add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
-                "with --slabs: cuts that pass around the critical points they meet, which large components need "
-                "(experimental; papers/decompose/README.md, \"Detoured cuts\")");
+                "every cut passes around the critical points it meets (default: level cuts where the skin admits "
+                "them, detoured cuts where it does not; papers/decompose/README.md, \"Detoured cuts\")");
+  cmd->add_flag("--level-cuts", mesh.level_cuts,
+                "level cuts only: a slab target without an admissible level cut is skipped (fewer slabs)");
   const char* regions = "One structure over several processes (skinmesh cuts, skinmesh region)";
   cmd->add_option("--cuts", mesh.opt.cuts_file,
                   "take the cuts from this file of `skinmesh cuts` (the same input and options) instead of "

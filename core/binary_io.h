@@ -43,8 +43,8 @@ inline void get_bytes(std::istream& is, void* data, std::size_t n, const std::st
 
 /// A count read from a file, refused above `limit` (a damaged file must not
 /// make the reader allocate without bound).
-inline std::uint64_t get_count(std::istream& is, const std::string& file, std::uint64_t limit = std::uint64_t{1}
-                                                                                                   << 40) {
+inline std::uint64_t get_count(std::istream& is, const std::string& file,
+                               std::uint64_t limit = std::uint64_t{1} << 40) {
   const auto n = get_raw<std::uint64_t>(is, file);
   if (n > limit) throw InputError(file, 0, "a count of " + std::to_string(n) + " is out of range (a damaged file)");
   return n;

@@ -421,7 +421,7 @@ namespace {
 /// wholly on its side and keeps it. Depends on c and the input only.
 std::optional<Cut> detoured_cut(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, double c,
                                 const DecompositionOptions& opt) {
-  Cut cut{c, {}, morse::cut_detours(ms, c)};
+  Cut cut{c, {}, morse::cut_detours(ms, c), true};
   try {
     cut.curves = morse::cut_curves(skin, ms, c, cut.detours, opt.curves);
     std::vector<char> entered(cut.detours.size(), 0);
@@ -475,38 +475,12 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
     const double target = by_work ? work_target[static_cast<std::size_t>(i)] : lo + i * slab_height;
     return target + step * opt.search_step * slab_height;
   };
-  // With detours, the first candidate of each target that admits a cut is
-  // traced for every target at once, on the threads: which candidate that is
-  // depends on its height alone. The walk below then takes it if it lies
-  // above and apart from the cut before, as it would have reached it one
-  // candidate after the other (every earlier candidate admits no cut), and
-  // traces the later candidates only if it does not: the cuts are the same
-  // for every thread count.
-  std::vector<std::pair<int, std::optional<Cut>>> first(static_cast<std::size_t>(slabs));
-  if (opt.detours)
-    parallel_for(first.size() - 1, thread_count(run.threads), 1, [&](std::size_t k) {
-      const int i = static_cast<int>(k) + 1;
-      for (int j = 0; j < candidates; ++j)
-        if (std::optional<Cut> cut = detoured_cut(skin, ms, candidate(i, j), opt)) {
-          first[static_cast<std::size_t>(i)] = {j, std::move(cut)};
-          return;
-        }
-      first[static_cast<std::size_t>(i)] = {candidates, std::nullopt};
-    });
-  for (int i = 1; i < slabs; ++i) {
-    for (int j = opt.detours ? first[static_cast<std::size_t>(i)].first : 0; j < candidates; ++j) {
+  // The level cut of target i: the first candidate, outwards from the
+  // target, that is admissible and thick enough above `previous`.
+  auto level_cut = [&](int i, const Cut* previous) -> std::optional<Cut> {
+    for (int j = 0; j < candidates; ++j) {
       const double c = candidate(i, j);
-      if (!cuts.empty() && c <= cuts.back().height) continue;
-      if (opt.detours) {
-        std::optional<Cut> cut = j == first[static_cast<std::size_t>(i)].first
-                                     ? std::move(first[static_cast<std::size_t>(i)].second)
-                                     : detoured_cut(skin, ms, c, opt);
-        if (!cut ||
-            (!cuts.empty() && !apart(cuts.back(), *cut, ms.height_direction.normalized(), opt, sweep.disc_factor)))
-          continue;
-        cuts.push_back(std::move(*cut));
-        break;
-      }
+      if (previous != nullptr && c <= previous->height) continue;
       if (!window_clear(ms, by_height, c, opt, sweep.disc_factor)) continue;
       Cut cut{c, {}, {}};
       try {
@@ -515,8 +489,71 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
         continue;  // the curve passes next to a critical point: not regular enough
       }
       if (cut.curves.empty() || !clear_of_spheres(ms, by_height, c, cut.curves, opt, sweep.disc_factor)) continue;
-      if (!cuts.empty() && !thick_enough(cuts.back(), cut, opt, sweep.disc_factor)) continue;
-      cuts.push_back(std::move(cut));
+      if (previous != nullptr && !thick_enough(*previous, cut, opt, sweep.disc_factor)) continue;
+      return cut;
+    }
+    return std::nullopt;
+  };
+  // Which targets get detoured cuts: every one with opt.detours; with
+  // opt.detour_fallback, those without a level cut (the level walk, serial
+  // and cheap, says which).
+  std::vector<std::optional<Cut>> level(static_cast<std::size_t>(slabs));
+  std::vector<char> detoured(static_cast<std::size_t>(slabs), opt.detours ? 1 : 0);
+  if (!opt.detours) {
+    const Cut* previous = nullptr;
+    for (int i = 1; i < slabs; ++i) {
+      std::optional<Cut>& cut = level[static_cast<std::size_t>(i)];
+      cut = level_cut(i, previous);
+      if (cut) previous = &*cut;
+      detoured[static_cast<std::size_t>(i)] = !cut && opt.detour_fallback;
+    }
+  }
+  // The first candidate of each detoured target that admits a cut is
+  // traced for every such target at once, on the threads: which candidate
+  // that is depends on its height alone. The walk below then takes it if it
+  // lies above and apart from the cut before, as it would have reached it
+  // one candidate after the other (every earlier candidate admits no cut),
+  // and traces the later candidates only if it does not: the cuts are the
+  // same for every thread count.
+  std::vector<std::size_t> to_trace;
+  for (int i = 1; i < slabs; ++i)
+    if (detoured[static_cast<std::size_t>(i)]) to_trace.push_back(static_cast<std::size_t>(i));
+  std::vector<std::pair<int, std::optional<Cut>>> first(static_cast<std::size_t>(slabs));
+  parallel_for(to_trace.size(), thread_count(run.threads), 1, [&](std::size_t k) {
+    const int i = static_cast<int>(to_trace[k]);
+    for (int j = 0; j < candidates; ++j)
+      if (std::optional<Cut> cut = detoured_cut(skin, ms, candidate(i, j), opt)) {
+        first[static_cast<std::size_t>(i)] = {j, std::move(cut)};
+        return;
+      }
+    first[static_cast<std::size_t>(i)] = {candidates, std::nullopt};
+  });
+  const Vec3 e = ms.height_direction.normalized();
+  // A cut above `a` that is thick enough: by heights between level cuts, by
+  // every sample where either detours.
+  auto fits = [&](const Cut& a, const Cut& b) {
+    return b.height > a.height && (a.detoured || b.detoured ? apart(a, b, e, opt, sweep.disc_factor)
+                                                            : thick_enough(a, b, opt, sweep.disc_factor));
+  };
+  for (int i = 1; i < slabs; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!detoured[k]) {
+      // A level cut found above the level cut before it; a detoured cut
+      // placed between them may leave it too close.
+      if (level[k] && (cuts.empty() || fits(cuts.back(), *level[k]))) cuts.push_back(std::move(*level[k]));
+      continue;
+    }
+    // The detoured cut fits below the next level cut as well: level cuts are
+    // kept wherever the skin admits them.
+    const Cut* next = nullptr;
+    for (std::size_t m = k + 1; m < level.size() && next == nullptr; ++m)
+      if (level[m]) next = &*level[m];
+    for (int j = first[k].first; j < candidates; ++j) {
+      const double c = candidate(i, j);
+      if ((!cuts.empty() && c <= cuts.back().height) || (next != nullptr && c >= next->height)) continue;
+      std::optional<Cut> cut = j == first[k].first ? std::move(first[k].second) : detoured_cut(skin, ms, c, opt);
+      if (!cut || (!cuts.empty() && !fits(cuts.back(), *cut)) || (next != nullptr && !fits(*cut, *next))) continue;
+      cuts.push_back(std::move(*cut));
       break;
     }
   }
@@ -542,8 +579,8 @@ Region slab_region(const morse::MorseSmaleComplex& ms, const std::vector<Cut>& c
                    const std::vector<std::vector<char>>& below, const SlabKey& key, const DecompositionOptions& opt) {
   Region slab;
   slab.park_factor = opt.park_factor;
-  slab.holds_before_parking = opt.detours;
   const auto [lower, upper] = key;
+  slab.holds_before_parking = opt.detours || (upper != kNone && cuts[upper].detoured);
   if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
   if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
   if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {

@@ -78,11 +78,18 @@ struct DecompositionOptions {
   double search_step = 0.01;
   /// The cut curves' tracing and sampling.
   morse::LevelCurveOptions curves;
-  /// Cuts that pass around the critical points they meet (morse::cut_detours,
-  /// morse::cut_curves) instead of level cuts clear of them: needed by large
-  /// components, whose critical points leave no clear height. Experimental:
-  /// off by default (papers/decompose/README.md, "Detoured cuts").
+  /// Every cut passes around the critical points it meets (morse::cut_detours,
+  /// morse::cut_curves) instead of being a level cut clear of them
+  /// (papers/decompose/README.md, "Detoured cuts"). Off by default: see
+  /// detour_fallback.
   bool detours = false;
+  /// Without `detours`: a target near which no level cut is admissible gets
+  /// a detoured cut (its candidates searched again, traced around the
+  /// critical points they meet): level cuts where the skin admits them,
+  /// detoured cuts where it does not, as large bodies need (no level cut on a
+  /// 218,760-atom shell, none on maltoporin at probe 0). Meshes with a level
+  /// cut at every target are those of level cuts alone.
+  bool detour_fallback = true;
   /// Without a cut: one sweep per group of whole skin components
   /// (morse::component_groups()), on the threads, instead of one sweep of
   /// the whole skin. The groups depend on the input only. Off where the
@@ -131,6 +138,10 @@ struct Cut {
   std::vector<morse::LevelCurve> curves;
   /// The clusters of balls the cut passes around (DecompositionOptions::detours).
   std::vector<morse::CutDetour> detours;
+  /// A detoured cut (morse::cut_curves(), even with no ball): no height
+  /// window keeps the critical points away from it, so the slab below it
+  /// holds before it parks (front::Region::holds_before_parking).
+  bool detoured = false;
 };
 
 /// The cut heights of opt.slabs slabs (automatic_slabs() if 0), in

@@ -112,7 +112,8 @@ std::ifstream open_for_reading(const std::string& path) {
 
 /// After the last value: nothing may follow.
 void require_end(std::istream& is, const std::string& path) {
-  if (is.peek() != std::char_traits<char>::eof()) throw InputError(path, 0, "bytes follow the last value (a damaged file)");
+  if (is.peek() != std::char_traits<char>::eof())
+    throw InputError(path, 0, "bytes follow the last value (a damaged file)");
 }
 
 }  // namespace
@@ -123,6 +124,7 @@ void write_cuts(const std::string& path, const CutsFile& file) {
     put_raw<std::uint64_t>(os, file.cuts.size());
     for (const Cut& cut : file.cuts) {
       put_raw(os, cut.height);
+      put_raw<std::uint8_t>(os, cut.detoured ? 1 : 0);
       put_raw<std::uint64_t>(os, cut.curves.size());
       for (const morse::LevelCurve& c : cut.curves) put_curve(os, c);
       put_raw<std::uint64_t>(os, cut.detours.size());
@@ -146,6 +148,7 @@ CutsFile read_cuts(const std::string& path) {
   file.cuts.resize(get_count(is, path, std::uint64_t{1} << 24));
   for (Cut& cut : file.cuts) {
     cut.height = get_raw<double>(is, path);
+    cut.detoured = get_raw<std::uint8_t>(is, path) != 0;
     cut.curves.resize(get_count(is, path, std::uint64_t{1} << 32));
     for (morse::LevelCurve& c : cut.curves) c = get_curve(is, path);
     cut.detours.resize(get_count(is, path, std::uint64_t{1} << 32));

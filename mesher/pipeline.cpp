@@ -685,7 +685,7 @@ std::uint64_t decomposition_fingerprint(const std::vector<geometry::WeightedPoin
   const decompose::DecompositionOptions& d = options.decomposition;
   f.add(d.slabs), f.add(d.atoms_per_slab), f.add(d.max_slabs), f.add(d.park_factor), f.add(d.window_below);
   f.add(d.window_above), f.add(d.sphere_margin), f.add(d.min_thickness), f.add(d.balance_work);
-  f.add(d.search_reach), f.add(d.search_step), f.add(d.detours), f.add(d.components);
+  f.add(d.search_reach), f.add(d.search_step), f.add(d.detours), f.add(d.detour_fallback), f.add(d.components);
   f.add(d.curves.spacing), f.add(d.curves.trace_step), f.add(d.curves.seed_tolerance), f.add(d.curves.min_sine);
   return f.value();
 }

@@ -177,6 +177,43 @@ TEST_CASE("decomposed sweep with detoured cuts: slabs start from and park at cut
   CHECK(most_balls >= 10);
 }
 
+TEST_CASE("decomposed sweep: level cuts where the skin admits them, detoured cuts where it does not") {
+  // The default (DecompositionOptions::detour_fallback): a target with an
+  // admissible level cut keeps it; a target without one gets a detoured cut
+  // that fits between its neighbours. Where every target has a level cut,
+  // the mesh is that of level cuts alone.
+  mesher::MeshOptions options;
+  options.threads = 2;
+  options.decomposition.slabs = 8;
+  {
+    const skin::Molecule mol = read_case(Case{"crambin_1crn.pdb", 0.0, 0});
+    options.probe_radius = 0;
+    options.decomposition.detour_fallback = false;
+    const mesher::MeshResult level = mesher::mesh_skin(mol, options);
+    options.decomposition.detour_fallback = true;
+    const mesher::MeshResult both = mesher::mesh_skin(mol, options);
+    CHECK(level.slabs < 8);  // crambin at probe 0 admits few level cuts
+    CHECK(both.slabs > level.slabs);
+    for (double h : level.cut_heights)
+      CHECK(std::find(both.cut_heights.begin(), both.cut_heights.end(), h) != both.cut_heights.end());
+    CHECK(std::any_of(both.cut_balls.begin(), both.cut_balls.end(), [](std::size_t b) { return b > 0; }));
+    REQUIRE(both.checked);
+    test::check_every_property(both.check);
+  }
+  {
+    const skin::Molecule mol = read_case(Case{"crambin_1crn.pdb", 1.4, 0});
+    options.probe_radius = 1.4;
+    options.decomposition.detour_fallback = false;
+    const mesher::MeshResult level = mesher::mesh_skin(mol, options);
+    options.decomposition.detour_fallback = true;
+    const mesher::MeshResult both = mesher::mesh_skin(mol, options);
+    REQUIRE(level.slabs == 8);
+    CHECK(both.cut_heights == level.cut_heights);
+    CHECK(both.mesh.positions == level.mesh.positions);
+    CHECK(both.mesh.triangles == level.mesh.triangles);
+  }
+}
+
 TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within its bounds") {
   decompose::DecompositionOptions opt;
   CHECK(decompose::automatic_slabs(0, opt) == 1);
