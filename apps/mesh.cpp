@@ -274,7 +274,7 @@ bool usage_is_consistent(CLI::App& cmd, MeshArgs& mesh, bool& batch_run) {
       cmd, mesh.algorithm == "dynamic",
       {"--trace", "--paranoid", "--max-steps", "--dump-partial", "--direction", "--disc-factor",
        "--no-angle-improvement", "--no-fallback", "--no-patch", "--force-patch-every", "--slabs", "--cut-detours",
-       "--level-cuts", "--no-component-sweeps", "--cuts", "--regions", "--no-growth", "--growth-step"},
+       "--detour-fallback", "--no-component-sweeps", "--cuts", "--regions", "--no-growth", "--growth-step"},
       {"--no-growth", "--growth-step"});
 }
 
@@ -332,7 +332,6 @@ mesher::MeshOptions mesh_options(const MeshArgs& a) {
   options.check = !a.no_check;
   options.improve_angles = !a.no_angle_improvement;
   options.decomposition.components = !a.no_component_sweeps;
-  options.decomposition.detour_fallback = !a.level_cuts;
   options.dynamic.growth = !a.no_growth;
   options.sweep.patch_fallback = !a.no_fallback && !a.no_patch;
   options.static_fallback = !a.no_fallback;
@@ -399,10 +398,11 @@ Command add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
-                "every cut passes around the critical points it meets (default: level cuts where the skin admits "
-                "them, detoured cuts where it does not; papers/decompose/README.md, \"Detoured cuts\")");
-  cmd->add_flag("--level-cuts", mesh.level_cuts,
-                "level cuts only: a slab target without an admissible level cut is skipped (fewer slabs)");
+                "every cut passes around the critical points it meets instead of being a level cut clear of them "
+                "(experimental; papers/decompose/README.md, \"Detoured cuts\")");
+  cmd->add_flag("--detour-fallback", mesh.opt.decomposition.detour_fallback,
+                "level cuts where the skin admits them, detoured cuts where it does not (default: a target "
+                "without an admissible level cut is skipped; experimental: detoured cuts still drop often)");
   const char* regions = "One structure over several processes (skinmesh cuts, skinmesh region)";
   cmd->add_option("--cuts", mesh.opt.cuts_file,
                   "take the cuts from this file of `skinmesh cuts` (the same input and options) instead of "

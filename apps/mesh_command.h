@@ -29,8 +29,6 @@ struct MeshArgs {
   bool no_growth = false;
   /// --no-component-sweeps: every skin component in one front.
   bool no_component_sweeps = false;
-  /// --level-cuts: no detoured cut where a target admits no level cut.
-  bool level_cuts = false;
   // Batch runs (several IN or --list): outputs DIR/<name>.<format>.
   std::string out_dir, list, batch_format = "ply";
   int jobs = 1;

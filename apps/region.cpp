@@ -29,7 +29,7 @@ struct RegionArgs {
   MoleculeArgs mol;
   std::vector<double> direction;
   mesher::MeshOptions opt;
-  bool no_component_sweeps = false, level_cuts = false;
+  bool no_component_sweeps = false;
   std::string cuts, out;
   std::size_t index = 0;
 };
@@ -48,7 +48,7 @@ void add_decomposition_options(CLI::App& cmd, RegionArgs& a) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd.add_flag("--cut-detours", a.opt.decomposition.detours, "cuts that pass around critical points, as `mesh`'s");
-  cmd.add_flag("--level-cuts", a.level_cuts, "level cuts only, as `skinmesh mesh --level-cuts`");
+  cmd.add_flag("--detour-fallback", a.opt.decomposition.detour_fallback, "as `skinmesh mesh --detour-fallback`");
   cmd.add_flag("--no-component-sweeps", a.no_component_sweeps, "as `skinmesh mesh --no-component-sweeps`");
 }
 
@@ -58,7 +58,6 @@ mesher::MeshOptions options_of(const RegionArgs& a) {
   options.probe_radius = a.mol.probe;
   options.height_direction = height_direction(a.direction);
   options.decomposition.components = !a.no_component_sweeps;
-  options.decomposition.detour_fallback = !a.level_cuts;
   return options;
 }
 

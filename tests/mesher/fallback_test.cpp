@@ -113,8 +113,8 @@ TEST_CASE("fallback: an all-atom lipid bilayer at probe 0, where a fan would cov
   const skin::Molecule mol = skin::read_molecule(path);
   mesher::MeshOptions options;
   options.probe_radius = 0;
-  // One sweep, where the fan met the meshed surface (in its 2 automatic
-  // slabs, with a detoured cut, no fan does).
+  // One sweep, where the fan met the meshed surface (in the 2 slabs of
+  // DecompositionOptions::detour_fallback, with a detoured cut, no fan does).
   options.decomposition.slabs = 1;
   const mesher::MeshResult res = mesher::mesh_skin(mol, options);
   CHECK(res.sweep.left_holes >= 1);
