@@ -90,9 +90,9 @@ struct DecompositionOptions {
   /// 218,760-atom shell, none on maltoporin at probe 0). Meshes with a level
   /// cut at every target are those of level cuts alone. Off by default:
   /// [measured] maltoporin at probe 0 47.8 s against 71 s, but the shell at
-  /// its automatic 88 slabs drops 53 of 85 cuts and takes 91.7 s against
-  /// 62.5 s as one sweep on 2 threads (papers/decompose/history.md, "Level
-  /// cuts where admissible, detoured cuts elsewhere").
+  /// its automatic 88 slabs drops 39 of 85 cuts and takes 95.5 s against
+  /// 78.5 s as one sweep on 2 threads (papers/decompose/history.md, "A
+  /// saddle bridged to its parked side").
   bool detour_fallback = false;
   /// Without a cut: one sweep per group of whole skin components
   /// (morse::component_groups()), on the threads, instead of one sweep of

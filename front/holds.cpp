@@ -63,9 +63,64 @@ bool release_holds(FrontState& fs, Index c, bool requeue) {
   return any;
 }
 
+namespace {
+
+/// A saddle of a region's slab that the front reached from one side only,
+/// its other side parked below the upper cut before the hold region was
+/// reached (the saddle a few hundredths of an ångström under a detoured cut:
+/// its sphere's hold region and the parking zone overlap): the parked
+/// boundary vertices within its protecting radius plus two disc radii are
+/// lent to its hold as the missing side, and the saddle bridged as if they
+/// had been held. Without the bridge the two cut curves above the saddle
+/// share one parked rim and the slab fails ("0 parked rims"). The lent
+/// vertices go back to the queue (to park again where they stand) whether
+/// or not the bridge is built. True if it was.
+bool bridge_to_parked(FrontState& fs, Index c) {
+  const morse::CriticalPoint& cp = fs.ms.critical[c];
+  const double reach = fs.ms.protect_radius[c] + 2 * fs.opt.disc_factor * cp.rho;
+  const auto [lo, hi] = FrontState::local_scales(cp.rho, reach);
+  std::vector<Index> near;
+  fs.front_grid->for_each_near(cp.position, reach, lo, hi, fs.mesh.positions().vector(), [&](Index xi, const Vec3& q) {
+    if ((q - cp.position).norm() < reach) near.push_back(xi);
+  });
+  std::sort(near.begin(), near.end());
+  std::vector<Vertex> lent;
+  for (Index xi : near) {
+    const Vertex v(xi);
+    if (fs.mesh.is_deleted(v) || !fs.region.is_parked(v) || fs.state[v] != VState::Held ||
+        fs.held_by[v] != kInvalidIndex || !fs.mesh.is_boundary(v))
+      continue;
+    fs.held_by[v] = c;
+    fs.held[c].push_back(v);
+    lent.push_back(v);
+  }
+  if (lent.empty()) return false;
+  const bool bridged = try_bridge(fs, c);
+  for (Vertex v : lent) {
+    if (fs.mesh.is_deleted(v) || fs.mesh.is_isolated(v) || !fs.mesh.is_boundary(v)) continue;
+    if (fs.state[v] == VState::Held && fs.held_by[v] == c) fs.held_by[v] = kInvalidIndex;
+    if (bridged) {
+      fs.set_state(v, VState::Front);
+      push(fs, v);
+    }
+  }
+  if (!bridged) {
+    auto& held = fs.held[c];
+    held.erase(std::remove_if(held.begin(), held.end(),
+                              [&](Vertex v) { return std::find(lent.begin(), lent.end(), v) != lent.end(); }),
+               held.end());
+  }
+  if (bridged && fs.tracing) fs.tracef("bridge saddle %u to %zu parked vertices\n", c, lent.size());
+  return bridged;
+}
+
+}  // namespace
+
 bool release_saddles(FrontState& fs) {
   // Saddles never bridged (the front reached them from one side only, or the
-  // two sides met elsewhere by a contact): release their holds and go on
+  // two sides met elsewhere by a contact; in a region that holds before
+  // parking, first bridged to a parked other side if one is near): release
+  // their holds and go on
   // (papers/front/open_questions.md Q6.4 (one side arrived when the queue runs empty)); the final topology check
   // decides.
   // In a region (front/region.h), another region's saddle that holds
@@ -75,6 +130,10 @@ bool release_saddles(FrontState& fs) {
   bool any = false;
   for (std::size_t c = 0; c < fs.ms.critical.size(); ++c) {
     if (!fs.ms.live[c] || fs.ms.critical[c].kind != CriticalKind::Saddle || fs.resolved[c]) continue;
+    if (fs.region.spec.holds_before_parking && !fs.held[c].empty() && bridge_to_parked(fs, static_cast<Index>(c))) {
+      any = true;
+      continue;
+    }
     fs.resolved[c] = 1;
     if (fs.held[c].empty() && !fs.region.owns(static_cast<Index>(c), fs.ms.critical[c].height)) continue;
     ++fs.stats.released;

@@ -65,8 +65,11 @@ struct Region {
   /// the plane can lie in the band under it (crambin at probe 0: 0.05 Å
   /// below, 0.32 and 0.36 Å from two curves of the cut). Parked around, it
   /// joined the two curves' rims into one loop
-  /// (papers/decompose/README.md, "The sweep of a region"). Off for level cuts, whose window keeps every critical point
-  /// two disc radii below them, so their meshes stay as they were.
+  /// (papers/decompose/README.md, "The sweep of a region"). A saddle still
+  /// holding one side when the queue runs empty is then bridged to the
+  /// parked vertices near it (its other side parked before reaching it).
+  /// Off for level cuts, whose window keeps every critical point two disc
+  /// radii below them, so their meshes stay as they were.
   bool holds_before_parking = false;
 };
 

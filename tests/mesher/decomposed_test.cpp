@@ -508,4 +508,26 @@ TEST_CASE("regression: a band with no outward strip drops its cut, random atoms 
   test::check_every_property(res.check);
 }
 
+TEST_CASE("regression: a saddle under a detoured cut, reached from one side, is bridged to its parked side") {
+  // Gramicidin A at probe 0 in 16 detoured slabs: a live saddle 0.03 Å
+  // under the cut near -5.3 Å, 0.21 Å from a small curve of it, is reached
+  // by the front from one side while its other side parks below the cut
+  // before it enters the hold region. Released unbridged, the saddle left
+  // that curve and its neighbour one parked rim ("0 parked rims below it")
+  // and the cut was dropped; lent the parked side, the saddle is bridged and
+  // every cut holds.
+  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 0.0, 16});
+  mesher::MeshOptions options;
+  options.probe_radius = 0.0;
+  options.decomposition.slabs = 16;
+  options.decomposition.detours = true;
+  options.threads = 2;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  for (const decompose::DroppedCut& d : res.dropped_cuts) CHECK(d.why.find("parked rims") == std::string::npos);
+  CHECK(res.dropped_cuts.empty());
+  CHECK(res.slabs == 16);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+}
+
 }  // TEST_SUITE
