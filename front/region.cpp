@@ -56,14 +56,19 @@ std::vector<Face> attach_lower_curves(FrontState& fs, const std::vector<morse::L
       // (Region's precondition) keeps the skin's normal away from ±e there.
       // Next to a detour (an edge on a ball's circle) the cut is no level
       // curve: the ghost goes to the cut's left, n × t for its tangent t,
-      // which is down the slope on a level curve.
+      // which is down the slope on a level curve. t bisects the directions
+      // of the two edges at the sample: at a junction the curve turns by up
+      // to about 125° between edges of unequal lengths, and a chord's
+      // tangent there (p[j+1] - p[j-1]) turns the ghost past its
+      // neighbour's and folds the strip.
       const Vec3 n = fs.normal[x];
       const std::size_t jp = (j + p.size() - 1) % p.size();
       const bool detoured =
           j < curve.detour.size() && (curve.detour[j] != kInvalidIndex || curve.detour[jp] != kInvalidIndex);
       Vec3 down = -(fs.e - fs.e.dot(n) * n);
       if (detoured) {
-        const Vec3 t = fs.mesh.position(p[(j + 1) % p.size()]) - fs.mesh.position(p[jp]);
+        const Vec3 t = (fs.mesh.position(p[(j + 1) % p.size()]) - fs.mesh.position(x)).normalized() +
+                       (fs.mesh.position(x) - fs.mesh.position(p[jp])).normalized();
         down = n.cross(t - t.dot(n) * n);
       }
       if (!(down.norm() > 1e-6)) {

@@ -530,4 +530,27 @@ TEST_CASE("regression: a saddle under a detoured cut, reached from one side, is 
   test::check_every_property(res.check);
 }
 
+TEST_CASE("regression: the ghost strip bisects a detoured cut's sharp junctions") {
+  // Gramicidin A at probe 0 in 32 detoured slabs: where a cut leaves the
+  // level set for a ball's circle it turns by about 112° between edges of
+  // 0.159 and 0.114 Å. The ghost of the junction's sample, sent along the
+  // chord's normal, turned past its neighbour's and the strip folded there
+  // (the cut near -4.4 Å was dropped); along the bisector of the two edges
+  // it does not.
+  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 0.0, 32});
+  mesher::MeshOptions options;
+  options.probe_radius = 0.0;
+  options.decomposition.slabs = 32;
+  options.decomposition.detours = true;
+  options.threads = 2;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  for (const decompose::DroppedCut& d : res.dropped_cuts) {
+    CAPTURE(d.why);
+    CHECK(d.why.find("ghost strip") == std::string::npos);
+  }
+  CHECK(res.slabs >= 20);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+}
+
 }  // TEST_SUITE
