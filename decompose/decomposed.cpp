@@ -418,7 +418,12 @@ namespace {
 /// ball's boundary, the two curves' rims one loop). Above, the slab starts on
 /// the arcs below the cluster, inside its spheres' hold regions, as the sweep
 /// reaches any protecting sphere. A cluster the level set does not enter lies
-/// wholly on its side and keeps it. Depends on c and the input only.
+/// wholly on its side and keeps it, and so does one that holds a live
+/// minimum under c: sent up, the part of the minimum's dent below c outside
+/// its balls would stay with the slab below, cut off from that slab's fronts
+/// and with no minimum of its own to start one (HIV protease at probe 0: a
+/// curve of 22 samples with no rim; papers/decompose/history.md, seventh
+/// session). Depends on c and the input only.
 std::optional<Cut> detoured_cut(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, double c,
                                 const DecompositionOptions& opt) {
   Cut cut{c, {}, morse::cut_detours(ms, c), true};
@@ -428,6 +433,12 @@ std::optional<Cut> detoured_cut(const skin::SkinSurface& skin, const morse::Mors
     for (const morse::LevelCurve& curve : cut.curves)
       for (Index d : curve.detour)
         if (d != kInvalidIndex && !cut.detours[d].upper) entered[d] = 1;
+    // A cluster with a live minimum under the cut keeps its side.
+    for (std::size_t d = 0; d < entered.size(); ++d)
+      for (const morse::DetourBall& b : cut.detours[d].balls)
+        if (ms.live[b.critical] && ms.critical[b.critical].kind == morse::CriticalKind::Minimum &&
+            ms.critical[b.critical].height < c)
+          entered[d] = 0;
     if (std::find(entered.begin(), entered.end(), 1) != entered.end()) {
       for (std::size_t d = 0; d < entered.size(); ++d)
         if (entered[d]) cut.detours[d].upper = true;

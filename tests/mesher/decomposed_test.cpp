@@ -553,4 +553,27 @@ TEST_CASE("regression: the ghost strip bisects a detoured cut's sharp junctions"
   test::check_every_property(res.check);
 }
 
+TEST_CASE("regression: a detour's cluster with a live minimum under the cut keeps its side") {
+  // Gramicidin A at probe 1.4 in 32 detoured slabs: near -15.2 Å a minimum
+  // 0.16 Å under the cut and a saddle 0.09 Å under it form a cluster that the
+  // level set enters. Sent up, the part of the minimum's dent outside the
+  // balls stayed with the slab below, which had no front to reach it: its
+  // 18-sample curve got no parked rim and the cut was dropped. Kept down, the
+  // slab below makes the minimum's bowl and sweeps the dent.
+  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 1.4, 32});
+  mesher::MeshOptions options;
+  options.probe_radius = 1.4;
+  options.decomposition.slabs = 32;
+  options.decomposition.detours = true;
+  options.threads = 2;
+  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
+  for (const decompose::DroppedCut& d : res.dropped_cuts) {
+    CAPTURE(d.why);
+    CHECK(d.why.find("parked rims") == std::string::npos);
+  }
+  CHECK(res.dropped_cuts.empty());
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+}
+
 }  // TEST_SUITE
