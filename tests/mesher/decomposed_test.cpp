@@ -88,6 +88,28 @@ mesher::MeshOptions eight_slabs(const Case& c) {
   return options;
 }
 
+/// The bundled molecule `file` at `probe` in `slabs` detoured slabs (every
+/// cut around the critical points it meets) on 2 threads: every check
+/// passes, at least `at_least` slabs are kept, and no cut is dropped for a
+/// reason containing `not_why` (the failure a regression case once showed).
+mesher::MeshResult detoured_slabs(const char* file, double probe, int slabs, const std::string& not_why,
+                                  std::size_t at_least = 0) {
+  mesher::MeshOptions options;
+  options.probe_radius = probe;
+  options.decomposition.slabs = slabs;
+  options.decomposition.detours = true;
+  options.threads = 2;
+  mesher::MeshResult res = mesher::mesh_skin(read_case(Case{file, probe, 0}), options);
+  for (const decompose::DroppedCut& d : res.dropped_cuts) {
+    CAPTURE(d.why);
+    CHECK(d.why.find(not_why) == std::string::npos);
+  }
+  CHECK(res.slabs >= at_least);
+  REQUIRE(res.checked);
+  test::check_every_property(res.check);
+  return res;
+}
+
 }  // namespace
 
 TEST_SUITE("mesher") {
@@ -516,18 +538,8 @@ TEST_CASE("regression: a saddle under a detoured cut, reached from one side, is 
   // that curve and its neighbour one parked rim ("0 parked rims below it")
   // and the cut was dropped; lent the parked side, the saddle is bridged and
   // every cut holds.
-  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 0.0, 16});
-  mesher::MeshOptions options;
-  options.probe_radius = 0.0;
-  options.decomposition.slabs = 16;
-  options.decomposition.detours = true;
-  options.threads = 2;
-  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
-  for (const decompose::DroppedCut& d : res.dropped_cuts) CHECK(d.why.find("parked rims") == std::string::npos);
+  const mesher::MeshResult res = detoured_slabs("gramicidinA_1grm_model1.pdb", 0.0, 16, "parked rims");
   CHECK(res.dropped_cuts.empty());
-  CHECK(res.slabs == 16);
-  REQUIRE(res.checked);
-  test::check_every_property(res.check);
 }
 
 TEST_CASE("regression: the ghost strip bisects a detoured cut's sharp junctions") {
@@ -537,20 +549,7 @@ TEST_CASE("regression: the ghost strip bisects a detoured cut's sharp junctions"
   // chord's normal, turned past its neighbour's and the strip folded there
   // (the cut near -4.4 Å was dropped); along the bisector of the two edges
   // it does not.
-  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 0.0, 32});
-  mesher::MeshOptions options;
-  options.probe_radius = 0.0;
-  options.decomposition.slabs = 32;
-  options.decomposition.detours = true;
-  options.threads = 2;
-  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
-  for (const decompose::DroppedCut& d : res.dropped_cuts) {
-    CAPTURE(d.why);
-    CHECK(d.why.find("ghost strip") == std::string::npos);
-  }
-  CHECK(res.slabs >= 20);
-  REQUIRE(res.checked);
-  test::check_every_property(res.check);
+  detoured_slabs("gramicidinA_1grm_model1.pdb", 0.0, 32, "ghost strip", 20);
 }
 
 TEST_CASE("regression: a detour's cluster with a live minimum under the cut keeps its side") {
@@ -560,20 +559,8 @@ TEST_CASE("regression: a detour's cluster with a live minimum under the cut keep
   // balls stayed with the slab below, which had no front to reach it: its
   // 18-sample curve got no parked rim and the cut was dropped. Kept down, the
   // slab below makes the minimum's bowl and sweeps the dent.
-  const skin::Molecule mol = read_case(Case{"gramicidinA_1grm_model1.pdb", 1.4, 32});
-  mesher::MeshOptions options;
-  options.probe_radius = 1.4;
-  options.decomposition.slabs = 32;
-  options.decomposition.detours = true;
-  options.threads = 2;
-  const mesher::MeshResult res = mesher::mesh_skin(mol, options);
-  for (const decompose::DroppedCut& d : res.dropped_cuts) {
-    CAPTURE(d.why);
-    CHECK(d.why.find("parked rims") == std::string::npos);
-  }
+  const mesher::MeshResult res = detoured_slabs("gramicidinA_1grm_model1.pdb", 1.4, 32, "parked rims");
   CHECK(res.dropped_cuts.empty());
-  REQUIRE(res.checked);
-  test::check_every_property(res.check);
 }
 
 }  // TEST_SUITE
