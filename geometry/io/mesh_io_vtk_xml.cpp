@@ -241,11 +241,13 @@ IndexedMesh read_vtk_xml(const std::string& path, const std::string& data, std::
 
   IndexedMesh mesh;
   std::size_t n_points = 0, n_cells = 0, pieces = 0;
-  bool have_points = false;
+  bool have_points = false, in_piece = false;
   std::vector<double> connectivity, offsets, types;
   std::string section, normals_name = "normals";  // the innermost section of the piece
   while (scan.next(tag)) {
-    if (tag.name == "Piece" && !tag.closing) {
+    if (tag.name == "Piece") {
+      in_piece = !tag.closing && !tag.self_closing;
+      if (tag.closing) continue;
       if (++pieces > 1) throw InputError(path, tag.line, "several pieces are not supported (merge them first)");
       n_points = count_attribute(path, tag, "NumberOfPoints");
       n_cells = count_attribute(path, tag, unstructured ? "NumberOfCells" : "NumberOfPolys");
@@ -267,7 +269,10 @@ IndexedMesh read_vtk_xml(const std::string& path, const std::string& data, std::
                        "DataArray '" + name + "' is " + format +
                            ": only ASCII data arrays are read (VTK writers: SetDataModeToAscii(); meshio: "
                            "binary=False; ParaView: Data Mode Ascii)");
-    if (tag.self_closing) continue;
+    // An array outside a Piece is the dataset's FieldData (VTK writes TimeValue
+    // there), never per point or per cell: the counts it would be checked against
+    // are the Piece's.
+    if (tag.self_closing || !in_piece) continue;
     int line = 0;
     const std::vector<double> values = array_numbers(path, scan.text_until_next_tag(line), line, name);
     const std::int64_t components =

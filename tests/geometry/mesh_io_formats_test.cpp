@@ -289,6 +289,34 @@ TEST_CASE("formats: XML VTK as VTK writes it in ASCII (ranges, information keys,
   CHECK(r.normals.empty());
 }
 
+TEST_CASE("formats: XML VTK arrays outside the Piece are field data, never sized against its counts") {
+  // Found by fuzz_mesh_invariants: PointData before the Piece was read against
+  // 0 points, an attribute of no values beside 4 points; Points before it gave
+  // triangles indexing positions that were never read.
+  Scratch s("skinmesh_formats_test_");
+  const std::string head = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\">\n<PolyData>\n";
+  const std::string field =
+      "<FieldData><DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">2.5"
+      "</DataArray></FieldData>\n";
+  const std::string early_data = "<PointData><DataArray Name=\"rho\" format=\"ascii\"></DataArray></PointData>\n";
+  const std::string points =
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 1 1 0 0 1 0"
+      "</DataArray></Points>\n";
+  const std::string piece = "<Piece NumberOfPoints=\"4\" NumberOfPolys=\"1\">\n";
+  const std::string polys =
+      "<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
+      "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">3</DataArray></Polys>\n";
+  const std::string tail = "</Piece>\n</PolyData>\n</VTKFile>\n";
+  std::vector<VertexAttribute> read;
+  const IndexedMesh r =
+      read_mesh(s.write("field.vtp", head + field + early_data + piece + points + polys + tail), &read);
+  CHECK(r.positions.size() == 4);
+  CHECK(r.triangles.size() == 1);
+  CHECK(read.empty());
+  CHECK(error_of(s.write("early.vtp", head + points + piece + polys + tail)).find("no Points data array") !=
+        std::string::npos);
+}
+
 TEST_CASE("formats: XML VTK that is not ASCII triangles is refused, naming the file, the line and the fix") {
   Scratch s("skinmesh_formats_test_");
   const std::string head =
