@@ -563,4 +563,14 @@ TEST_CASE("regression: a detour's cluster with a live minimum under the cut keep
   CHECK(res.dropped_cuts.empty());
 }
 
+TEST_CASE("regression: a saddle held from one side is lent its other side's parked vertices from farther") {
+  // Crambin at probe 0 in 16 detoured slabs: a saddle just under a cut was
+  // held from one side only; its other side had parked before its discs met
+  // the protecting sphere, farther than the held side's reach. Released
+  // unbridged, the saddle left a hole of 6 vertices that no plane showed as a
+  // simple polygon, and the seal dropped the cut.
+  const mesher::MeshResult res = detoured_slabs("crambin_1crn.pdb", 0.0, 16, "seal");
+  CHECK(res.dropped_cuts.empty());
+}
+
 }  // TEST_SUITE
