@@ -14,7 +14,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <memory>
 #include <queue>
 #include <string>
@@ -110,57 +109,6 @@ struct Rails {
   std::vector<Index> left_cell, right_cell;
 };
 
-/// Items with a position and a size s (a ball's radius, half a segment's
-/// length), in one point grid per octave of s, each with cells twice its
-/// largest s: for_each_near visits each level with the query's reach plus
-/// that level's largest s, so a query reads the items of every size near it
-/// and its cost follows the sizes there, not the largest of all. The sizes
-/// below half the median share the lowest level: a level of cells far
-/// smaller than a query's reach would make the query visit many cells. Up to
-/// kScanned items are not gridded but read one after the other: [measured]
-/// reading a few hundred is cheaper than probing the cells of every level
-/// (maltoporin at probe 0 in 24 detoured slabs: sweep 45.6 s scanning, 59.0 s
-/// with levels for every cut).
-class SizedItemGrid {
- public:
-  /// The grid of items i at p[i] with size s[i] >= 0 (Å), id i.
-  void build(const std::vector<Vec3>& p, const std::vector<double>& s) {
-    levels_.clear();
-    scanned_ = s.size() <= kScanned ? s.size() : 0;
-    if (s.empty() || scanned_ > 0) return;
-    std::vector<double> sorted = s;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    const int floor = std::ilogb(std::max(0.5 * sorted[sorted.size() / 2], kMinSize));
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int octave = std::max(floor, std::ilogb(std::max(s[i], kMinSize)));
-      auto it = levels_.find(octave);
-      if (it == levels_.end()) {
-        const double top = std::ldexp(1.0, octave + 1);
-        it = levels_.emplace(octave, Level{top, geometry::PointGrid(2 * top)}).first;
-      }
-      it->second.grid.insert(static_cast<Index>(i), p[i]);
-    }
-  }
-  /// Calls fn(id) for every item whose position lies within reach + s of q
-  /// (and for some farther ones).
-  template <class Fn>
-  void for_each_near(const Vec3& q, double reach, Fn&& fn) const {
-    for (std::size_t i = 0; i < scanned_; ++i) fn(static_cast<Index>(i));
-    for (const auto& [octave, level] : levels_)
-      level.grid.for_each_near(q, (reach + level.top) * (1 + 1e-9) + kMinSize, [&](Index id, const Vec3&) { fn(id); });
-  }
-
- private:
-  static constexpr double kMinSize = 1e-9;
-  static constexpr std::size_t kScanned = 512;
-  std::size_t scanned_ = 0;
-  struct Level {
-    double top;  ///< the largest size of the level's items (Å)
-    geometry::PointGrid grid;
-  };
-  std::map<int, Level> levels_;
-};
-
 /// The role a region's boundary gives a vertex (front/region.h).
 enum class RegionRole : std::uint8_t {
   Inside,  ///< a vertex of the region
@@ -178,12 +126,12 @@ struct SweptRegion {
   /// The balls of spec.upper_detours, one list, and a grid of them by radius
   /// (near_upper_detour).
   std::vector<morse::DetourBall> upper_balls;
-  SizedItemGrid ball_grid;
+  geometry::SizedItemGrid ball_grid;
   /// With detours, the upper curves' edges (curve, first sample), and a grid
   /// of their midpoints by half length: a vertex near a ball measures its
   /// distance to the cut's polyline over the edges near it only.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> upper_edges;
-  SizedItemGrid edge_grid;
+  geometry::SizedItemGrid edge_grid;
   /// Per vertex index; shorter than the vertex count: the vertices past its
   /// end are Inside.
   std::vector<RegionRole> role;

@@ -427,7 +427,8 @@ void run_sweep(const skin::SkinSurface& skin, const MeshOptions& options, const 
   // are live, not the integral lines' polylines (their ends stay for
   // arc_end()): their memory goes back before the sweep, the stage of the
   // peak.
-  for (morse::IntegralLine& line : ms->lines) std::vector<Vec3>().swap(line.points);
+  for (morse::IntegralLine& line : ms->lines)
+    std::vector<Vec3>().swap(line.points), std::vector<Index>().swap(line.cells);
   // What the Morse stage made of the cells and planes (the integral lines'
   // walks, the cut curves) goes back: the mesher's walks need a few percent
   // of the cells (papers/decompose/history.md, "Cells and planes made on

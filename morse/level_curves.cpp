@@ -599,12 +599,25 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
   // Bounds tied to the input's size: a curve crosses the patches of at most
   // every atom, each in a bounded number of steps of the tracer.
   const std::size_t max_steps = 100000 + 4000 * skin.points().size();
-  // The detour whose union of balls contains p, or kInvalidIndex.
+  // The first detour (in the detours' order) one of whose balls, shrunk by
+  // `shrink`, meets the segment x xn, or kInvalidIndex. Every step of the
+  // tracer asks: the balls are gridded by radius, so a step reads the balls
+  // near it, not every ball of the cut.
+  std::vector<Vec3> ball_center;
+  std::vector<double> ball_radius;
+  std::vector<Index> ball_detour;
+  for (std::size_t d = 0; d < detours.size(); ++d)
+    for (const DetourBall& b : detours[d].balls)
+      ball_center.push_back(b.center), ball_radius.push_back(b.radius), ball_detour.push_back(static_cast<Index>(d));
+  geometry::SizedItemGrid ball_grid;
+  ball_grid.build(ball_center, ball_radius, 0);
   auto in_detour = [&](const Vec3& x, const Vec3& xn, double shrink) {
-    for (std::size_t d = 0; d < detours.size(); ++d)
-      for (const DetourBall& b : detours[d].balls)
-        if (segment_distance(b.center, x, xn) < b.radius * shrink) return static_cast<Index>(d);
-    return kInvalidIndex;
+    Index first = kInvalidIndex;
+    ball_grid.for_each_near(0.5 * (x + xn), 0.5 * (xn - x).norm(), [&](Index i) {
+      if (ball_detour[i] < first && segment_distance(ball_center[i], x, xn) < ball_radius[i] * shrink)
+        first = ball_detour[i];
+    });
+    return first;
   };
 
   // Seeds: every integral line that spans the level crosses it once (the
@@ -620,7 +633,9 @@ std::vector<LevelCurve> cut_curves(const skin::SkinSurface& skin, const MorseSma
       const std::size_t mid = a + (b - a) / 2;
       ((e.dot(p[mid]) < c) == lo_below ? a : b) = mid;
     }
-    seeds.push_back(seed_on_segment(ls, p[a], p[b], kInvalidIndex));
+    // The cell of the line's point below the crossing: locating from
+    // there is a short walk, from no cell a walk across the triangulation.
+    seeds.push_back(seed_on_segment(ls, p[a], p[b], a < line.cells.size() ? line.cells[a] : kInvalidIndex));
   }
   // Minima at which no descending line ends: the components without saddles.
   std::unordered_set<Index> reached;

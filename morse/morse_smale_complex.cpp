@@ -42,8 +42,8 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, c
   Index cell = sp.cell;
   skin::SkinSample sx;  // the sample at x, from the pull-back that found x
   Vec3 x = skin.pull_back(sp.position + opt.start_offset * sp.rho * dir, cell, &sx);
-  line.points.push_back(sp.position);
-  line.points.push_back(x);
+  line.points.push_back(sp.position), line.cells.push_back(sp.cell);
+  line.points.push_back(x), line.cells.push_back(cell);
 
   auto find_end = [&](const Vec3& p, double h) -> Index {
     Index best = kInvalidIndex;
@@ -69,7 +69,7 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, c
     double h = opt.step_factor * sx.rho;
     const Index end = find_end(x, h);
     if (end != kInvalidIndex) {
-      line.points.push_back(cps[end].position);
+      line.points.push_back(cps[end].position), line.cells.push_back(cps[end].cell);
       line.end = end;
       return line;
     }
@@ -92,7 +92,7 @@ IntegralLine trace_integral_line(const skin::SkinSurface& skin, const Vec3& e, c
       }
     }
     if (!advanced) break;  // flat region: the line stalled (e.g. at another saddle)
-    line.points.push_back(x);
+    line.points.push_back(x), line.cells.push_back(cell);
   }
   return line;
 }

@@ -24,7 +24,10 @@ struct IntegralLine {
   Index saddle = kInvalidIndex;  ///< index into the critical point list
   int direction = +1;            ///< +1 ascending (to a maximum), -1 descending
   std::vector<Vec3> points;      ///< on the skin, from the saddle outwards
-  Index end = kInvalidIndex;     ///< extremum reached, kInvalidIndex if the trace failed
+  /// The mixed cell of each point (a cell containing it, as the tracer
+  /// found it): where to start locating a point near the line.
+  std::vector<Index> cells;
+  Index end = kInvalidIndex;  ///< extremum reached, kInvalidIndex if the trace failed
 };
 
 /// Options of the Morse–Smale construction.

@@ -2,9 +2,10 @@
 // queries: PointGrid, a hash grid that grows point by point (critical-point
 // lookup, front proximity), LeveledPointGrid and LeveledIndexGrid, hash grids
 // per band of the points' scales whose points can also be removed (the
-// sweep's front and protecting spheres; its vertices, by id only), and
+// sweep's front and protecting spheres; its vertices, by id only),
 // FlatPointGrid, a grid over a fixed point set stored in flat arrays (the
-// verifier's restricted-Delaunay test).
+// verifier's restricted-Delaunay test), and SizedItemGrid, items with a size
+// (a detour's balls, a cut's edges) in one grid per octave of size.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -627,5 +629,60 @@ using FlatPointGrid = BasicFlatPointGrid<true>;
 /// The grid with only the points' indices in its entries (4 bytes each
 /// instead of 32): the points must outlive it unchanged.
 using FlatIndexGrid = BasicFlatPointGrid<false>;
+
+/// Items with a position and a size s (a ball's radius, half a segment's
+/// length), in one point grid per octave of s, each with cells twice its
+/// largest s: for_each_near visits each level with the query's reach plus
+/// that level's largest s, so a query reads the items of every size near it
+/// and its cost follows the sizes there, not the largest of all. The sizes
+/// below half the median share the lowest level: a level of cells far
+/// smaller than a query's reach would make the query visit many cells. Up to
+/// max_scanned items are not gridded but read one after the other.
+class SizedItemGrid {
+ public:
+  /// The grid of items i at p[i] with size s[i] >= 0 (Å), id i; up to
+  /// max_scanned items are read one after the other instead. [measured] The
+  /// default suits queries that mostly hit: for the sweep's parking test
+  /// reading a few hundred is cheaper than probing the cells of every level
+  /// (maltoporin at probe 0 in 24 detoured slabs: sweep 45.6 s scanning, 59.0 s
+  /// with levels for every cut); the cut tracer, whose steps mostly meet no
+  /// ball, grids every ball (0: the cuts of a 218,760-atom shell chosen in
+  /// 26.1 s instead of 30.9 s).
+  void build(const std::vector<Vec3>& p, const std::vector<double>& s, std::size_t max_scanned = kScanned) {
+    levels_.clear();
+    scanned_ = s.size() <= max_scanned ? s.size() : 0;
+    if (s.empty() || scanned_ > 0) return;
+    std::vector<double> sorted = s;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const int floor = std::ilogb(std::max(0.5 * sorted[sorted.size() / 2], kMinSize));
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int octave = std::max(floor, std::ilogb(std::max(s[i], kMinSize)));
+      auto it = levels_.find(octave);
+      if (it == levels_.end()) {
+        const double top = std::ldexp(1.0, octave + 1);
+        it = levels_.emplace(octave, Level{top, PointGrid(2 * top)}).first;
+      }
+      it->second.grid.insert(static_cast<Index>(i), p[i]);
+    }
+  }
+  /// Calls fn(id) for every item whose position lies within reach + s of q
+  /// (and for some farther ones).
+  template <class Fn>
+  void for_each_near(const Vec3& q, double reach, Fn&& fn) const {
+    for (std::size_t i = 0; i < scanned_; ++i) fn(static_cast<Index>(i));
+    for (const auto& [octave, level] : levels_)
+      level.grid.for_each_near(q, (reach + level.top) * (1 + 1e-9) + kMinSize, [&](Index id, const Vec3&) { fn(id); });
+  }
+
+ private:
+  static constexpr double kMinSize = 1e-9;
+  static constexpr std::size_t kScanned = 512;
+  std::size_t scanned_ = 0;
+  struct Level {
+    double top;  ///< the largest size of the level's items (Å)
+    PointGrid grid;
+  };
+  std::map<int, Level> levels_;
+};
 
 }  // namespace skinmesh::geometry

@@ -10,6 +10,7 @@
 #include "morse/critical_points.h"
 #include "morse/morse_smale_complex.h"
 #include "skin/dual_complex.h"
+#include "skin/mixed_cell_distance.h"
 #include "skin/molecule_io.h"
 #include "tests/skin/skin_test_util.h"
 #include "tests/skin/skin_vectors.h"
@@ -269,6 +270,28 @@ TEST_CASE("Morse-Smale complex of two balls: the neck saddles join the two balls
   }
   CHECK(saddles == 2);
   CHECK(ms.cancelled.empty());
+}
+
+TEST_CASE("integral lines: each point's recorded cell holds it, the hint the cut tracer starts from") {
+  // Crambin at probe 1.4: a few hundred lines across thousands of cells. A
+  // wrong cell (one of the walk before the pull-back's last) lies a step's
+  // length away, far outside the tolerance.
+  const skin::Molecule mol = skin::read_molecule(std::string(SKINMESH_DATA) + "/crambin_1crn.pdb");
+  const skin::SkinSurface skin(skin::weighted_points(mol, 1.4));
+  const auto ms = morse::build_morse_smale_complex(skin, morse::default_height_direction());
+  REQUIRE(ms.lines.size() > 100);
+  std::size_t points = 0, outside = 0;
+  double worst = 0;
+  for (const morse::IntegralLine& line : ms.lines) {
+    REQUIRE(line.cells.size() == line.points.size());
+    for (std::size_t i = 0; i < line.points.size(); ++i) {
+      const double d = skin::cell_distance(skin.mixed_complex(), line.cells[i], line.points[i]);
+      worst = std::max(worst, d);
+      ++points, outside += d > 1e-6;
+    }
+  }
+  INFO("points " << points << ", farthest outside its cell " << worst << " A");
+  CHECK(outside == 0);
 }
 
 TEST_CASE("arc contraction: a saddle next to a maximum is cancelled and arcs are rerouted") {
