@@ -573,13 +573,11 @@ std::vector<Cut> choose_cuts(const skin::SkinSurface& skin, const morse::MorseSm
 
 namespace {
 
-constexpr std::size_t kNone = kNoCut;
-
 /// The slabs between the kept cuts `live` (increasing), bottom to top.
 std::vector<SlabKey> slab_keys(const std::vector<std::size_t>& live) {
   std::vector<SlabKey> keys;
   for (std::size_t k = 0; k <= live.size(); ++k)
-    keys.emplace_back(k == 0 ? kNone : live[k - 1], k == live.size() ? kNone : live[k]);
+    keys.emplace_back(k == 0 ? kNoCut : live[k - 1], k == live.size() ? kNoCut : live[k]);
   return keys;
 }
 
@@ -591,14 +589,14 @@ Region slab_region(const morse::MorseSmaleComplex& ms, const std::vector<Cut>& c
   Region slab;
   slab.park_factor = opt.park_factor;
   const auto [lower, upper] = key;
-  slab.holds_before_parking = opt.detours || (upper != kNone && cuts[upper].detoured);
-  if (lower != kNone) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
-  if (upper != kNone) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
-  if ((lower != kNone && !cuts[lower].detours.empty()) || (upper != kNone && !cuts[upper].detours.empty())) {
+  slab.holds_before_parking = opt.detours || (upper != kNoCut && cuts[upper].detoured);
+  if (lower != kNoCut) slab.lower = cuts[lower].height, slab.lower_curves = cuts[lower].curves;
+  if (upper != kNoCut) slab.upper = cuts[upper].height, slab.upper_curves = cuts[upper].curves;
+  if ((lower != kNoCut && !cuts[lower].detours.empty()) || (upper != kNoCut && !cuts[upper].detours.empty())) {
     slab.owns.assign(ms.critical.size(), 1);
     for (std::size_t p = 0; p < ms.critical.size(); ++p)
-      if ((upper != kNone && !below[upper][p]) || (lower != kNone && below[lower][p])) slab.owns[p] = 0;
-    if (upper != kNone) slab.upper_detours = cuts[upper].detours;
+      if ((upper != kNoCut && !below[upper][p]) || (lower != kNoCut && below[lower][p])) slab.owns[p] = 0;
+    if (upper != kNoCut) slab.upper_detours = cuts[upper].detours;
   }
   return slab;
 }
@@ -800,7 +798,7 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     for (const SlabKey& key : keys) {
       const SlabOutcome& o = swept.at(key);
       if (o.result) continue;
-      const std::size_t c = (o.at_lower_cut && key.first != kNone) || key.second == kNone ? key.first : key.second;
+      const std::size_t c = (o.at_lower_cut && key.first != kNoCut) || key.second == kNoCut ? key.first : key.second;
       if (!kept[c]) continue;  // the slab below dropped it already
       drop(c, o.error);
       dropped = true;
@@ -875,8 +873,8 @@ std::vector<SlabKey> slabs_between(std::size_t cuts) {
 SlabOutcome sweep_slab(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms, const std::vector<Cut>& cuts,
                        const SlabKey& key, const DecompositionOptions& opt, const SweepOptions& sweep,
                        const skin::RunContext& run) {
-  if ((key.first != kNone && key.first >= cuts.size()) || (key.second != kNone && key.second >= cuts.size()) ||
-      (key.first != kNone && key.second != kNone && key.first >= key.second))
+  if ((key.first != kNoCut && key.first >= cuts.size()) || (key.second != kNoCut && key.second >= cuts.size()) ||
+      (key.first != kNoCut && key.second != kNoCut && key.first >= key.second))
     throw std::invalid_argument("sweep_slab: no slab between cuts " + std::to_string(key.first) + " and " +
                                 std::to_string(key.second) + " of " + std::to_string(cuts.size()));
   return sweep_one(skin, ms, slab_region(ms, cuts, below_cuts(cuts, ms), key, opt), sweep, run.quiet());

@@ -682,7 +682,10 @@ std::uint64_t decomposition_fingerprint(const std::vector<geometry::WeightedPoin
   const morse::MorseSmaleOptions& m = options.morse;
   f.add(m.step_factor), f.add(m.protect_factor), f.add(m.cancel_factor), f.add(m.coincident_factor);
   f.add(m.max_steps), f.add(m.start_offset), f.add(m.arrival_steps), f.add(m.max_step_halvings);
-  f.add(options.sweep.disc_factor);
+  // The sweep's options that change a region's mesh: a region swept with
+  // another (--no-fallback, --no-patch, --max-steps) would not join the others.
+  f.add(options.sweep.disc_factor), f.add(options.sweep.patch_fallback), f.add(options.sweep.force_patch_every);
+  f.add(options.sweep.max_steps);
   const decompose::DecompositionOptions& d = options.decomposition;
   f.add(d.slabs), f.add(d.atoms_per_slab), f.add(d.max_slabs), f.add(d.park_factor), f.add(d.window_below);
   f.add(d.window_above), f.add(d.sphere_margin), f.add(d.min_thickness), f.add(d.balance_work);

@@ -137,6 +137,9 @@ TEST_CASE("regions over processes: the cuts and slabs read back from files give 
     other = options;
     other.decomposition.slabs = c.slabs + 1;
     CHECK_THROWS_AS(mesher::mesh_region(points, other, back, 0), InputError);
+    other = options;
+    other.sweep.patch_fallback = false;  // --no-fallback: the region's sweep may differ
+    CHECK_THROWS_AS(mesher::mesh_region(points, other, back, 0), InputError);
     CHECK_THROWS_AS(mesher::mesh_region(points, options, back, slabs), std::invalid_argument);
     // A region listed twice, and a cuts file given as a region file.
     other = glue;
