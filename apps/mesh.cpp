@@ -393,16 +393,18 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_option("--slabs", mesh.opt.decomposition.slabs,
                   "cut the skin at N - 1 heights and sweep the slabs on the threads, glued along the cut curves' "
                   "shared samples (papers/decompose/README.md); fewer slabs where no admissible cut height "
-                  "exists; 1: one sweep; 0 (default): one slab per 2500 atoms of the largest group of components "
-                  "if it holds most of the skin, else one sweep (the mesh depends on N, never on --threads)")
+                  "exists; 1: one sweep; 0 (default): for the atoms of the largest group of components, if it holds "
+                  "most of the skin, one slab per 2500 atoms up to 7,812 atoms and sqrt(atoms / 800) above (17 "
+                  "for 218,760 atoms), else one sweep (the mesh depends on N, never on --threads)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_flag("--cut-detours", mesh.opt.decomposition.detours,
                 "every cut passes around the critical points it meets instead of being a level cut clear of them "
                 "(experimental; papers/decompose/README.md, \"Detoured cuts\")");
-  cmd->add_flag("--detour-fallback", mesh.opt.decomposition.detour_fallback,
-                "level cuts where the skin admits them, detoured cuts where it does not (default: a target "
-                "without an admissible level cut is skipped; experimental: detoured cuts still drop often)");
+  cmd->add_flag("--detour-fallback,!--no-detour-fallback", mesh.opt.decomposition.detour_fallback,
+                "level cuts where the skin admits them, detoured cuts where it does not (the default; "
+                "--no-detour-fallback: a target without an admissible level cut is skipped, and a large body "
+                "is one sweep)");
   const char* regions = "One structure over several processes (skinmesh cuts, skinmesh region)";
   cmd->add_option("--cuts", mesh.opt.cuts_file,
                   "take the cuts from this file of `skinmesh cuts` (the same input and options) instead of "

@@ -48,7 +48,8 @@ void add_decomposition_options(CLI::App& cmd, RegionArgs& a) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd.add_flag("--cut-detours", a.opt.decomposition.detours, "cuts that pass around critical points, as `mesh`'s");
-  cmd.add_flag("--detour-fallback", a.opt.decomposition.detour_fallback, "as `skinmesh mesh --detour-fallback`");
+  cmd.add_flag("--detour-fallback,!--no-detour-fallback", a.opt.decomposition.detour_fallback,
+               "as `skinmesh mesh --detour-fallback` (the default)");
   cmd.add_flag("--no-component-sweeps", a.no_component_sweeps, "as `skinmesh mesh --no-component-sweeps`");
 }
 

@@ -385,7 +385,9 @@ std::vector<Band> close_bands(const skin::MixedComplex& mc, const RegionResult& 
 }  // namespace
 
 int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt) {
-  const double n = std::round(static_cast<double>(atoms) / opt.atoms_per_slab);
+  double n = static_cast<double>(atoms) / opt.atoms_per_slab;
+  if (opt.atoms_per_root_slab > 0) n = std::min(n, std::sqrt(static_cast<double>(atoms) / opt.atoms_per_root_slab));
+  n = std::round(n);
   return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(opt.max_slabs)));
 }
 

@@ -37,6 +37,19 @@ struct DecompositionOptions {
   /// against 0.58 s for one sweep, at a lower peak than one sweep's
   /// (papers/decompose/history.md, "Slabs by default").
   double atoms_per_slab = 2500;
+  /// With slabs = 0, above atoms_per_slab² / atoms_per_root_slab atoms
+  /// (7,812): sqrt(atoms / atoms_per_root_slab) slabs instead, fewer than
+  /// one per atoms_per_slab. [derived] a cut's cost (its search, its curve,
+  /// its band, and the chance that it drops and two slabs are swept again)
+  /// grows with its length, about the square root of a body's atoms, so
+  /// slabs growing as that root keep the cuts' share of the work even.
+  /// [measured] 800: the 218,760-atom shell (bench/assembly.py shell --t 1)
+  /// on 2 threads took 70.5, 65.8, 74.9 and 88.1 s (`total`) in 8, 16, 24
+  /// and the linear rule's 88 slabs, 2, 3, 6 and 25 cuts dropped; 800 gives
+  /// it 17 and keeps maltoporin (10,123 atoms) at 4
+  /// (papers/decompose/history.md, "Slabs as the root of the atoms").
+  /// 0: the linear rule alone.
+  double atoms_per_root_slab = 800;
   /// With slabs = 0: at most this many slabs.
   int max_slabs = 256;
   /// Region::park_factor of every slab.
@@ -79,21 +92,23 @@ struct DecompositionOptions {
   /// The cut curves' tracing and sampling.
   morse::LevelCurveOptions curves;
   /// Every cut passes around the critical points it meets (morse::cut_detours,
-  /// morse::cut_curves) instead of being a level cut clear of them
-  /// (papers/decompose/README.md, "Detoured cuts"). Off by default: see
-  /// detour_fallback.
+  /// morse::cut_curves) instead of being a level cut where one is admissible
+  /// (papers/decompose/README.md, "Detoured cuts"). Off by default: a level
+  /// cut is cheaper and never drops (see detour_fallback).
   bool detours = false;
   /// Without `detours`: a target near which no level cut is admissible gets
   /// a detoured cut (its candidates searched again, traced around the
   /// critical points they meet): level cuts where the skin admits them,
   /// detoured cuts where it does not, as large bodies need (no level cut on a
   /// 218,760-atom shell, none on maltoporin at probe 0). Meshes with a level
-  /// cut at every target are those of level cuts alone. Off by default:
-  /// [measured] maltoporin at probe 0 47.8 s against 71 s, but the shell at
-  /// its automatic 88 slabs drops 39 of 85 cuts and takes 95.5 s against
-  /// 78.5 s as one sweep on 2 threads (papers/decompose/history.md, "A
-  /// saddle bridged to its parked side").
-  bool detour_fallback = false;
+  /// cut at every target are those of level cuts alone. [measured] on by
+  /// default since the slab count grows as the root of the atoms: the
+  /// 218,760-atom shell (16 slabs) took 64.8–76.4 s on 2 threads against
+  /// 68.4–80.8 s as one sweep; the 1,214,760-atom shell (21 slabs kept of
+  /// 39) about 340 s against 331 s at a peak of 8.26 GB against 9.23 GB, and
+  /// 593 s on one thread (papers/decompose/history.md, "Slabs as the root of
+  /// the atoms"). More cores gain more, since the slabs share them.
+  bool detour_fallback = true;
   /// Without a cut: one sweep per group of whole skin components
   /// (morse::component_groups()), on the threads, instead of one sweep of
   /// the whole skin. The groups depend on the input only. Off where the
@@ -120,7 +135,8 @@ struct DecompositionOptions {
 };
 
 /// The slab count of DecompositionOptions::slabs = 0 for `atoms` atoms:
-/// round(atoms / opt.atoms_per_slab), within [1, opt.max_slabs].
+/// round(min(atoms / opt.atoms_per_slab, sqrt(atoms / opt.atoms_per_root_slab))),
+/// within [1, opt.max_slabs].
 int automatic_slabs(std::size_t atoms, const DecompositionOptions& opt);
 
 /// The slab count of DecompositionOptions::slabs = 0 for a skin of `atoms`

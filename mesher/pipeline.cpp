@@ -687,7 +687,8 @@ std::uint64_t decomposition_fingerprint(const std::vector<geometry::WeightedPoin
   f.add(options.sweep.disc_factor), f.add(options.sweep.patch_fallback), f.add(options.sweep.force_patch_every);
   f.add(options.sweep.max_steps);
   const decompose::DecompositionOptions& d = options.decomposition;
-  f.add(d.slabs), f.add(d.atoms_per_slab), f.add(d.max_slabs), f.add(d.park_factor), f.add(d.window_below);
+  f.add(d.slabs), f.add(d.atoms_per_slab), f.add(d.atoms_per_root_slab), f.add(d.max_slabs), f.add(d.park_factor),
+      f.add(d.window_below);
   f.add(d.window_above), f.add(d.sphere_margin), f.add(d.min_thickness), f.add(d.balance_work);
   f.add(d.search_reach), f.add(d.search_step), f.add(d.detours), f.add(d.detour_fallback), f.add(d.components);
   f.add(d.curves.spacing), f.add(d.curves.trace_step), f.add(d.curves.seed_tolerance), f.add(d.curves.min_sine);

@@ -205,6 +205,7 @@ TEST_CASE("decomposed sweep: level cuts where the skin admits them, detoured cut
   // that fits between its neighbours. Where every target has a level cut,
   // the mesh is that of level cuts alone.
   mesher::MeshOptions options;
+  CHECK(options.decomposition.detour_fallback);
   options.threads = 2;
   options.decomposition.slabs = 8;
   {
@@ -236,15 +237,24 @@ TEST_CASE("decomposed sweep: level cuts where the skin admits them, detoured cut
   }
 }
 
-TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, within its bounds") {
+TEST_CASE("decomposed sweep: the automatic slab count follows the atoms, then their root, within its bounds") {
   decompose::DecompositionOptions opt;
   CHECK(decompose::automatic_slabs(0, opt) == 1);
   CHECK(decompose::automatic_slabs(327, opt) == 1);      // crambin: one sweep
   CHECK(decompose::automatic_slabs(10123, opt) == 4);    // maltoporin
-  CHECK(decompose::automatic_slabs(101230, opt) == 40);  // ten maltoporins
+  CHECK(decompose::automatic_slabs(7800, opt) == 3);     // the linear rule up to 7,812 atoms
+  CHECK(decompose::automatic_slabs(101230, opt) == 11);  // ten maltoporins: sqrt(126.5)
+  CHECK(decompose::automatic_slabs(218760, opt) == 17);  // the shell of bench/assembly.py --t 1
+  CHECK(decompose::automatic_slabs(1214760, opt) == 39);
   CHECK(decompose::automatic_slabs(100000000, opt) == opt.max_slabs);
+  opt.atoms_per_slab = 1;  // the root rule alone
+  CHECK(decompose::automatic_slabs(40000, opt) == 7);
+  opt.atoms_per_root_slab = 0;  // the linear rule alone
+  CHECK(decompose::automatic_slabs(40000, opt) == opt.max_slabs);
+  opt.atoms_per_slab = 2500;
+  CHECK(decompose::automatic_slabs(101230, opt) == 40);
   opt.atoms_per_slab = 100;
-  CHECK(decompose::automatic_slabs(327, opt) == 3);
+  CHECK(decompose::automatic_slabs(327, opt) == 3);  // (the root rule off above)
 }
 
 TEST_CASE("decomposed sweep: groups of whole skin components are swept on their own") {
@@ -375,6 +385,7 @@ TEST_CASE("decomposed sweep: the default slab count follows the largest group of
   CHECK(mesher::MeshOptions{}.decomposition.slabs == 0);  // automatic unless asked
   decompose::DecompositionOptions opt;
   opt.atoms_per_slab = 1;  // a slab per atom: small inputs tell the rule
+  opt.atoms_per_root_slab = 0;
   const front::SweepOptions sweep;
   // A dumbbell (6 critical points, linked by its saddles' lines) and two
   // separate balls (a minimum and a maximum each, one group together): the
