@@ -805,14 +805,21 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       drop(c, o.error);
       dropped = true;
     }
-    if (dropped) continue;
 
     // 3. The bands: under each kept cut, each parked rim of the slab below
-    // with its curve's samples in the slab above.
+    // with its curve's samples in the slab above. In a round that dropped
+    // cuts, only the cuts whose two slabs stay as they are: their band is
+    // the one the next round would close, so a band without a strip is
+    // dropped now and its slabs swept again in the same round as the failed
+    // slabs' (what the round gains is one round's tail on the threads).
+    const auto stays = [&](std::size_t k) {  // live[k]'s two slabs are kept as they are
+      return kept[live[k]] && (k == 0 || kept[live[k - 1]]) && (k + 1 == live.size() || kept[live[k + 1]]);
+    };
     std::vector<std::vector<Band>> bands(live.size());
     std::vector<std::string> band_error(live.size());
     const auto bands_start = std::chrono::steady_clock::now();
     parallel_for(live.size(), run.threads, 1, [&](std::size_t k) {
+      if (!stays(k) || !swept.at(keys[k]).result || !swept.at(keys[k + 1]).result) return;
       const RegionResult& lower = *swept.at(keys[k]).result;
       const RegionResult& upper = *swept.at(keys[k + 1]).result;
       try {
