@@ -39,7 +39,7 @@ enum class OutputPart {
   kFaces,    ///< triangles (the half-edges, edges and faces go back after)
   kNormals,  ///< per vertex the normal
   kRho,      ///< per vertex rho
-  kCells,    ///< per vertex the position, the mixed cell, its dimension and the atom (skin::kVertexCell goes back)
+  kCells,    ///< per vertex the position, the mixed cell, its dimension and the atom
 };
 constexpr std::array<OutputPart, 4> kOutputParts{OutputPart::kFaces, OutputPart::kNormals, OutputPart::kRho,
                                                  OutputPart::kCells};
@@ -67,43 +67,71 @@ void size_part(OutputPart part, std::size_t vertices, std::size_t triangles, Mes
   }
 }
 
-/// Writes `part` of the output of a closed SurfaceMesh of the skin into
-/// `res` (its arrays already sized), the mesh's vertices from index `vbase`
-/// on and its triangles from `fbase` on, then frees what of the mesh no
-/// later part reads. Deleted elements are left out, the others keep their
-/// order (vertices() and faces() skip deleted elements in index order, the
-/// order of a compaction: no garbage_collection(), which would move every
+/// A block of a half-edge mesh's vertex slots [begin, end) and the output
+/// index of its first vertex not deleted: the per-vertex parts of the output
+/// are written block by block on the threads, so one large part (a glued
+/// decomposed mesh) does not write on one thread.
+struct VertexBlock {
+  std::size_t mesh, begin, end, out;
+};
+
+/// The vertex blocks of `meshes[first, last)`, in order, the first output
+/// index of meshes[g] being vbase[g]. Deleted vertices are left out, the
+/// others keep their order (vertices() skips deleted elements in index order,
+/// the order of a compaction: no garbage_collection(), which would move every
 /// property array once more).
-void write_part(const skin::SkinSurface& skin, geometry::SurfaceMesh& mesh, OutputPart part, MeshResult& res,
-                std::size_t vbase, std::size_t fbase) {
-  std::size_t i = vbase;
+std::vector<VertexBlock> vertex_blocks(const std::vector<geometry::SurfaceMesh*>& meshes, std::size_t first,
+                                       std::size_t last, const std::vector<std::size_t>& vbase, int threads) {
+  constexpr std::size_t kVertexGrain = 1 << 16;  // [chosen] many evaluations per block, few blocks
+  std::vector<VertexBlock> blocks;
+  for (std::size_t g = first; g < last; ++g)
+    for (std::size_t b = 0; b < meshes[g]->vertices_size(); b += kVertexGrain)
+      blocks.push_back({g, b, std::min(meshes[g]->vertices_size(), b + kVertexGrain), 0});
+  std::vector<std::size_t> live(blocks.size(), 0);
+  parallel_for(blocks.size(), threads, 1, [&](std::size_t k) {
+    const geometry::SurfaceMesh& m = *meshes[blocks[k].mesh];
+    for (std::size_t v = blocks[k].begin; v < blocks[k].end; ++v)
+      live[k] += m.is_deleted(geometry::Vertex(static_cast<Index>(v))) ? 0 : 1;
+  });
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    blocks[k].out = k > 0 && blocks[k - 1].mesh == blocks[k].mesh ? blocks[k - 1].out + live[k - 1]
+                                                                   : vbase[blocks[k].mesh];
+  return blocks;
+}
+
+/// Writes the per-vertex `part` (kCells, kNormals or kRho) of the vertices of
+/// `block` of `mesh`, a closed SurfaceMesh of the skin, into `res` (its arrays
+/// already sized).
+void write_vertex_part(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh, OutputPart part,
+                       const VertexBlock& block, MeshResult& res) {
+  std::size_t i = block.out;
+  const auto each = [&](auto&& write) {
+    for (std::size_t k = block.begin; k < block.end; ++k)
+      if (const geometry::Vertex v(static_cast<Index>(k)); !mesh.is_deleted(v)) write(v, i++);
+  };
   switch (part) {
-    case OutputPart::kFaces:
-      mesh.write_indexed_triangles(res.mesh.triangles, vbase, fbase);
-      mesh.release_faces();
-      break;
     case OutputPart::kCells: {
-      auto cell = mesh.get_vertex_property(skin::kVertexCell);
-      for (geometry::Vertex v : mesh.vertices()) {
-        res.mesh.positions[i] = mesh.position(v);
-        res.vertex_cells[i] = cell[v];
-        res.vertex_data.patch[i] = skin.mixed_complex().simplex(cell[v]).dim;
-        res.vertex_data.atom[i] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
-        ++i;
-      }
-      mesh.remove_vertex_property(cell);
+      const auto cell = mesh.get_vertex_property(skin::kVertexCell);
+      each([&](geometry::Vertex v, std::size_t j) {
+        res.mesh.positions[j] = mesh.position(v);
+        res.vertex_cells[j] = cell[v];
+        res.vertex_data.patch[j] = skin.mixed_complex().simplex(cell[v]).dim;
+        res.vertex_data.atom[j] = static_cast<std::int32_t>(skin.atom_of(cell[v], mesh.position(v)));
+      });
       break;
     }
     case OutputPart::kNormals: {
       const skin::VertexNormals normal(skin.mixed_complex(), mesh);
-      for (geometry::Vertex v : mesh.vertices()) res.mesh.normals[i++] = normal[v];
+      each([&](geometry::Vertex v, std::size_t j) { res.mesh.normals[j] = normal[v]; });
       break;
     }
     case OutputPart::kRho: {
       const skin::VertexRhos rho(skin.mixed_complex(), mesh);
-      for (geometry::Vertex v : mesh.vertices()) res.vertex_data.rho[i++] = rho[v];
+      each([&](geometry::Vertex v, std::size_t j) { res.vertex_data.rho[j] = rho[v]; });
       break;
     }
+    case OutputPart::kFaces:
+      break;  // per mesh (write_output)
   }
 }
 
@@ -118,11 +146,13 @@ void release_made_cells(const skin::SkinSurface& skin) { skin.mixed_complex().re
 /// Writes the output of the closed SurfaceMeshes of the skin `meshes`, one
 /// after the other, into res.mesh (positions, triangles, normals),
 /// res.vertex_data (atom, rho, mixed-cell dimension) and res.vertex_cells,
-/// and frees the meshes. The meshes go in windows of `threads`, each on a
-/// thread of its own, and part by part (OutputPart): an array of the output
-/// is sized (and so touched) only once the arrays of the half-edge meshes
-/// that the previous part read have gone back, so the output grows as the
-/// half-edge meshes shrink instead of both being whole at once.
+/// and frees the meshes. The meshes go in windows of `threads`, part by part
+/// (OutputPart): an array of the output is sized (and so touched) only once
+/// the arrays of the half-edge meshes that the previous part read have gone
+/// back, so the output grows as the half-edge meshes shrink instead of both
+/// being whole at once. The triangles are written one mesh per thread, the
+/// per-vertex parts in blocks of vertices on the threads (vertex_blocks());
+/// every value is the one a single loop writes.
 void write_output(const skin::SkinSurface& skin, const std::vector<geometry::SurfaceMesh*>& meshes, int threads,
                   MeshResult& res) {
   const std::size_t n = meshes.size();
@@ -136,10 +166,18 @@ void write_output(const skin::SkinSurface& skin, const std::vector<geometry::Sur
   const auto window = static_cast<std::size_t>(std::max(threads, 1));
   for (std::size_t w = 0; w < n; w += window) {
     const std::size_t end = std::min(n, w + window);
+    const std::vector<VertexBlock> blocks = vertex_blocks(meshes, w, end, vbase, threads);
     for (OutputPart part : kOutputParts) {
       size_part(part, vbase[end], fbase[end], res, [](auto& a, std::size_t k) { a.resize(k); });
-      parallel_for(end - w, threads, 1,
-                   [&](std::size_t i) { write_part(skin, *meshes[w + i], part, res, vbase[w + i], fbase[w + i]); });
+      if (part == OutputPart::kFaces) {
+        parallel_for(end - w, threads, 1, [&](std::size_t i) {
+          meshes[w + i]->write_indexed_triangles(res.mesh.triangles, vbase[w + i], fbase[w + i]);
+          meshes[w + i]->release_faces();
+        });
+      } else {
+        parallel_for(blocks.size(), threads, 1,
+                     [&](std::size_t k) { write_vertex_part(skin, *meshes[blocks[k].mesh], part, blocks[k], res); });
+      }
     }
     for (std::size_t g = w; g < end; ++g) *meshes[g] = geometry::SurfaceMesh();
   }
