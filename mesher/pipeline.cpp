@@ -94,8 +94,8 @@ std::vector<VertexBlock> vertex_blocks(const std::vector<geometry::SurfaceMesh*>
       live[k] += m.is_deleted(geometry::Vertex(static_cast<Index>(v))) ? 0 : 1;
   });
   for (std::size_t k = 0; k < blocks.size(); ++k)
-    blocks[k].out = k > 0 && blocks[k - 1].mesh == blocks[k].mesh ? blocks[k - 1].out + live[k - 1]
-                                                                   : vbase[blocks[k].mesh];
+    blocks[k].out =
+        k > 0 && blocks[k - 1].mesh == blocks[k].mesh ? blocks[k - 1].out + live[k - 1] : vbase[blocks[k].mesh];
   return blocks;
 }
 
