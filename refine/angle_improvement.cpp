@@ -10,6 +10,8 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -64,6 +66,10 @@ constexpr double kReachRounding = 1e-12;
 /// Octaves of rho per level of the neighbourhood grids (as the sweep's
 /// grids, front/front_state.h). [measured]
 constexpr int kGridOctaves = 2;
+/// Cells of the bitmap that selects a pass's static grid (build_static_grid):
+/// at most this many, 16 MiB of bits. [chosen] far more than the boxes of
+/// the candidates' neighbourhoods need at their median radius.
+constexpr double kMaxCoverCells = double(std::uint64_t{1} << 27);
 /// Smallest rho (Å) a grid cell is scaled by: a guard for degenerate skins.
 /// [derived] far below any vertex's rho.
 constexpr double kMinScale = 1e-9;
@@ -152,6 +158,11 @@ class AngleImprover {
   /// for the vertices that never moved, the grid of moved vertices for the
   /// others.
   std::vector<Vertex> neighbourhood(const Bounds& b) const;
+  /// Makes grid_ for a pass whose candidates are `cands`: every vertex
+  /// that has not moved and lies within covered_[c] of a candidate c (and
+  /// some farther ones), in index order. The pass's queries read only those:
+  /// the grid follows the candidates, not the mesh.
+  void build_static_grid(const std::vector<std::pair<double, Vertex>>& cands);
   /// Moves v to a better admissible position if there is one.
   bool try_improve(Vertex v);
   /// Projects the tangent-plane offset x onto the skin along n0 and
@@ -177,24 +188,25 @@ class AngleImprover {
   geometry::VertexProperty<Index> cell_;
   skin::VertexNormals normal_;  ///< from the cell
   skin::VertexRhos rho_;        ///< from the cell
-  /// Every vertex at its position when the pass started (built when there
-  /// is something to move), and the vertices moved since at their new
-  /// positions. Both are leveled by the vertices' rho, a level's cells half
-  /// the median reach over rho of the first candidates times the level's
-  /// scale: a query reads cells of its own scale, whatever the scales of the
-  /// other candidates (papers/refine/angle_improvement.md). The first holds
-  /// indices only (4 bytes an entry) and reads the mesh's positions: a vertex
-  /// that never moved is where it was, and a moved one is skipped there
-  /// (moved_) and found in the second. The mesh gains no vertex here, so the
-  /// positions stay where the grid reads them.
+  /// The vertices that never moved and lie near a candidate of the pass
+  /// (build_static_grid, made again each pass), and the vertices moved
+  /// since the pass began at their new positions. Both are leveled by the
+  /// vertices' rho, a level's cells half the median reach over rho of the
+  /// first candidates times the level's scale: a query reads cells of its
+  /// own scale, whatever the scales of the other candidates
+  /// (papers/refine/angle_improvement.md). The first holds indices only (4
+  /// bytes an entry) and reads the mesh's positions: a vertex that never
+  /// moved is where it was, and a moved one is skipped there (moved_) and
+  /// found in the second. The mesh gains no vertex here, so the positions
+  /// stay where the grid reads them.
   std::optional<geometry::LeveledIndexGrid> grid_;
   std::optional<geometry::LeveledPointGrid> moved_grid_;
+  double cell_per_scale_ = 0;        ///< of both grids, from the first pass's candidates
   std::vector<std::uint8_t> moved_;  ///< per vertex: 1 once it has moved
   std::vector<Face> touched_;        ///< the stars of the moved vertices
-  /// Per-attempt marks (attempt number) of the neighbourhood's vertices and
-  /// of the triangles listed, instead of sorting.
-  std::vector<std::uint32_t> vertex_mark_, face_mark_;
-  std::uint32_t attempt_ = 0;
+  /// Per candidate of the pass: the radius about it within which grid_
+  /// holds every vertex that has not moved (build_static_grid).
+  std::unordered_map<Index, double> covered_;
   AngleImprovementStats stats_;
 };
 
@@ -242,8 +254,17 @@ double AngleImprover::scan(std::vector<Face>* low, double* kappa, Face* worst_hi
   // rho of its own (rounding is monotone, so the skip never drops a triangle
   // the exact comparison below would take).
   double rho_floor = std::numeric_limits<double>::infinity();
-  if (kappa)
-    for (Vertex v : mesh_.vertices()) rho_floor = std::min(rho_floor, rho_[v]);
+  if (kappa) {
+    // Each rho is computed from its cell: blocks of vertices on the threads
+    // (the smallest value is the same in any order).
+    const std::size_t nv = mesh_.vertices_size(), vblocks = (nv + kScanGrain - 1) / kScanGrain;
+    std::vector<double> floors(vblocks, std::numeric_limits<double>::infinity());
+    parallel_for(vblocks, threads_, 1, [&](std::size_t k) {
+      for (std::size_t i = k * kScanGrain, end = std::min(nv, i + kScanGrain); i < end; ++i)
+        if (const Vertex v(static_cast<Index>(i)); !mesh_.is_deleted(v)) floors[k] = std::min(floors[k], rho_[v]);
+    });
+    for (double f : floors) rho_floor = std::min(rho_floor, f);
+  }
   // Each block of consecutive faces is scanned on its own and the blocks'
   // results are joined in order, the way one loop would meet them: the
   // result is the same for every thread count.
@@ -343,11 +364,22 @@ std::vector<Vertex> AngleImprover::neighbourhood(const Bounds& b) const {
   const double rho_v = rho_[b.v], slack = 1e-9 * (rho_v + r);
   const double lo = rho_v - relevance_radius(b, rho_v) - slack, hi = rho_v + r + slack;
   const auto& positions = mesh_.positions().vector();
-  grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
-    const Vertex x(id);
-    if (x == b.v || moved_[id]) return;
-    if (relevant(b, (p - p0).norm(), rho_[x])) out.push_back(x);
-  });
+  const auto covered = covered_.find(b.v.idx());
+  if (covered != covered_.end() && r <= covered->second) {
+    grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
+      const Vertex x(id);
+      if (x == b.v || moved_[id]) return;
+      if (relevant(b, (p - p0).norm(), rho_[x])) out.push_back(x);
+    });
+  } else {
+    // Beyond the static grid's cover, which the bound of build_static_grid
+    // rules out: every vertex read, so the neighbourhood is the same.
+    for (Vertex x : mesh_.vertices()) {
+      if (x == b.v || moved_[x.idx()]) continue;
+      const double d = (pos(x) - p0).norm();
+      if (d <= r && relevant(b, d, rho_[x])) out.push_back(x);
+    }
+  }
   moved_grid_->for_each_near(p0, r, lo, hi, positions, [&](Index id, const Vec3& p) {
     const Vertex x(id);
     if (x == b.v) return;
@@ -471,6 +503,87 @@ Refusal AngleImprover::admissible(Vertex v, const Trial& t, const std::vector<Ve
   }
   mesh_.position(v) = p0;
   return verdict;
+}
+
+void AngleImprover::build_static_grid(const std::vector<std::pair<double, Vertex>>& cands) {
+  // A candidate c is tried once per pass, where it is now. Its query then
+  // reaches reach({c, M, S}) with M and S from its ring at that moment; a
+  // ring vertex u that moved before it in the pass moved at most 2 M_u
+  // (every trial lies within twice the tangent move, `relevant`), and M_u <=
+  // max_move_factor |u - c|: so every ring distance, and with it M and S,
+  // grows by at most gamma = 1 + 2 max_move_factor, and reach, whose terms
+  // grow at most linearly with M and S, by at most gamma too.
+  const double gamma = 1 + 2 * opt_.max_move_factor;
+  covered_.clear();
+  std::vector<Vertex> ring;
+  std::vector<Vec3> centre;
+  std::vector<double> radius;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& [q, c] : cands) {
+    ring_of(c, ring);  // true: the pass keeps only vertices with a ring
+    double shortest = std::numeric_limits<double>::infinity(), S = 0;
+    for (Vertex u : ring) {
+      const double d = (pos(u) - pos(c)).norm();
+      shortest = std::min(shortest, d), S = std::max(S, d);
+    }
+    const double R = gamma * reach({c, opt_.max_move_factor * shortest, S}) * (1 + kBoundPad);
+    covered_.emplace(c.idx(), R);
+    centre.push_back(pos(c));
+    radius.push_back(R);
+    lo = lo.cwiseMin(pos(c) - Vec3::Constant(R)), hi = hi.cwiseMax(pos(c) + Vec3::Constant(R));
+  }
+  // A bitmap of cubic cells over the balls' box, side the median radius (or
+  // more, to stay within kMaxCoverCells): the cells each ball's box meets.
+  std::vector<double> sorted = radius;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  double h = std::max(sorted[sorted.size() / 2], kMinScale);
+  const Vec3 extent = hi - lo;
+  auto cells = [&](double side) {
+    return (std::floor(extent.x() / side) + 1) * (std::floor(extent.y() / side) + 1) *
+           (std::floor(extent.z() / side) + 1);
+  };
+  while (cells(h) > kMaxCoverCells) h *= 2;
+  std::array<std::int64_t, 3> n{};
+  for (int k = 0; k < 3; ++k) n[k] = static_cast<std::int64_t>(std::floor(extent[k] / h)) + 1;
+  auto cell_of = [&](double x, int k) { return static_cast<std::int64_t>(std::floor((x - lo[k]) / h)); };
+  std::vector<std::uint64_t> bits(static_cast<std::size_t>((n[0] * n[1] * n[2] + 63) / 64), 0);
+  for (std::size_t i = 0; i < centre.size(); ++i) {
+    std::array<std::int64_t, 3> a{}, b{};
+    for (int k = 0; k < 3; ++k) {
+      a[k] = std::clamp<std::int64_t>(cell_of(centre[i][k] - radius[i], k), 0, n[k] - 1);
+      b[k] = std::clamp<std::int64_t>(cell_of(centre[i][k] + radius[i], k), 0, n[k] - 1);
+    }
+    for (std::int64_t x = a[0]; x <= b[0]; ++x)
+      for (std::int64_t y = a[1]; y <= b[1]; ++y)
+        for (std::int64_t z = a[2]; z <= b[2]; ++z) {
+          const auto bit = static_cast<std::uint64_t>((x * n[1] + y) * n[2] + z);
+          bits[bit >> 6] |= std::uint64_t{1} << (bit & 63);
+        }
+  }
+  // A vertex within R of a centre has each coordinate within R of it, and
+  // the cell index is monotone in the coordinate: its cell is marked. The
+  // vertices are read in blocks on the threads and inserted in index order.
+  const std::size_t nv = mesh_.vertices_size(), blocks = (nv + kScanGrain - 1) / kScanGrain;
+  std::vector<std::vector<Index>> kept(blocks);
+  parallel_for(blocks, threads_, 1, [&](std::size_t k) {
+    for (std::size_t i = k * kScanGrain, end = std::min(nv, i + kScanGrain); i < end; ++i) {
+      const Vertex x(static_cast<Index>(i));
+      if (mesh_.is_deleted(x) || moved_[i]) continue;
+      const Vec3& p = pos(x);
+      std::array<std::int64_t, 3> c{};
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) {
+        c[a] = cell_of(p[a], a);
+        inside = inside && c[a] >= 0 && c[a] < n[a];
+      }
+      if (!inside) continue;
+      const auto bit = static_cast<std::uint64_t>((c[0] * n[1] + c[1]) * n[2] + c[2]);
+      if (bits[bit >> 6] >> (bit & 63) & 1) kept[k].push_back(x.idx());
+    }
+  });
+  grid_.emplace(cell_per_scale_, kGridOctaves, /*erasable=*/false);
+  for (const std::vector<Index>& list : kept)
+    for (Index i : list) grid_->insert(i, pos(Vertex(i)), rho_[Vertex(i)]);
 }
 
 bool AngleImprover::try_improve(Vertex v) {
@@ -607,20 +720,22 @@ bool AngleImprover::try_improve(Vertex v) {
   // The neighbourhood: the relevant vertices (marked), and the triangles
   // with three marked corners, without the star (no other triangle can
   // matter: "Which triangles a move can affect").
-  if (vertex_mark_.size() < mesh_.vertices_size()) vertex_mark_.resize(mesh_.vertices_size(), 0);
-  if (face_mark_.size() < mesh_.faces_size()) face_mark_.resize(mesh_.faces_size(), 0);
-  ++attempt_;
+  // The marks are sets of the neighbourhood's size, not arrays over the mesh.
   const std::vector<Vertex> nearby = neighbourhood({v, M, S});
-  for (Vertex x : nearby) vertex_mark_[x.idx()] = attempt_;
+  std::vector<Index> marked(nearby.size());
+  for (std::size_t i = 0; i < nearby.size(); ++i) marked[i] = nearby[i].idx();
+  std::sort(marked.begin(), marked.end());
+  std::unordered_set<Index> listed;
+  listed.reserve(4 * nearby.size());
   std::vector<FaceGeometry> faces;
   for (Vertex x : nearby)
     for (Face f : mesh_.faces(x)) {
-      if (face_mark_[f.idx()] == attempt_) continue;
-      face_mark_[f.idx()] = attempt_;
+      if (!listed.insert(f.idx()).second) continue;
       FaceGeometry g;
       int i = 0;
       bool keep = true;
-      for (Vertex y : mesh_.vertices(f)) keep = keep && vertex_mark_[y.idx()] == attempt_, g.v[i++] = y.idx();
+      for (Vertex y : mesh_.vertices(f))
+        keep = keep && std::binary_search(marked.begin(), marked.end(), y.idx()), g.v[i++] = y.idx();
       if (!keep) continue;  // a star triangle (v is not marked) or one that cannot matter
       const Vec3 &a = pos(Vertex(g.v[0])), &b = pos(Vertex(g.v[1])), &cc = pos(Vertex(g.v[2]));
       g.cc = skin::circumcentre(a, b, cc);
@@ -704,7 +819,7 @@ AngleImprovementStats AngleImprover::run() {
     if (cands.empty()) break;
     ++stats_.passes;
     std::sort(cands.begin(), cands.end());
-    if (!grid_) {
+    if (!moved_grid_) {
       // Cells of half the median reach over rho of the first candidates,
       // times the scale of each level.
       std::vector<double> r;
@@ -718,13 +833,11 @@ AngleImprovementStats AngleImprover::run() {
         r.push_back(reach({v, opt_.max_move_factor * shortest, S}) / std::max(rho_[v], kMinScale));
       }
       std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-      const double cell_per_scale = 0.5 * r[r.size() / 2];
-      grid_.emplace(cell_per_scale, kGridOctaves, /*erasable=*/false);
-      for (Vertex x : mesh_.vertices())
-        if (!mesh_.is_deleted(x)) grid_->insert(x.idx(), pos(x), rho_[x]);
-      moved_grid_.emplace(cell_per_scale, kGridOctaves);
+      cell_per_scale_ = 0.5 * r[r.size() / 2];
+      moved_grid_.emplace(cell_per_scale_, kGridOctaves);
       moved_.assign(mesh_.vertices_size(), 0);
     }
+    build_static_grid(cands);
     std::vector<Vertex> next;
     for (const auto& [q, v] : cands) {
       if (!try_improve(v)) continue;
