@@ -613,21 +613,25 @@ std::vector<std::vector<char>> below_cuts(const std::vector<Cut>& cuts, const mo
 }
 
 /// The slabs `todo` swept on up to run.threads threads, each into its own
-/// outcome. `below[c]` says which critical points lie below cut c (empty
-/// without detours): a slab between detoured cuts owns the points between.
+/// outcome, handed out in the order `order` (a permutation of todo's
+/// indices; which thread sweeps a slab changes nothing in it). `below[c]`
+/// says which critical points lie below cut c (empty without detours): a
+/// slab between detoured cuts owns the points between.
 std::vector<SlabOutcome> sweep_slabs(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
                                      const std::vector<Cut>& cuts, const std::vector<std::vector<char>>& below,
-                                     const std::vector<SlabKey>& todo, const DecompositionOptions& opt,
-                                     const SweepOptions& sweep, const skin::RunContext& run) {
+                                     const std::vector<SlabKey>& todo, const std::vector<std::size_t>& order,
+                                     const DecompositionOptions& opt, const SweepOptions& sweep,
+                                     const skin::RunContext& run) {
   std::vector<SlabOutcome> fresh(todo.size());
   std::mutex progress_mutex;
   std::size_t finished = 0;
-  parallel_for(todo.size(), run.threads, 1, [&](std::size_t i) {
+  parallel_for(todo.size(), run.threads, 1, [&](std::size_t k) {
+    const std::size_t i = order[k];
     const Region slab = slab_region(ms, cuts, below, todo[i], opt);
     skin::RunContext slab_run = run.quiet();
     if (run.progress && run.threads == 1)
-      slab_run.progress = [&run, i, &todo](const std::string& stage, double f) {
-        run.progress(stage, (static_cast<double>(i) + f) / static_cast<double>(todo.size()));
+      slab_run.progress = [&run, k, &todo](const std::string& stage, double f) {
+        run.progress(stage, (static_cast<double>(k) + f) / static_cast<double>(todo.size()));
       };
     fresh[i] = sweep_one(skin, ms, slab, sweep, slab_run);
     if (run.progress && run.threads > 1) {
@@ -768,6 +772,17 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
   // Per cut, which critical points lie below it (for the slabs' ownership
   // where cuts detour).
   const std::vector<std::vector<char>> below = below_cuts(cuts, ms);
+  // Per slab between two consecutive cuts (the slab under cut c is number c,
+  // the top one n_cuts), the seconds its first sweep took: a merged slab of
+  // a later round is predicted to take the sum of its parts, and a round's
+  // slabs are handed out longest first, so that no long slab starts last
+  // while the other threads have nothing left (the slabs of one round are
+  // about equal in predicted work; those swept again after drops are not).
+  std::vector<double> first_seconds(n_cuts + 1, 0.0);
+  const auto elementary = [](const SlabKey& key) {
+    const std::size_t first = key.first == kNoCut ? 0 : key.first + 1;
+    return std::pair<std::size_t, std::size_t>{first, key.second == kNoCut ? std::size_t(-1) : key.second};
+  };
 
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
@@ -790,8 +805,21 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     std::vector<SlabKey> todo;
     for (const SlabKey& key : keys)
       if (!swept.count(key)) todo.push_back(key);
-    std::vector<SlabOutcome> fresh = sweep_slabs(skin, ms, cuts, below, todo, opt, sweep, run);
-    for (std::size_t i = 0; i < todo.size(); ++i) swept.emplace(todo[i], std::move(fresh[i]));
+    std::vector<double> predicted(todo.size(), 0.0);
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      const auto [first, last] = elementary(todo[i]);
+      for (std::size_t e = first; e <= std::min(last, n_cuts); ++e) predicted[i] += first_seconds[e];
+    }
+    std::vector<std::size_t> order(todo.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return predicted[a] > predicted[b]; });
+    std::vector<SlabOutcome> fresh = sweep_slabs(skin, ms, cuts, below, todo, order, opt, sweep, run);
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      if (const auto [first, last] = elementary(todo[i]); first == std::min(last, n_cuts))
+        first_seconds[first] = fresh[i].seconds;
+      swept.emplace(todo[i], std::move(fresh[i]));
+    }
 
     // 2. A slab that failed is merged with the slab above (the top one with
     // the slab below, and one that failed at its lower cut with the slab
