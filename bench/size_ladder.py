@@ -51,7 +51,7 @@ LADDER = [
     "src_kinase_2src.pdb",
     "maltoporin_1af6.pdb",
 ]
-STAGES = ["skin", "morse", "sweep", "refine", "angles", "output", "check"]
+STAGES = ["skin", "morse", "sweep", "refine", "angles", "output", "check", "normals"]
 
 
 def atom_lines(path):

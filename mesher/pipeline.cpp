@@ -32,17 +32,15 @@ namespace skinmesh::mesher {
 
 namespace {
 
-/// The output arrays of a MeshResult, in the order write_output() fills them:
-/// the normals and rho before the cells, from which they are derived
-/// (skin::VertexNormals).
+/// The output arrays of a MeshResult that write_output() fills, in its order.
 enum class OutputPart {
-  kFaces,    ///< triangles (the half-edges, edges and faces go back after)
-  kNormals,  ///< per vertex the normal
-  kRho,      ///< per vertex rho
-  kCells,    ///< per vertex the position, the mixed cell, its dimension and the atom
+  kFaces,  ///< triangles (the half-edges, edges and faces go back after)
+  kCells,  ///< per vertex the position, the mixed cell, its dimension and the atom
 };
-constexpr std::array<OutputPart, 4> kOutputParts{OutputPart::kFaces, OutputPart::kNormals, OutputPart::kRho,
-                                                 OutputPart::kCells};
+/// The parts write_output() makes. The normals and rho are made from the
+/// cells after the check, which reads neither (fill_normals_and_rho()): the
+/// check's peak does not hold them.
+constexpr std::array<OutputPart, 2> kOutputParts{OutputPart::kFaces, OutputPart::kCells};
 
 /// Calls size(array, n) on the output arrays of `part` in `res`, with
 /// n = `vertices` for per-vertex arrays and `triangles` for the triangles.
@@ -57,12 +55,6 @@ void size_part(OutputPart part, std::size_t vertices, std::size_t triangles, Mes
       size(res.vertex_cells, vertices);
       size(res.vertex_data.patch, vertices);
       size(res.vertex_data.atom, vertices);
-      break;
-    case OutputPart::kNormals:
-      size(res.mesh.normals, vertices);
-      break;
-    case OutputPart::kRho:
-      size(res.vertex_data.rho, vertices);
       break;
   }
 }
@@ -99,7 +91,7 @@ std::vector<VertexBlock> vertex_blocks(const std::vector<geometry::SurfaceMesh*>
   return blocks;
 }
 
-/// Writes the per-vertex `part` (kCells, kNormals or kRho) of the vertices of
+/// Writes the per-vertex `part` (kCells) of the vertices of
 /// `block` of `mesh`, a closed SurfaceMesh of the skin, into `res` (its arrays
 /// already sized).
 void write_vertex_part(const skin::SkinSurface& skin, const geometry::SurfaceMesh& mesh, OutputPart part,
@@ -120,16 +112,6 @@ void write_vertex_part(const skin::SkinSurface& skin, const geometry::SurfaceMes
       });
       break;
     }
-    case OutputPart::kNormals: {
-      const skin::VertexNormals normal(skin.mixed_complex(), mesh);
-      each([&](geometry::Vertex v, std::size_t j) { res.mesh.normals[j] = normal[v]; });
-      break;
-    }
-    case OutputPart::kRho: {
-      const skin::VertexRhos rho(skin.mixed_complex(), mesh);
-      each([&](geometry::Vertex v, std::size_t j) { res.vertex_data.rho[j] = rho[v]; });
-      break;
-    }
     case OutputPart::kFaces:
       break;  // per mesh (write_output)
   }
@@ -144,9 +126,9 @@ void write_vertex_part(const skin::SkinSurface& skin, const geometry::SurfaceMes
 void release_made_cells(const skin::SkinSurface& skin) { skin.mixed_complex().release_made(); }
 
 /// Writes the output of the closed SurfaceMeshes of the skin `meshes`, one
-/// after the other, into res.mesh (positions, triangles, normals),
-/// res.vertex_data (atom, rho, mixed-cell dimension) and res.vertex_cells,
-/// and frees the meshes. The meshes go in windows of `threads`, part by part
+/// after the other, into res.mesh (positions, triangles), res.vertex_data
+/// (atom, mixed-cell dimension) and res.vertex_cells, and frees the meshes
+/// (the normals and rho follow the check: fill_normals_and_rho()). The meshes go in windows of `threads`, part by part
 /// (OutputPart): an array of the output is sized (and so touched) only once
 /// the arrays of the half-edge meshes that the previous part read have gone
 /// back, so the output grows as the half-edge meshes shrink instead of both
@@ -181,6 +163,25 @@ void write_output(const skin::SkinSurface& skin, const std::vector<geometry::Sur
     }
     for (std::size_t g = w; g < end; ++g) *meshes[g] = geometry::SurfaceMesh();
   }
+}
+
+/// The normals and rho of res.mesh's vertices, from res.vertex_cells and the
+/// positions (MixedComplex::unit_normal and rho, the values write_vertex_part
+/// makes, bit for bit), in blocks of vertices on the threads, if the output
+/// has its cells and not yet its normals (a sweep's output); else nothing.
+void fill_normals_and_rho(const skin::SkinSurface& skin, const skin::RunContext& run, MeshResult& res) {
+  const std::size_t nv = res.mesh.positions.size();
+  if (nv == 0 || res.vertex_cells.size() != nv || !res.mesh.normals.empty()) return;
+  res.mesh.normals.resize(nv);
+  res.vertex_data.rho.resize(nv);
+  constexpr std::size_t kGrain = 1 << 16;  // [chosen] as vertex_blocks()
+  const skin::MixedComplex& mc = skin.mixed_complex();
+  parallel_for((nv + kGrain - 1) / kGrain, run.threads, 1, [&](std::size_t b) {
+    for (std::size_t j = b * kGrain, end = std::min(nv, j + kGrain); j < end; ++j) {
+      res.mesh.normals[j] = mc.unit_normal(res.vertex_cells[j], res.mesh.positions[j]);
+      res.vertex_data.rho[j] = mc.rho(res.vertex_cells[j], res.mesh.positions[j]);
+    }
+  });
 }
 
 /// mesh_skin() on points already in their local frame.
@@ -636,11 +637,13 @@ MeshResult mesh_skin_local(const std::vector<geometry::WeightedPoint>& points, c
   // The shells the user keeps, once the mesh of them all is checked.
   if (options.shells.selects())
     res.shells = skin::select_shells(res.mesh, &res.vertex_data, &res.vertex_cells, options.shells);
-  if (options.check) {
-    if (res.check.ok() && options.stored_positions.lossy())
-      run_stored_check(skin, options, run, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
-    std::vector<Index>().swap(res.vertex_cells);
+  if (options.check && res.check.ok() && options.stored_positions.lossy())
+    run_stored_check(skin, options, run, centre, res.static_fallback.empty() ? clock : fallback_clock, res);
+  if (res.vertex_cells.size() == res.mesh.positions.size() && res.mesh.normals.empty()) {
+    fill_normals_and_rho(skin, run, res);
+    clock.end("normals");
   }
+  if (options.check) std::vector<Index>().swap(res.vertex_cells);
   // The exact per-atom areas read every cell of this skin: the same skin that
   // skin::atom_areas() builds from the points (the same local frame), so the
   // same values, without a second skin beside the mesh.
