@@ -128,13 +128,14 @@ void release_made_cells(const skin::SkinSurface& skin) { skin.mixed_complex().re
 /// Writes the output of the closed SurfaceMeshes of the skin `meshes`, one
 /// after the other, into res.mesh (positions, triangles), res.vertex_data
 /// (atom, mixed-cell dimension) and res.vertex_cells, and frees the meshes
-/// (the normals and rho follow the check: fill_normals_and_rho()). The meshes go in windows of `threads`, part by part
-/// (OutputPart): an array of the output is sized (and so touched) only once
-/// the arrays of the half-edge meshes that the previous part read have gone
-/// back, so the output grows as the half-edge meshes shrink instead of both
-/// being whole at once. The triangles are written one mesh per thread, the
-/// per-vertex parts in blocks of vertices on the threads (vertex_blocks());
-/// every value is the one a single loop writes.
+/// (the normals and rho follow the check: fill_normals_and_rho()). The
+/// meshes go in windows of `threads`, part by part (OutputPart): an array of
+/// the output is sized (and so touched) only once the arrays of the
+/// half-edge meshes that the previous part read have gone back, so the
+/// output grows as the half-edge meshes shrink instead of both being whole at
+/// once. The triangles are written one mesh per thread, the per-vertex parts
+/// in blocks of vertices on the threads (vertex_blocks()); every value is the
+/// one a single loop writes.
 void write_output(const skin::SkinSurface& skin, const std::vector<geometry::SurfaceMesh*>& meshes, int threads,
                   MeshResult& res) {
   const std::size_t n = meshes.size();
@@ -166,9 +167,10 @@ void write_output(const skin::SkinSurface& skin, const std::vector<geometry::Sur
 }
 
 /// The normals and rho of res.mesh's vertices, from res.vertex_cells and the
-/// positions (MixedComplex::unit_normal and rho, the values write_vertex_part
-/// makes, bit for bit), in blocks of vertices on the threads, if the output
-/// has its cells and not yet its normals (a sweep's output); else nothing.
+/// positions (MixedComplex::unit_normal and rho: bit for bit what
+/// skin::VertexNormals and VertexRhos read on the half-edge mesh), in blocks
+/// of vertices on the threads, if the output has its cells and not yet its
+/// normals (a sweep's output); else nothing.
 void fill_normals_and_rho(const skin::SkinSurface& skin, const skin::RunContext& run, MeshResult& res) {
   const std::size_t nv = res.mesh.positions.size();
   if (nv == 0 || res.vertex_cells.size() != nv || !res.mesh.normals.empty()) return;
