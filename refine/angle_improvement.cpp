@@ -70,6 +70,12 @@ constexpr int kGridOctaves = 2;
 /// at most this many, 16 MiB of bits. [chosen] far more than the boxes of
 /// the candidates' neighbourhoods need at their median radius.
 constexpr double kMaxCoverCells = double(std::uint64_t{1} << 27);
+/// Cells the candidates' boxes may mark in all, per candidate: the bitmap's
+/// cells grow until the marks cost at most this, so that a candidate whose
+/// reach is far above the median (a thin neck among ordinary patches) does
+/// not mark its box cell by cell. [chosen] a few times the 27 cells of a
+/// box about the median radius.
+constexpr double kMarksPerCandidate = 128;
 /// Smallest rho (Å) a grid cell is scaled by: a guard for degenerate skins.
 /// [derived] far below any vertex's rho.
 constexpr double kMinScale = 1e-9;
@@ -532,8 +538,9 @@ void AngleImprover::build_static_grid(const std::vector<std::pair<double, Vertex
     radius.push_back(R);
     lo = lo.cwiseMin(pos(c) - Vec3::Constant(R)), hi = hi.cwiseMax(pos(c) + Vec3::Constant(R));
   }
-  // A bitmap of cubic cells over the balls' box, side the median radius (or
-  // more, to stay within kMaxCoverCells): the cells each ball's box meets.
+  // A bitmap of cubic cells over the balls' box, side the median radius, or
+  // more to stay within kMaxCoverCells and kMarksPerCandidate: the cells
+  // each ball's box meets. Larger cells only keep more vertices.
   std::vector<double> sorted = radius;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   double h = std::max(sorted[sorted.size() / 2], kMinScale);
@@ -542,7 +549,12 @@ void AngleImprover::build_static_grid(const std::vector<std::pair<double, Vertex
     return (std::floor(extent.x() / side) + 1) * (std::floor(extent.y() / side) + 1) *
            (std::floor(extent.z() / side) + 1);
   };
-  while (cells(h) > kMaxCoverCells) h *= 2;
+  auto marks = [&](double side) {
+    double m = 0;
+    for (double R : radius) m += std::pow(std::min(2 * R / side + 2, std::floor(extent.maxCoeff() / side) + 1), 3);
+    return m;
+  };
+  while (cells(h) > kMaxCoverCells || marks(h) > kMarksPerCandidate * double(radius.size())) h *= 2;
   std::array<std::int64_t, 3> n{};
   for (int k = 0; k < 3; ++k) n[k] = static_cast<std::int64_t>(std::floor(extent[k] / h)) + 1;
   auto cell_of = [&](double x, int k) { return static_cast<std::int64_t>(std::floor((x - lo[k]) / h)); };
