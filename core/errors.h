@@ -50,4 +50,11 @@ class GeometryError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A stage stopped because its caller no longer wants its result
+/// (skin::RunContext::cancel): not a failure of the input or the algorithm.
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("cancelled by the caller") {}
+};
+
 }  // namespace skinmesh

@@ -22,6 +22,7 @@
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "decompose/band.h"
+#include "decompose/slab_pool.h"
 #include "decompose/work.h"
 #include "skin/vertex_data.h"
 
@@ -612,36 +613,6 @@ std::vector<std::vector<char>> below_cuts(const std::vector<Cut>& cuts, const mo
   return below;
 }
 
-/// The slabs `todo` swept on up to run.threads threads, each into its own
-/// outcome, handed out in the order `order` (a permutation of todo's
-/// indices; which thread sweeps a slab changes nothing in it). `below[c]`
-/// says which critical points lie below cut c (empty without detours): a
-/// slab between detoured cuts owns the points between.
-std::vector<SlabOutcome> sweep_slabs(const skin::SkinSurface& skin, const morse::MorseSmaleComplex& ms,
-                                     const std::vector<Cut>& cuts, const std::vector<std::vector<char>>& below,
-                                     const std::vector<SlabKey>& todo, const std::vector<std::size_t>& order,
-                                     const DecompositionOptions& opt, const SweepOptions& sweep,
-                                     const skin::RunContext& run) {
-  std::vector<SlabOutcome> fresh(todo.size());
-  std::mutex progress_mutex;
-  std::size_t finished = 0;
-  parallel_for(todo.size(), run.threads, 1, [&](std::size_t k) {
-    const std::size_t i = order[k];
-    const Region slab = slab_region(ms, cuts, below, todo[i], opt);
-    skin::RunContext slab_run = run.quiet();
-    if (run.progress && run.threads == 1)
-      slab_run.progress = [&run, k, &todo](const std::string& stage, double f) {
-        run.progress(stage, (static_cast<double>(k) + f) / static_cast<double>(todo.size()));
-      };
-    fresh[i] = sweep_one(skin, ms, slab, sweep, slab_run);
-    if (run.progress && run.threads > 1) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      run.progress("sweep", static_cast<double>(++finished) / static_cast<double>(todo.size()));
-    }
-  });
-  return fresh;
-}
-
 /// The glued mesh of the slabs `keys` and the bands under the kept cuts
 /// `live`, or where the glue failed: the position in `live` of the cut
 /// whose band does not glue or whose seam is open or pinched, and why.
@@ -784,12 +755,42 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     return std::pair<std::size_t, std::size_t>{first, key.second == kNoCut ? std::size_t(-1) : key.second};
   };
 
+  // The predicted seconds of a slab: the sum of its parts' first sweeps.
+  const auto predict = [&](const SlabKey& key, const std::vector<double>& seconds) {
+    const auto [first, last] = elementary(key);
+    double s = 0;
+    for (std::size_t e = first; e <= std::min(last, n_cuts); ++e) s += seconds[e];
+    return s;
+  };
+  // Which cut a failed slab gives up (step 2 below).
+  const auto cut_given_up = [](const SlabKey& key, const SlabOutcome& o) {
+    return (o.at_lower_cut && key.first != kNoCut) || key.second == kNoCut ? key.first : key.second;
+  };
+
+  // The slabs' threads. A thread with no slab of the round left to start
+  // sweeps ahead a merged slab of the failures known so far, longest first:
+  // the next round asks for it unless a slab still running fails beside it
+  // or a band at its cuts has no strip (then it is given up). Each slab's
+  // own region and the sweep's options, nothing else, make its outcome.
+  SlabPool pool(run.threads,
+                [&](const SlabKey& key, const std::atomic<bool>& cancel, const std::function<void(double)>& progress) {
+                  skin::RunContext slab_run = run.quiet();
+                  slab_run.cancel = &cancel;
+                  if (progress) slab_run.progress = [&progress](const std::string&, double f) { progress(f); };
+                  return sweep_one(skin, ms, slab_region(ms, cuts, below, key, opt), sweep, slab_run);
+                });
+  const auto report = [&run](double f) {
+    if (run.progress) run.progress("sweep", f);
+  };
+
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
     for (std::size_t c = 0; c < n_cuts; ++c)
       if (kept[c]) live.push_back(c);
     if (live.empty()) return std::nullopt;
     const std::vector<SlabKey> keys = slab_keys(live);
+    // A slab swept ahead that this round does not ask for is given up.
+    pool.forget([&](const SlabKey& key) { return std::find(keys.begin(), keys.end(), key) != keys.end(); });
 
     // The slabs of dropped cuts are not needed any more: their time is lost.
     for (auto it = swept.begin(); it != swept.end();) {
@@ -806,15 +807,50 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     for (const SlabKey& key : keys)
       if (!swept.count(key)) todo.push_back(key);
     std::vector<double> predicted(todo.size(), 0.0);
-    for (std::size_t i = 0; i < todo.size(); ++i) {
-      const auto [first, last] = elementary(todo[i]);
-      for (std::size_t e = first; e <= std::min(last, n_cuts); ++e) predicted[i] += first_seconds[e];
-    }
+    for (std::size_t i = 0; i < todo.size(); ++i) predicted[i] = predict(todo[i], first_seconds);
     std::vector<std::size_t> order(todo.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return predicted[a] > predicted[b]; });
-    std::vector<SlabOutcome> fresh = sweep_slabs(skin, ms, cuts, below, todo, order, opt, sweep, run);
+    // The guess, asked when every slab of the round has started: first the
+    // slabs of the cuts kept once the failures known so far give up theirs
+    // (needed unless a slab still running fails beside them or a band has
+    // no strip), then, per slab still running, the slabs it would leave if
+    // it failed at its upper cut (needed if it does: about one slab in five
+    // fails on a large body, and a round's last slab is the one the next
+    // round waits for). Each group longest first; only reads.
+    const SlabPool::Guess guess = [&](const std::vector<const SlabOutcome*>& known) {
+      std::vector<char> after = kept;
+      std::vector<double> seconds = first_seconds;
+      for (std::size_t i = 0; i < todo.size(); ++i) {
+        if (!known[i]) continue;
+        if (!known[i]->result) after[cut_given_up(todo[i], *known[i])] = 0;
+        if (const auto [first, last] = elementary(todo[i]); first == std::min(last, n_cuts))
+          seconds[first] = known[i]->seconds;
+      }
+      std::vector<SlabKey> ahead;
+      const auto add_slabs = [&](const std::vector<char>& cuts_kept) {
+        std::vector<std::size_t> left;
+        for (std::size_t c = 0; c < n_cuts; ++c)
+          if (cuts_kept[c]) left.push_back(c);
+        const std::size_t from = ahead.size();
+        for (const SlabKey& key : slab_keys(left))
+          if (std::find(keys.begin(), keys.end(), key) == keys.end() &&
+              std::find(ahead.begin(), ahead.end(), key) == ahead.end())
+            ahead.push_back(key);
+        std::stable_sort(ahead.begin() + static_cast<std::ptrdiff_t>(from), ahead.end(),
+                         [&](const SlabKey& a, const SlabKey& b) { return predict(a, seconds) > predict(b, seconds); });
+      };
+      add_slabs(after);
+      for (std::size_t i = 0; i < todo.size(); ++i)
+        if (!known[i]) {
+          std::vector<char> failed = after;
+          failed[cut_given_up(todo[i], SlabOutcome{})] = 0;
+          add_slabs(failed);
+        }
+      return ahead;
+    };
+    std::vector<SlabOutcome> fresh = pool.sweep(todo, order, guess, report);
     for (std::size_t i = 0; i < todo.size(); ++i) {
       if (const auto [first, last] = elementary(todo[i]); first == std::min(last, n_cuts))
         first_seconds[first] = fresh[i].seconds;
@@ -828,7 +864,7 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     for (const SlabKey& key : keys) {
       const SlabOutcome& o = swept.at(key);
       if (o.result) continue;
-      const std::size_t c = (o.at_lower_cut && key.first != kNoCut) || key.second == kNoCut ? key.first : key.second;
+      const std::size_t c = cut_given_up(key, o);
       if (!kept[c]) continue;  // the slab below dropped it already
       drop(c, o.error);
       dropped = true;
@@ -863,6 +899,9 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       out.costs.retried += bands_seconds;
       continue;
     }
+    // These slabs glue unless the glue fails: what is still swept ahead is
+    // given up, its thread free for the regions' refinement.
+    pool.forget([](const SlabKey&) { return false; });
 
     // 3b. The regions refined on the threads, once their bands are known
     // (a slab swept again after a drop is refined once, in the round that
@@ -895,6 +934,8 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     }
     out.costs.glue = seconds_since(glue_start);
     if (opt.refine_regions) out.seams = std::move(glued.seams);
+    out.costs.ahead_used = pool.ahead_used();
+    out.costs.ahead_unused = pool.ahead_unused_seconds();
     return std::move(glued.mesh);
   }
 }

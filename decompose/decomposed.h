@@ -207,6 +207,11 @@ struct DecompositionCosts {
   double bands = 0;
   double glue = 0;
   double retried = 0;
+  /// Slabs swept ahead of their round on a thread that would have waited
+  /// for the round's last slab (decompose/slab_pool.h): how many a round
+  /// took, and the seconds of those given up.
+  std::size_t ahead_used = 0;
+  double ahead_unused = 0;
 };
 
 /// The decomposed sweep's mesh and the cuts it kept.

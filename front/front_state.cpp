@@ -205,6 +205,7 @@ Vec3 project_tangent(FrontState& fs, Vertex v, const Vec3& dir, double r, Index*
 // Holds in Protecting Spheres (Algorithm 1, lines 3–10)
 
 void report_progress(FrontState& fs, double h) {
+  if (fs.run.cancel && fs.run.cancel->load(std::memory_order_relaxed)) throw Cancelled();
   if (!fs.run.progress) return;
   const double span = fs.h_max - fs.h_min;
   const double f = span > 0 ? std::clamp((h - fs.h_min) / span, 0.0, 1.0) : 0.0;

@@ -168,7 +168,8 @@ void hold(FrontState& fs, Vertex v, Index c);
 /// `requeue`, the released front vertices are queued again. Returns true if
 /// any was queued.
 bool release_holds(FrontState& fs, Index c, bool requeue);
-/// Reports the swept fraction of the height range to run.progress.
+/// Reports the swept fraction of the height range to run.progress; throws
+/// Cancelled (core/errors.h) once run.cancel is set.
 void report_progress(FrontState& fs, double h);
 
 // ---------------------------------------------------------------------------

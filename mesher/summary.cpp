@@ -229,12 +229,14 @@ json run_summary(const MeshResult& res, const MeshOptions& options, const Summar
   for (const auto& [stage, t] : res.seconds) seconds[stage] = t;
   if (analytic_seconds >= 0) seconds["analytic"] = analytic_seconds;
   // The decomposed sweep's parts (inside "sweep"): per slab, bottom to top,
-  // then the bands, the glue and the slabs lost to dropped cuts.
+  // then the bands, the glue, the slabs lost to dropped cuts and the slabs
+  // swept ahead of their round (taken; seconds of those given up).
   if (!res.decomposition_costs.slabs.empty()) {
     const decompose::DecompositionCosts& c = res.decomposition_costs;
     std::vector<double> per_slab;
     for (const decompose::SlabCost& slab : c.slabs) per_slab.push_back(slab.seconds);
-    seconds["sweep_parts"] = {{"slabs", per_slab}, {"bands", c.bands}, {"glue", c.glue}, {"retried", c.retried}};
+    seconds["sweep_parts"] = {{"slabs", per_slab},    {"bands", c.bands},           {"glue", c.glue},
+                              {"retried", c.retried}, {"ahead_used", c.ahead_used}, {"ahead_unused", c.ahead_unused}};
   } else if (!res.decomposition_costs.components.empty()) {
     const decompose::DecompositionCosts& c = res.decomposition_costs;
     std::vector<double> per_group;

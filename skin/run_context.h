@@ -5,6 +5,7 @@
 // Notes: papers/mesher/pipeline.md ("The run context")
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -36,6 +37,11 @@ struct RunContext {
   /// and no other thread reads it. Each stage makes again what it reads, bit
   /// for bit the same, so the output does not depend on it.
   bool release_made_cells = false;
+  /// Set by the caller once it no longer wants the stage's result (a slab
+  /// swept ahead that no round will ask for: decompose/slab_pool.h). The
+  /// sweep reads it between departures and then throws Cancelled
+  /// (core/errors.h); nullptr: never.
+  const std::atomic<bool>* cancel = nullptr;
 
   /// This context with `t` threads (a part of the run that gives its threads
   /// to parts beside it).
