@@ -768,10 +768,9 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
   };
 
   // The slabs' threads. A thread with no slab of the round left to start
-  // sweeps ahead a merged slab of the failures known so far, longest first:
-  // the next round asks for it unless a slab still running fails beside it
-  // or a band at its cuts has no strip (then it is given up). Each slab's
-  // own region and the sweep's options, nothing else, make its outcome.
+  // sweeps ahead a merged slab a later round may ask for (the guess below).
+  // Each slab's own region and the sweep's options, nothing else, make its
+  // outcome.
   SlabPool pool(run.threads,
                 [&](const SlabKey& key, const std::atomic<bool>& cancel, const std::function<void(double)>& progress) {
                   skin::RunContext slab_run = run.quiet();
@@ -782,6 +781,19 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
   const auto report = [&run](double f) {
     if (run.progress) run.progress("sweep", f);
   };
+  // Bands closed while a round runs, as soon as their two slabs are done, on
+  // the calling thread (which would otherwise wait), by their two slabs'
+  // keys: a band depends on its two slabs only, so step 3 takes it from
+  // here, and a band without a strip is known in time for the pool to sweep
+  // the merged slab ahead. The slabs are refined only once their round
+  // glues, so the bands' vertex indices hold until then.
+  struct EarlyBand {
+    std::vector<Band> bands;
+    std::string error;
+  };
+  std::map<std::pair<SlabKey, SlabKey>, EarlyBand> early;
+  std::mutex early_mutex;  // the guess reads `early` on the pool's threads
+  double early_seconds = 0;
 
   for (;;) {
     std::vector<std::size_t> live;  // the kept cuts' indices, increasing
@@ -828,6 +840,12 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
         if (const auto [first, last] = elementary(todo[i]); first == std::min(last, n_cuts))
           seconds[first] = known[i]->seconds;
       }
+      {
+        const std::lock_guard<std::mutex> lock(early_mutex);
+        for (std::size_t k = 0; k < live.size(); ++k)
+          if (auto it = early.find({keys[k], keys[k + 1]}); it != early.end() && !it->second.error.empty())
+            after[live[k]] = 0;
+      }
       std::vector<SlabKey> ahead;
       const auto add_slabs = [&](const std::vector<char>& cuts_kept) {
         std::vector<std::size_t> left;
@@ -850,7 +868,33 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
         }
       return ahead;
     };
-    std::vector<SlabOutcome> fresh = pool.sweep(todo, order, guess, report);
+    // The watch: the bands of the cuts whose two slabs are done.
+    const SlabPool::Watch watch = [&](const std::vector<const SlabOutcome*>& known) {
+      const auto outcome = [&](const SlabKey& key) -> const SlabOutcome* {
+        if (auto it = swept.find(key); it != swept.end()) return &it->second;
+        return known[static_cast<std::size_t>(std::find(todo.begin(), todo.end(), key) - todo.begin())];
+      };
+      for (std::size_t k = 0; k < live.size(); ++k) {
+        const SlabOutcome *lower = outcome(keys[k]), *upper = outcome(keys[k + 1]);
+        if (!lower || !upper || !lower->result || !upper->result) continue;
+        const std::pair<SlabKey, SlabKey> pair{keys[k], keys[k + 1]};
+        {
+          const std::lock_guard<std::mutex> lock(early_mutex);
+          if (early.count(pair)) continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        EarlyBand band;
+        try {
+          band.bands = close_bands(skin.mixed_complex(), *lower->result, *upper->result, cuts[live[k]].height);
+        } catch (const TopologyError& e) {
+          band.error = e.what();
+        }
+        early_seconds += seconds_since(start);
+        const std::lock_guard<std::mutex> lock(early_mutex);
+        early.emplace(pair, std::move(band));
+      }
+    };
+    std::vector<SlabOutcome> fresh = pool.sweep(todo, order, guess, report, watch);
     for (std::size_t i = 0; i < todo.size(); ++i) {
       if (const auto [first, last] = elementary(todo[i]); first == std::min(last, n_cuts))
         first_seconds[first] = fresh[i].seconds;
@@ -884,6 +928,11 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     const auto bands_start = std::chrono::steady_clock::now();
     parallel_for(live.size(), run.threads, 1, [&](std::size_t k) {
       if (!stays(k) || !swept.at(keys[k]).result || !swept.at(keys[k + 1]).result) return;
+      if (auto it = early.find({keys[k], keys[k + 1]}); it != early.end()) {
+        bands[k] = it->second.bands;  // a copy: a later round may take it again
+        band_error[k] = it->second.error;
+        return;
+      }
       const RegionResult& lower = *swept.at(keys[k]).result;
       const RegionResult& upper = *swept.at(keys[k + 1]).result;
       try {
@@ -920,12 +969,13 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
       for (const SlabCost& c : glued.slabs) out.costs.retried += c.seconds;
       out.costs.retried += bands_seconds + seconds_since(glue_start);
       swept.clear();
+      early.clear();
       drop(live[glued.failed], "decomposed sweep: " + glued.why);
       continue;
     }
     out.costs.slabs = std::move(glued.slabs);
     out.region_refinement = refinement;
-    out.costs.bands = bands_seconds;
+    out.costs.bands = bands_seconds + early_seconds;
     for (std::size_t c : live) {
       out.cut_heights.push_back(cuts[c].height);
       std::size_t balls = 0;

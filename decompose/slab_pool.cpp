@@ -97,7 +97,8 @@ void SlabPool::work() {
 }
 
 std::vector<SlabOutcome> SlabPool::sweep(const std::vector<SlabKey>& keys, const std::vector<std::size_t>& order,
-                                         const Guess& guess, const std::function<void(double)>& progress) {
+                                         const Guess& guess, const std::function<void(double)>& progress,
+                                         const Watch& watch) {
   std::vector<SlabOutcome> out(keys.size());
   const double n = static_cast<double>(std::max<std::size_t>(keys.size(), 1));
   if (threads_ <= 1) {
@@ -122,13 +123,20 @@ std::vector<SlabOutcome> SlabPool::sweep(const std::vector<SlabKey>& keys, const
   std::size_t reported = 0;
   for (;;) {
     std::size_t done = 0;
-    for (const SlabKey& key : keys)
-      if (auto it = entries_.find(key); it != entries_.end() && it->second.done) ++done;
+    std::vector<const SlabOutcome*> known(keys.size(), nullptr);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (auto it = entries_.find(keys[i]); it != entries_.end() && it->second.done) {
+        ++done;
+        if (!it->second.error) known[i] = &it->second.outcome;
+      }
     if (done == keys.size()) break;
-    if (done != reported && progress) {
+    if (done != reported) {
+      // A done entry of the round is neither written nor erased before the
+      // round ends: `known` may be read without the lock.
       reported = done;
       lock.unlock();
-      progress(static_cast<double>(done) / n);
+      if (progress) progress(static_cast<double>(done) / n);
+      if (watch) watch(known);
       lock.lock();
       continue;
     }

@@ -50,13 +50,20 @@ class SlabPool {
   SlabPool(const SlabPool&) = delete;
   SlabPool& operator=(const SlabPool&) = delete;
 
+  /// Called on the calling thread while the round runs, each time outcomes
+  /// have come in, with every outcome known so far (as Guess's `known`;
+  /// they stay put until the round ends). Not called with one thread.
+  using Watch = std::function<void(const std::vector<const SlabOutcome*>& known)>;
+
   /// The outcomes of `keys`, in that order: each taken from the slabs swept
   /// ahead, or swept now, started in the order `order` (a permutation of
-  /// keys' indices). `guess` may be empty (no slab swept ahead). `progress`
-  /// takes the fraction of the round done, on the calling thread. Rethrows
-  /// the exception of the first key (in key order) whose sweep threw one.
+  /// keys' indices). `guess` and `watch` may be empty (no slab swept ahead,
+  /// nothing watches). `progress` takes the fraction of the round done, on
+  /// the calling thread. Rethrows the exception of the first key (in key
+  /// order) whose sweep threw one.
   std::vector<SlabOutcome> sweep(const std::vector<SlabKey>& keys, const std::vector<std::size_t>& order,
-                                 const Guess& guess, const std::function<void(double)>& progress);
+                                 const Guess& guess, const std::function<void(double)>& progress,
+                                 const Watch& watch = {});
 
   /// Gives up every slab swept ahead for which `keep` is false: its outcome
   /// is freed, or its sweep cancelled and waited for.

@@ -2,7 +2,8 @@
 // with a sweep that only names its slab: each round gets its own slabs' outcomes
 // in its order on every thread count, a slab guessed while another runs is swept
 // ahead on the idle thread and taken by the next round without a second sweep,
-// a slab given up is cancelled, and a sweep's exception reaches the round.
+// the round's watch sees outcomes as they come, a slab given up is cancelled,
+// and a sweep's exception reaches the round.
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -77,7 +78,7 @@ TEST_CASE("slab pool: a slab guessed while the round's last one runs is swept ah
   Calls calls;
   std::mutex mutex;
   std::condition_variable started;
-  bool ahead_started = false;
+  bool ahead_started = false, watched = false;
   SlabPool pool(2, [&](const SlabKey& key, const std::atomic<bool>&, const std::function<void(double)>&) {
     calls.add(key);
     if (key == SlabKey{0, 3}) {
@@ -87,7 +88,7 @@ TEST_CASE("slab pool: a slab guessed while the round's last one runs is swept ah
     }
     if (key == SlabKey{1, 2}) {
       std::unique_lock<std::mutex> lock(mutex);
-      started.wait_for(lock, std::chrono::seconds(20), [&] { return ahead_started; });
+      started.wait_for(lock, std::chrono::seconds(20), [&] { return ahead_started && watched; });
     }
     return named(key);
   });
@@ -96,13 +97,25 @@ TEST_CASE("slab pool: a slab guessed while the round's last one runs is swept ah
     // (0,1) failed: its cut 1 goes, and (0,2) would be next; (0,3) stands in for it.
     return known[1] ? std::vector<SlabKey>{{0, 3}} : std::vector<SlabKey>{};
   };
-  const std::vector<SlabOutcome> first = pool.sweep(round, {0, 1}, guess, {});
+  // The watch runs on this thread and sees (0,1)'s outcome while (1,2) runs.
+  const std::thread::id caller = std::this_thread::get_id();
+  bool watched_here = true;
+  const SlabPool::Watch watch = [&](const std::vector<const SlabOutcome*>& known) {
+    watched_here = watched_here && std::this_thread::get_id() == caller;
+    if (!known[1] || known[0]) return;
+    const std::lock_guard<std::mutex> lock(mutex);
+    watched = known[1]->error == "0-1";
+    started.notify_all();
+  };
+  const std::vector<SlabOutcome> first = pool.sweep(round, {0, 1}, guess, {}, watch);
   CHECK(first[0].error == "1-2");
   CHECK(first[1].error == "0-1");
   {
     const std::lock_guard<std::mutex> lock(mutex);
     CHECK(ahead_started);
+    CHECK(watched);
   }
+  CHECK(watched_here);
   const std::vector<SlabOutcome> second = pool.sweep({{0, 3}}, {0}, {}, {});
   CHECK(second[0].error == "0-3");
   CHECK(calls.count[{0, 3}] == 1);
