@@ -825,9 +825,9 @@ std::optional<SweepResult> sweep_regions(const skin::SkinSurface& skin, const mo
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return predicted[a] > predicted[b]; });
     // The guess, asked when every slab of the round has started: first the
-    // slabs of the cuts kept once the failures known so far give up theirs
-    // (needed unless a slab still running fails beside them or a band has
-    // no strip), then, per slab still running, the slabs it would leave if
+    // slabs of the cuts kept once the failures known so far, of slabs and of
+    // bands, give up theirs (needed unless a slab still running fails beside
+    // them), then, per slab still running, the slabs it would leave if
     // it failed at its upper cut (needed if it does: about one slab in five
     // fails on a large body, and a round's last slab is the one the next
     // round waits for). Each group longest first; only reads.
